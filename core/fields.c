@@ -1,0 +1,183 @@
+/* The tables behind core/fields.h.  Adding an output field is one extractor
+ * and one row here. */
+#include "fields.h"
+
+#include <math.h>
+#include <string.h>
+
+static void ex_id(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.id, m->p.n * sizeof(int64_t));
+}
+
+static void ex_body(const struct tlsph_model *m, void *out)
+{
+    int64_t *o = out;
+    for (size_t i = 0; i < m->p.n; i++)
+        o[i] = m->p.body[i];
+}
+
+static void ex_X(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.X, 3 * m->p.n * sizeof(double));
+}
+
+static void ex_volume(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.vol0, m->p.n * sizeof(double));
+}
+
+static void ex_mass(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.mass, m->p.n * sizeof(double));
+}
+
+static void ex_x(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.x, 3 * m->p.n * sizeof(double));
+}
+
+static void ex_v(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.v, 3 * m->p.n * sizeof(double));
+}
+
+static void ex_u(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t k = 0; k < 3 * m->p.n; k++)
+        o[k] = m->p.x[k] - m->p.X[k];
+}
+
+static void ex_stress(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.sigma, 6 * m->p.n * sizeof(double));
+}
+
+static void ex_pressure(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *s = m->p.sigma + 6 * i;
+        o[i] = -(s[0] + s[3] + s[5]) / 3.0;
+    }
+}
+
+static void ex_von_mises(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *s = m->p.sigma + 6 * i;
+        const double a = s[0] - s[3], b = s[3] - s[5], c = s[5] - s[0];
+        o[i] = sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
+    }
+}
+
+static void ex_detF(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *F = m->p.F + 9 * i;
+        o[i] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+               F[2] * (F[3] * F[7] - F[4] * F[6]);
+    }
+}
+
+static void ex_e(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.e, m->p.n * sizeof(double));
+}
+
+const struct tlsph_field tlsph_fields[] = {
+    {"id", TLSPH_FIELD_REFERENCE, TLSPH_INT64, 1, "1", NULL,
+     "stable particle id (generation order, body by body)", NULL, ex_id},
+    {"body", TLSPH_FIELD_REFERENCE, TLSPH_INT32, 1, "1", NULL,
+     "index of the body in the scene's bodies array", NULL, ex_body},
+    {"reference_position", TLSPH_FIELD_REFERENCE, TLSPH_FLOAT64, 3, "m", "x y z",
+     "position in the reference configuration X", NULL, ex_X},
+    {"volume", TLSPH_FIELD_REFERENCE, TLSPH_FLOAT64, 1, "m^3", NULL,
+     "reference volume V0 (m^2 per metre of thickness in 2-D)", NULL, ex_volume},
+    {"mass", TLSPH_FIELD_REFERENCE, TLSPH_FLOAT64, 1, "kg", NULL, "particle mass", NULL, ex_mass},
+    {"position", TLSPH_FIELD_FRAME, TLSPH_FLOAT64, 3, "m", "x y z", "current position x", NULL,
+     ex_x},
+    {"velocity", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 3, "m/s", "x y z", "velocity", NULL, ex_v},
+    {"displacement", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 3, "m", "x y z", "x - X", NULL, ex_u},
+    {"stress", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 6, "Pa", "xx xy xz yy yz zz",
+     "Cauchy stress", NULL, ex_stress},
+    {"pressure", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "Pa", NULL,
+     "pressure -tr(sigma)/3 (positive in compression)", NULL, ex_pressure},
+    {"von_mises", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "Pa", NULL, "von Mises equivalent stress",
+     NULL, ex_von_mises},
+    {"det_F", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "volume ratio J = det F", NULL, ex_detF},
+    {"internal_energy", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "J/kg", NULL,
+     "specific internal energy", NULL, ex_e},
+};
+const size_t tlsph_nfields = sizeof tlsph_fields / sizeof *tlsph_fields;
+
+const struct tlsph_series_column tlsph_global_series[] = {
+    {"kinetic_energy", 1, "J", "sum of m v^2 / 2"},
+    {"internal_energy", 1, "J", "stored internal (strain) energy, sum of m e"},
+    {"external_work", 1, "J", "work done on the bodies by boundary conditions and body forces"},
+    {"hourglass_energy", 1, "J", "work done against hourglass-control forces"},
+    {"viscous_energy", 1, "J", "work done against artificial-viscosity forces"},
+    {"energy_balance", 1, "J",
+     "kinetic + internal + hourglass + viscous - external work - initial energy (0 when energy is conserved)"},
+    {"linear_momentum", 3, "kg m/s", "total linear momentum"},
+    {"time_step", 1, "s", "time step used for the last step"},
+};
+const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
+
+const struct tlsph_series_column tlsph_group_series[] = {
+    {"reaction_force", 3, "N", "force exerted by the constraint on the group's particles"},
+    {"displacement", 3, "m", "mean displacement of the group's particles"},
+};
+const size_t tlsph_ngroup_series = sizeof tlsph_group_series / sizeof *tlsph_group_series;
+
+int tlsph_group_has_series(const struct tlsph_model *m, size_t k)
+{
+    const enum tlsph_bc_type t = m->scene.bcs[k].type;
+    return t == TLSPH_BC_FIXED || t == TLSPH_BC_VELOCITY;
+}
+
+size_t tlsph_global_series_width(void)
+{
+    size_t w = 0;
+    for (size_t c = 0; c < tlsph_nglobal_series; c++)
+        w += (size_t)tlsph_global_series[c].ncomp;
+    return w;
+}
+
+size_t tlsph_group_series_width(void)
+{
+    size_t w = 0;
+    for (size_t c = 0; c < tlsph_ngroup_series; c++)
+        w += (size_t)tlsph_group_series[c].ncomp;
+    return w;
+}
+
+void tlsph_global_series_values(const struct tlsph_model *m, double *out)
+{
+    const struct tlsph_energy *e = &m->energy;
+    double mom[3];
+    tlsph_model_momentum(m, mom);
+    out[0] = e->kinetic;
+    out[1] = e->internal;
+    out[2] = e->external_work;
+    out[3] = e->hourglass;
+    out[4] = e->viscous;
+    out[5] = e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    out[6] = mom[0];
+    out[7] = mom[1];
+    out[8] = mom[2];
+    out[9] = m->dt;
+}
+
+void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_group *g = &m->groups[k];
+    for (int c = 0; c < 3; c++) {
+        out[c] = g->reaction[c];
+        out[3 + c] = g->displacement[c];
+    }
+}

@@ -1,0 +1,137 @@
+/* 3x3 tensor algebra used in per-particle loops.  Matrices are row-major
+ * double[9]; symmetric tensors are double[6] in the order xx xy xz yy yz zz.
+ * Everything is static inline so the per-particle loops stay free of calls. */
+#ifndef TLSPH_MAT3_H
+#define TLSPH_MAT3_H
+
+#include <math.h>
+#include <string.h>
+
+static inline double mat3_det(const double *A)
+{
+    return A[0] * (A[4] * A[8] - A[5] * A[7]) - A[1] * (A[3] * A[8] - A[5] * A[6]) +
+           A[2] * (A[3] * A[7] - A[4] * A[6]);
+}
+
+/* Adjugate-based inverse; returns the determinant (inverse not written when 0). */
+static inline double mat3_inverse(const double *A, double *Ai)
+{
+    const double c00 = A[4] * A[8] - A[5] * A[7];
+    const double c01 = A[5] * A[6] - A[3] * A[8];
+    const double c02 = A[3] * A[7] - A[4] * A[6];
+    const double det = A[0] * c00 + A[1] * c01 + A[2] * c02;
+    if (det == 0.0)
+        return 0.0;
+    const double r = 1.0 / det;
+    Ai[0] = c00 * r;
+    Ai[1] = (A[2] * A[7] - A[1] * A[8]) * r;
+    Ai[2] = (A[1] * A[5] - A[2] * A[4]) * r;
+    Ai[3] = c01 * r;
+    Ai[4] = (A[0] * A[8] - A[2] * A[6]) * r;
+    Ai[5] = (A[2] * A[3] - A[0] * A[5]) * r;
+    Ai[6] = c02 * r;
+    Ai[7] = (A[1] * A[6] - A[0] * A[7]) * r;
+    Ai[8] = (A[0] * A[4] - A[1] * A[3]) * r;
+    return det;
+}
+
+/* C = A B */
+static inline void mat3_mul(const double *A, const double *B, double *C)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            C[3 * r + c] = A[3 * r] * B[c] + A[3 * r + 1] * B[3 + c] + A[3 * r + 2] * B[6 + c];
+}
+
+/* C = A B^T */
+static inline void mat3_mul_bt(const double *A, const double *B, double *C)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            C[3 * r + c] =
+                A[3 * r] * B[3 * c] + A[3 * r + 1] * B[3 * c + 1] + A[3 * r + 2] * B[3 * c + 2];
+}
+
+/* C = A^T B */
+static inline void mat3_mul_at(const double *A, const double *B, double *C)
+{
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            C[3 * r + c] = A[r] * B[c] + A[3 + r] * B[3 + c] + A[6 + r] * B[6 + c];
+}
+
+static inline void sym6_to_mat3(const double *s, double *A)
+{
+    A[0] = s[0]; A[1] = s[1]; A[2] = s[2];
+    A[3] = s[1]; A[4] = s[3]; A[5] = s[4];
+    A[6] = s[2]; A[7] = s[4]; A[8] = s[5];
+}
+
+static inline void mat3_to_sym6(const double *A, double *s)
+{
+    s[0] = A[0];
+    s[1] = 0.5 * (A[1] + A[3]);
+    s[2] = 0.5 * (A[2] + A[6]);
+    s[3] = A[4];
+    s[4] = 0.5 * (A[5] + A[7]);
+    s[5] = A[8];
+}
+
+/* Eigen-decomposition of a symmetric matrix by cyclic Jacobi rotations.
+ * A (row-major, symmetric) -> eigenvalues lam[3], eigenvectors as the columns
+ * of Q (row-major), A = Q diag(lam) Q^T.  Jacobi is used rather than the
+ * closed-form cubic because it is exact for (near-)repeated eigenvalues,
+ * which is the common case here (an undeformed particle has C = I). */
+static inline void sym3_eigen(const double *A, double lam[3], double *Q)
+{
+    double a[3][3] = {{A[0], A[1], A[2]}, {A[1], A[4], A[5]}, {A[2], A[5], A[8]}};
+    double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    for (int sweep = 0; sweep < 32; sweep++) {
+        const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+        if (off <= 1e-32 * diag || off == 0.0)
+            break;
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++) {
+                const double apq = a[p][q];
+                if (apq == 0.0)
+                    continue;
+                const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
+                const double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                for (int k = 0; k < 3; k++) {
+                    const double akp = a[k][p], akq = a[k][q];
+                    a[k][p] = c * akp - s * akq;
+                    a[k][q] = s * akp + c * akq;
+                }
+                for (int k = 0; k < 3; k++) {
+                    const double apk = a[p][k], aqk = a[q][k];
+                    a[p][k] = c * apk - s * aqk;
+                    a[q][k] = s * apk + c * aqk;
+                }
+                for (int k = 0; k < 3; k++) {
+                    const double vkp = v[k][p], vkq = v[k][q];
+                    v[k][p] = c * vkp - s * vkq;
+                    v[k][q] = s * vkp + c * vkq;
+                }
+            }
+    }
+    for (int k = 0; k < 3; k++)
+        lam[k] = a[k][k];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            Q[3 * r + c] = v[r][c];
+}
+
+/* S = Q diag(d) Q^T as sym6. */
+static inline void sym3_compose(const double *Q, const double d[3], double *s)
+{
+    double M[9];
+    for (int r = 0; r < 3; r++)
+        for (int c = r; c < 3; c++)
+            M[3 * r + c] = Q[3 * r] * d[0] * Q[3 * c] + Q[3 * r + 1] * d[1] * Q[3 * c + 1] +
+                           Q[3 * r + 2] * d[2] * Q[3 * c + 2];
+    s[0] = M[0]; s[1] = M[1]; s[2] = M[2]; s[3] = M[4]; s[4] = M[5]; s[5] = M[8];
+}
+
+#endif

@@ -1,0 +1,227 @@
+#include "json_check.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+static const char *type_name(const json_t *v)
+{
+    switch (json_typeof(v)) {
+    case JSON_OBJECT: return "object";
+    case JSON_ARRAY: return "array";
+    case JSON_STRING: return "string";
+    case JSON_INTEGER: return "integer";
+    case JSON_REAL: return "number";
+    case JSON_TRUE:
+    case JSON_FALSE: return "boolean";
+    case JSON_NULL: return "null";
+    }
+    return "unknown";
+}
+
+int jc_unknown_keys(const json_t *obj, const char *const *allowed, const char *pointer,
+                    struct tlsph_errors *err)
+{
+    const char *key;
+    json_t *val;
+    int n = 0;
+    json_object_foreach((json_t *)obj, key, val) {
+        int ok = 0;
+        for (const char *const *a = allowed; *a && !ok; a++)
+            ok = strcmp(*a, key) == 0;
+        if (!ok) {
+            char p[512];
+            tlsph_pointer_join(p, sizeof p, pointer, key);
+            char list[400] = "";
+            size_t len = 0;
+            for (const char *const *a = allowed; *a && len + 1 < sizeof list; a++)
+                len += (size_t)snprintf(list + len, sizeof list - len, "%s%s",
+                                        a == allowed ? "" : ", ", *a);
+            tlsph_errors_add(err, p, "unknown field '%s' (allowed here: %s)", key, list);
+            n++;
+        }
+    }
+    return n;
+}
+
+static void describe_range(char *buf, size_t size, struct jc_range r)
+{
+    if (r.lo == JC_NONE && r.hi == JC_NONE)
+        snprintf(buf, size, "any finite number");
+    else if (r.hi == JC_NONE)
+        snprintf(buf, size, "%s %g", r.lo == JC_OPEN ? ">" : ">=", r.min);
+    else if (r.lo == JC_NONE)
+        snprintf(buf, size, "%s %g", r.hi == JC_OPEN ? "<" : "<=", r.max);
+    else
+        snprintf(buf, size, "in %s%g, %g%s", r.lo == JC_OPEN ? "(" : "[", r.min, r.max,
+                 r.hi == JC_OPEN ? ")" : "]");
+}
+
+static int in_range(double x, struct jc_range r)
+{
+    if (!isfinite(x))
+        return 0;
+    if (r.lo == JC_OPEN && !(x > r.min))
+        return 0;
+    if (r.lo == JC_CLOSED && !(x >= r.min))
+        return 0;
+    if (r.hi == JC_OPEN && !(x < r.max))
+        return 0;
+    if (r.hi == JC_CLOSED && !(x <= r.max))
+        return 0;
+    return 1;
+}
+
+int jc_number(const json_t *obj, const char *key, int required, struct jc_range r,
+              const char *units, const char *pointer, double *out, struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p, "required field '%s' (%s) is missing", key, units);
+            return -1;
+        }
+        return 1;
+    }
+    if (!json_is_number(v)) {
+        tlsph_errors_add(err, p, "'%s' must be a number (%s), got %s", key, units, type_name(v));
+        return -1;
+    }
+    double x = json_number_value(v);
+    if (!in_range(x, r)) {
+        char d[128];
+        describe_range(d, sizeof d, r);
+        tlsph_errors_add(err, p, "'%s' = %g %s is out of range: must be %s", key, x, units, d);
+        return -1;
+    }
+    *out = x;
+    return 0;
+}
+
+int jc_integer(const json_t *obj, const char *key, int required, long min, long max,
+               const char *pointer, long *out, struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p, "required field '%s' is missing", key);
+            return -1;
+        }
+        return 1;
+    }
+    if (!json_is_integer(v)) {
+        tlsph_errors_add(err, p, "'%s' must be an integer, got %s", key, type_name(v));
+        return -1;
+    }
+    json_int_t x = json_integer_value(v);
+    if (x < min || x > max) {
+        tlsph_errors_add(err, p, "'%s' = %lld is out of range: must be in [%ld, %ld]", key,
+                         (long long)x, min, max);
+        return -1;
+    }
+    *out = (long)x;
+    return 0;
+}
+
+int jc_boolean(const json_t *obj, const char *key, int required, const char *pointer, int *out,
+               struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p, "required field '%s' is missing", key);
+            return -1;
+        }
+        return 1;
+    }
+    if (!json_is_boolean(v)) {
+        tlsph_errors_add(err, p, "'%s' must be true or false, got %s", key, type_name(v));
+        return -1;
+    }
+    *out = json_is_true(v);
+    return 0;
+}
+
+int jc_string(const json_t *obj, const char *key, int required, const char *pointer, char *out,
+              size_t size, struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p, "required field '%s' is missing", key);
+            return -1;
+        }
+        return 1;
+    }
+    if (!json_is_string(v)) {
+        tlsph_errors_add(err, p, "'%s' must be a string, got %s", key, type_name(v));
+        return -1;
+    }
+    const char *s = json_string_value(v);
+    size_t len = json_string_length(v);
+    if (len == 0 || len >= size || strlen(s) != len) {
+        tlsph_errors_add(err, p, "'%s' must be a non-empty string of at most %zu characters", key,
+                         size - 1);
+        return -1;
+    }
+    memcpy(out, s, len + 1);
+    return 0;
+}
+
+int jc_vector(const json_t *obj, const char *key, int required, int n, const char *units,
+              const char *pointer, double *out, struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p, "required field '%s' (%d numbers, %s) is missing", key, n,
+                             units);
+            return -1;
+        }
+        return 1;
+    }
+    if (!json_is_array(v) || json_array_size(v) != (size_t)n) {
+        tlsph_errors_add(err, p, "'%s' must be an array of %d numbers (%s)", key, n, units);
+        return -1;
+    }
+    for (int k = 0; k < n; k++) {
+        const json_t *e = json_array_get(v, (size_t)k);
+        if (!json_is_number(e) || !isfinite(json_number_value(e))) {
+            char q[512];
+            tlsph_pointer_index(q, sizeof q, p, (size_t)k);
+            tlsph_errors_add(err, q, "component %d of '%s' must be a finite number (%s)", k, key,
+                             units);
+            return -1;
+        }
+        out[k] = json_number_value(e);
+    }
+    return 0;
+}
+
+const json_t *jc_object(const json_t *obj, const char *key, int required, const char *pointer,
+                        struct tlsph_errors *err)
+{
+    char p[512];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v) {
+        if (required)
+            tlsph_errors_add(err, p, "required object '%s' is missing", key);
+        return NULL;
+    }
+    if (!json_is_object(v)) {
+        tlsph_errors_add(err, p, "'%s' must be an object, got %s", key, type_name(v));
+        return NULL;
+    }
+    return v;
+}

@@ -1,0 +1,580 @@
+/* Scene parser, top level: JSON text -> validated struct tlsph_scene.
+ *
+ * Every problem found is reported (JSON pointer + message naming the field, the
+ * accepted range and its unit); parsing goes on after an error so that one run
+ * of the validator lists them all.  The sections are read in dependency order:
+ * dimension, parameters (used by expressions), scalar settings, materials,
+ * bodies (need materials), boundary conditions (need bodies), then the
+ * particle counts (need limits and valid bodies).  Bodies and BCs live in
+ * parse_bodies.c and parse_bcs.c, geometry objects in parse_geometry.c. */
+#include <errno.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "../eos/eos.h"
+#include "../strength/strength.h"
+#include "parse_internal.h"
+
+#define TLSPH_SCENE_FILE_MAX (16L * 1024 * 1024)
+
+const char *tlsph_json_type_name(const json_t *v)
+{
+    switch (json_typeof(v)) {
+    case JSON_OBJECT: return "object";
+    case JSON_ARRAY: return "array";
+    case JSON_STRING: return "string";
+    case JSON_INTEGER: return "integer";
+    case JSON_REAL: return "number";
+    case JSON_TRUE:
+    case JSON_FALSE: return "boolean";
+    case JSON_NULL: return "null";
+    }
+    return "unknown";
+}
+
+int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name)
+{
+    for (size_t i = 0; i < s->nbodies; i++)
+        if (strcmp(s->bodies[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *free_vars,
+                     int nfree, int allow_conditions, const struct tlsph_scene *s,
+                     const char *pointer, struct tlsph_errors *err)
+{
+    memset(ex, 0, sizeof *ex);
+    char num[64];
+    const char *text;
+    if (json_is_number(v)) {
+        if (!isfinite(json_number_value(v))) {
+            tlsph_errors_add(err, pointer, "number must be finite");
+            return -1;
+        }
+        snprintf(num, sizeof num, "%.17g", json_number_value(v));
+        text = num;
+    } else if (json_is_string(v)) {
+        text = json_string_value(v);
+        if (strlen(text) != json_string_length(v)) {
+            tlsph_errors_add(err, pointer, "expression contains a NUL character");
+            return -1;
+        }
+    } else {
+        tlsph_errors_add(err, pointer,
+                         "must be a number or an expression string of %s, got %s",
+                         nfree == 1 ? free_vars[0] : "x, y, z", tlsph_json_type_name(v));
+        return -1;
+    }
+    char *rewritten = NULL;
+    if (allow_conditions) {
+        char msg[256];
+        rewritten = tlsph_condition_rewrite(text, msg, sizeof msg);
+        if (!rewritten) {
+            tlsph_errors_add(err, pointer, "invalid condition '%s': %s", text,
+                             msg[0] ? msg : "out of memory");
+            return -1;
+        }
+    }
+    const char *compiled = rewritten ? rewritten : text;
+    char msg[256];
+    if (tlsph_expr_syntax(compiled, msg, sizeof msg) != 0) {
+        if (rewritten)
+            tlsph_errors_add(err, pointer, "cannot parse condition '%s' (rewritten as '%s'): %s",
+                             text, compiled, msg);
+        else
+            tlsph_errors_add(err, pointer, "cannot parse expression '%s': %s", text, msg);
+        free(rewritten);
+        return -1;
+    }
+    int rc;
+    if (rewritten) {
+        /* Report problems against the text the user wrote. */
+        struct tlsph_errors tmp;
+        tlsph_errors_init(&tmp);
+        rc = tlsph_expr_compile(ex, compiled, free_vars, nfree, s->params, s->nparams, pointer,
+                                &tmp);
+        for (size_t i = 0; i < tmp.count; i++)
+            tlsph_errors_add(err, pointer, "in condition '%s': %s", text, tmp.items[i].message);
+        if (tmp.out_of_memory)
+            err->out_of_memory = 1;
+        tlsph_errors_free(&tmp);
+        free(rewritten);
+    } else {
+        rc = tlsph_expr_compile(ex, compiled, free_vars, nfree, s->params, s->nparams, pointer,
+                                err);
+    }
+    return rc;
+}
+
+/* ------------------------------------------------------------------ sections */
+
+static int valid_identifier(const char *s)
+{
+    if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || *s == '_'))
+        return 0;
+    for (s++; *s; s++)
+        if (!((*s >= 'a' && *s <= 'z') || (*s >= 'A' && *s <= 'Z') || (*s >= '0' && *s <= '9') ||
+              *s == '_'))
+            return 0;
+    return 1;
+}
+
+static int parse_parameters(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    const json_t *obj = jc_object(root, "parameters", 0, "", err);
+    if (!obj)
+        return json_object_get(root, "parameters") ? -1 : 0;
+    int bad = 0;
+    size_t n = json_object_size(obj);
+    if (n > TLSPH_MAX_PARAMS) {
+        tlsph_errors_add(err, "/parameters", "at most %d parameters are allowed, got %zu",
+                         TLSPH_MAX_PARAMS, n);
+        return -1;
+    }
+    if (n == 0)
+        return 0;
+    s->params = calloc(n, sizeof *s->params);
+    if (!s->params) {
+        tlsph_errors_add(err, "/parameters", "out of memory");
+        return -1;
+    }
+    const char *key;
+    json_t *val;
+    json_object_foreach((json_t *)obj, key, val) {
+        char p[TLSPH_POINTER_MAX];
+        tlsph_pointer_join(p, sizeof p, "/parameters", key);
+        int ok = 1;
+        if (!valid_identifier(key) || strlen(key) >= sizeof s->params[0].name) {
+            tlsph_errors_add(err, p,
+                             "parameter name '%s' must match [A-Za-z_][A-Za-z0-9_]* and have at "
+                             "most %zu characters",
+                             key, sizeof s->params[0].name - 1);
+            ok = 0;
+        } else {
+            if (tlsph_expr_reserved(key) || strcmp(key, "x") == 0 || strcmp(key, "y") == 0 ||
+                strcmp(key, "z") == 0 || strcmp(key, "t") == 0) {
+                tlsph_errors_add(err, p,
+                                 "parameter name '%s' is reserved (a variable x, y, z, t or a "
+                                 "built-in constant or function of the expression language)",
+                                 key);
+                ok = 0;
+            }
+        }
+        if (!json_is_number(val) || !isfinite(json_number_value(val))) {
+            tlsph_errors_add(err, p, "parameter '%s' must be a finite number, got %s", key,
+                             tlsph_json_type_name(val));
+            ok = 0;
+        }
+        if (!ok) {
+            bad = 1;
+            continue;
+        }
+        memcpy(s->params[s->nparams].name, key, strlen(key) + 1);
+        s->params[s->nparams].value = json_number_value(val);
+        s->nparams++;
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse_time(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"end", "cfl", "step", "max_steps", NULL};
+    const json_t *t = jc_object(root, "time", 1, "", err);
+    if (!t)
+        return -1;
+    int bad = jc_unknown_keys(t, keys, "/time", err) != 0;
+    bad |= jc_number(t, "end", 1, JC_POSITIVE, "s", "/time", &s->end_time, err) < 0;
+    bad |= jc_number(t, "cfl", 0, ((struct jc_range){0.0, 10.0, JC_OPEN, JC_CLOSED}),
+                     "(dimensionless)",
+                     "/time", &s->cfl, err) < 0;
+    bad |= jc_number(t, "step", 0, JC_POSITIVE, "s", "/time", &s->fixed_dt, err) < 0;
+    bad |= jc_integer(t, "max_steps", 0, 0, 1000000000000L, "/time", &s->max_steps, err) < 0;
+    return bad ? -1 : 0;
+}
+
+static int parse_discretization(const json_t *root, struct tlsph_scene *s,
+                                struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"kernel", "support_factor", "hourglass", "viscosity",
+                                       NULL};
+    static const char *const hg_keys[] = {"enabled", "coefficient", NULL};
+    static const char *const visc_keys[] = {"enabled", "linear", "quadratic", NULL};
+    const char *P = "/discretization";
+    const json_t *d = jc_object(root, "discretization", 0, "", err);
+    if (!d)
+        return json_object_get(root, "discretization") ? -1 : 0;
+    int bad = jc_unknown_keys(d, keys, P, err) != 0;
+    char kernel[32];
+    int r = jc_string(d, "kernel", 0, P, kernel, sizeof kernel, err);
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 0) {
+        if (strcmp(kernel, "wendland_c2") == 0) {
+            s->kernel = TLSPH_KERNEL_WENDLAND_C2;
+        } else if (strcmp(kernel, "cubic_spline") == 0) {
+            s->kernel = TLSPH_KERNEL_CUBIC_SPLINE;
+        } else {
+            tlsph_errors_add(err, "/discretization/kernel",
+                             "unknown kernel '%s' (accepted: wendland_c2, cubic_spline)", kernel);
+            bad = 1;
+        }
+    }
+    bad |= jc_number(d, "support_factor", 0, JC_BETWEEN(1.2, 4.0), "(support radius / spacing)",
+                     P, &s->support_factor, err) < 0;
+    const json_t *hg = jc_object(d, "hourglass", 0, P, err);
+    if (hg) {
+        const char *Q = "/discretization/hourglass";
+        bad |= jc_unknown_keys(hg, hg_keys, Q, err) != 0;
+        bad |= jc_boolean(hg, "enabled", 0, Q, &s->hourglass, err) < 0;
+        bad |= jc_number(hg, "coefficient", 0, JC_BETWEEN(0.0, 100.0), "(dimensionless)", Q,
+                         &s->hourglass_coefficient, err) < 0;
+    } else if (json_object_get(d, "hourglass")) {
+        bad = 1;
+    }
+    const json_t *vi = jc_object(d, "viscosity", 0, P, err);
+    if (vi) {
+        const char *Q = "/discretization/viscosity";
+        bad |= jc_unknown_keys(vi, visc_keys, Q, err) != 0;
+        bad |= jc_boolean(vi, "enabled", 0, Q, &s->viscosity, err) < 0;
+        bad |= jc_number(vi, "linear", 0, JC_BETWEEN(0.0, 10.0), "(dimensionless)", Q,
+                         &s->viscosity_linear, err) < 0;
+        bad |= jc_number(vi, "quadratic", 0, JC_BETWEEN(0.0, 10.0), "(dimensionless)", Q,
+                         &s->viscosity_quadratic, err) < 0;
+    } else if (json_object_get(d, "viscosity")) {
+        bad = 1;
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse_settings(const json_t *root, struct tlsph_scene *s, int *limits_bad,
+                          struct tlsph_errors *err)
+{
+    static const char *const st_keys[] = {"check_every", "energy_tolerance", "speed_limit", NULL};
+    static const char *const lim_keys[] = {"max_particles", NULL};
+    static const char *const out_keys[] = {"frames", "series_every", NULL};
+    int bad = 0;
+    const json_t *st = jc_object(root, "stability", 0, "", err);
+    if (st) {
+        bad |= jc_unknown_keys(st, st_keys, "/stability", err) != 0;
+        bad |= jc_integer(st, "check_every", 0, 1, 1000000000L, "/stability", &s->check_every,
+                          err) < 0;
+        bad |= jc_number(st, "energy_tolerance", 0, ((struct jc_range){0, 10, JC_OPEN, JC_CLOSED}),
+                         "(relative to the energy scale)", "/stability", &s->energy_tolerance,
+                         err) < 0;
+        bad |= jc_number(st, "speed_limit", 0, ((struct jc_range){0, 100, JC_OPEN, JC_CLOSED}),
+                         "(max speed / max wave speed)", "/stability", &s->speed_limit_factor,
+                         err) < 0;
+    } else if (json_object_get(root, "stability")) {
+        bad = 1;
+    }
+    const json_t *lim = jc_object(root, "limits", 0, "", err);
+    if (lim) {
+        *limits_bad |= jc_unknown_keys(lim, lim_keys, "/limits", err) != 0;
+        *limits_bad |= jc_integer(lim, "max_particles", 0, 1, TLSPH_MAX_PARTICLES, "/limits",
+                                  &s->max_particles, err) < 0;
+    } else if (json_object_get(root, "limits")) {
+        *limits_bad = 1;
+    }
+    bad |= *limits_bad;
+    const json_t *out = jc_object(root, "output", 0, "", err);
+    if (out) {
+        bad |= jc_unknown_keys(out, out_keys, "/output", err) != 0;
+        bad |= jc_integer(out, "frames", 0, 1, 100000L, "/output", &s->frames, err) < 0;
+        bad |= jc_integer(out, "series_every", 0, 1, 1000000000L, "/output", &s->series_every,
+                          err) < 0;
+    } else if (json_object_get(root, "output")) {
+        bad = 1;
+    }
+    return bad ? -1 : 0;
+}
+
+/* "eos" / "strength": {"type": NAME, ...model parameters}. */
+static int parse_model_ref(const json_t *mat, const char *key, const char *pointer,
+                           char *type, size_t size, const json_t **obj, struct tlsph_errors *err)
+{
+    *obj = jc_object(mat, key, 0, pointer, err);
+    if (!*obj)
+        return json_object_get(mat, key) ? -1 : 1;
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    return jc_string(*obj, "type", 1, p, type, size, err) == 0 ? 0 : -1;
+}
+
+static int parse_material(const char *name, const json_t *mat, struct tlsph_material *m,
+                          struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"density", "youngs_modulus", "poisson_ratio", "eos",
+                                       "strength", NULL};
+    char P[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(P, sizeof P, "/materials", name);
+    if (!json_is_object(mat)) {
+        tlsph_errors_add(err, P, "material '%s' must be an object, got %s", name,
+                         tlsph_json_type_name(mat));
+        return -1;
+    }
+    if (strlen(name) == 0 || strlen(name) >= sizeof m->name) {
+        tlsph_errors_add(err, P, "material name must have 1 to %zu characters",
+                         sizeof m->name - 1);
+        return -1;
+    }
+    memcpy(m->name, name, strlen(name) + 1);
+    int bad = jc_unknown_keys(mat, keys, P, err) != 0;
+    int elastic_ok = 1;
+    if (jc_number(mat, "density", 1, ((struct jc_range){0, 1e5, JC_OPEN, JC_CLOSED}), "kg/m^3",
+                  P, &m->density, err) != 0)
+        elastic_ok = 0;
+    if (jc_number(mat, "youngs_modulus", 1, JC_POSITIVE, "Pa", P, &m->youngs_modulus, err) != 0)
+        elastic_ok = 0;
+    double nu = 0.0;
+    int r = jc_number(mat, "poisson_ratio", 1, JC_ANY, "(dimensionless)", P, &nu, err);
+    if (r == 0) {
+        char p[TLSPH_POINTER_MAX];
+        tlsph_pointer_join(p, sizeof p, P, "poisson_ratio");
+        if (nu >= 0.5) {
+            tlsph_errors_add(err, p,
+                             "'poisson_ratio' = %g: incompressible (nu = 0.5) and "
+                             "nu > 0.5 materials are not supported; must be in (-1, 0.5)",
+                             nu);
+            r = -1;
+        } else if (nu <= -1.0) {
+            tlsph_errors_add(err, p, "'poisson_ratio' = %g is out of range: must be in (-1, 0.5)",
+                             nu);
+            r = -1;
+        }
+    }
+    if (r != 0)
+        elastic_ok = 0;
+    m->poisson_ratio = nu;
+    bad |= !elastic_ok;
+    if (elastic_ok) {
+        m->shear_modulus = m->youngs_modulus / (2.0 * (1.0 + nu));
+        m->bulk_modulus = m->youngs_modulus / (3.0 * (1.0 - 2.0 * nu));
+        m->wave_speed = sqrt((m->bulk_modulus + 4.0 * m->shear_modulus / 3.0) / m->density);
+    }
+
+    char type[64], p[TLSPH_POINTER_MAX];
+    const json_t *obj;
+    m->eos = &tlsph_eos_linear;
+    r = parse_model_ref(mat, "eos", P, type, sizeof type, &obj, err);
+    tlsph_pointer_join(p, sizeof p, P, "eos");
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 0) {
+        m->eos = tlsph_eos_find(type);
+        if (!m->eos) {
+            char q[TLSPH_POINTER_MAX];
+            tlsph_pointer_join(q, sizeof q, p, "type");
+            tlsph_errors_add(err, q, "unknown equation of state '%s' (accepted: %s)", type,
+                             tlsph_eos_names());
+            bad = 1;
+        } else if (m->eos->parse(obj, m, p, err) != 0) {
+            bad = 1;
+        }
+    }
+    m->strength = &tlsph_strength_elastic;
+    r = parse_model_ref(mat, "strength", P, type, sizeof type, &obj, err);
+    tlsph_pointer_join(p, sizeof p, P, "strength");
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 0) {
+        m->strength = tlsph_strength_find(type);
+        if (!m->strength) {
+            char q[TLSPH_POINTER_MAX];
+            tlsph_pointer_join(q, sizeof q, p, "type");
+            tlsph_errors_add(err, q, "unknown strength model '%s' (accepted: %s)", type,
+                             tlsph_strength_names());
+            bad = 1;
+        } else if (m->strength->parse(obj, m, p, err) != 0) {
+            bad = 1;
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse_materials(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    const json_t *mats = jc_object(root, "materials", 1, "", err);
+    if (!mats)
+        return -1;
+    size_t n = json_object_size(mats);
+    if (n == 0) {
+        tlsph_errors_add(err, "/materials", "'materials' must define at least one material");
+        return -1;
+    }
+    if (n > 1000) {
+        tlsph_errors_add(err, "/materials", "at most 1000 materials are allowed, got %zu", n);
+        return -1;
+    }
+    s->materials = calloc(n, sizeof *s->materials);
+    if (!s->materials) {
+        tlsph_errors_add(err, "/materials", "out of memory");
+        return -1;
+    }
+    int bad = 0;
+    const char *key;
+    json_t *val;
+    json_object_foreach((json_t *)mats, key, val) {
+        bad |= parse_material(key, val, &s->materials[s->nmaterials], err) != 0;
+        s->nmaterials++; /* names are kept even when invalid, for body lookups */
+    }
+    return bad ? -1 : 0;
+}
+
+static void set_defaults(struct tlsph_scene *s)
+{
+    memset(s, 0, sizeof *s);
+    s->dimension = 3;
+    strcpy(s->name, "scene");
+    s->cfl = 0.3;
+    s->kernel = TLSPH_KERNEL_WENDLAND_C2;
+    s->support_factor = 2.01;
+    s->hourglass = 1;
+    s->hourglass_coefficient = 1.0;
+    s->viscosity = 0;
+    s->viscosity_linear = 1.0;
+    s->viscosity_quadratic = 0.0;
+    s->check_every = 10;
+    s->energy_tolerance = 0.05;
+    s->speed_limit_factor = 1.0;
+    s->max_particles = 2000000;
+    s->frames = 20;
+    s->series_every = 10;
+}
+
+int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
+                      struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"name", "dimension", "parameters", "time",
+                                       "discretization", "stability", "limits", "output",
+                                       "materials", "bodies", "boundary_conditions", NULL};
+    set_defaults(scene);
+    const size_t errors_before = err->count;
+    json_error_t jerr;
+    json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
+    if (!root) {
+        tlsph_errors_add(err, "", "invalid JSON at line %d, column %d: %s", jerr.line,
+                         jerr.column, jerr.text);
+        memset(scene, 0, sizeof *scene);
+        return -1;
+    }
+    if (!json_is_object(root)) {
+        tlsph_errors_add(err, "", "the scene must be a JSON object, got %s",
+                         tlsph_json_type_name(root));
+        json_decref(root);
+        memset(scene, 0, sizeof *scene);
+        return -1;
+    }
+    struct tlsph_scene *s = scene;
+    int bad = jc_unknown_keys(root, keys, "", err) != 0;
+    bad |= jc_string(root, "name", 0, "", s->name, sizeof s->name, err) < 0;
+    long dim = 3;
+    if (jc_integer(root, "dimension", 1, 2, 3, "", &dim, err) != 0)
+        bad = 1; /* go on in 3-D to report the other problems */
+    s->dimension = (int)dim;
+    bad |= parse_parameters(root, s, err) != 0;
+    bad |= parse_time(root, s, err) != 0;
+    bad |= parse_discretization(root, s, err) != 0;
+    int limits_bad = 0;
+    bad |= parse_settings(root, s, &limits_bad, err) != 0;
+    bad |= parse_materials(root, s, err) != 0;
+    const int bodies_bad = tlsph_parse_bodies(root, s, err) != 0;
+    bad |= bodies_bad;
+    bad |= tlsph_parse_bcs(root, s, err) != 0;
+    /* Particle counts only when every body is well-formed and the limit is known. */
+    if (!bodies_bad && !limits_bad)
+        bad |= tlsph_check_particle_counts(s, err) != 0;
+    if (!bad && err->count == errors_before && !err->out_of_memory) {
+        s->json_text = json_dumps(root, JSON_COMPACT);
+        if (!s->json_text) {
+            tlsph_errors_add(err, "", "out of memory while storing the scene text");
+            bad = 1;
+        }
+    } else {
+        bad = 1;
+        if (err->count == errors_before) /* an allocation failure lost the message */
+            tlsph_errors_add(err, "", "out of memory while validating the scene");
+    }
+    json_decref(root);
+    if (bad) {
+        tlsph_scene_free(s);
+        return -1;
+    }
+    return 0;
+}
+
+int tlsph_scene_load_file(const char *path, struct tlsph_scene *scene, struct tlsph_errors *err)
+{
+    memset(scene, 0, sizeof *scene);
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        tlsph_errors_add(err, "", "cannot open scene file '%s': %s", path, strerror(errno));
+        return -1;
+    }
+    size_t cap = 65536, len = 0;
+    char *buf = malloc(cap);
+    if (!buf) {
+        fclose(f);
+        tlsph_errors_add(err, "", "out of memory reading '%s'", path);
+        return -1;
+    }
+    for (;;) {
+        if (len == cap) {
+            if (cap > (size_t)TLSPH_SCENE_FILE_MAX)
+                break;
+            char *nb = realloc(buf, 2 * cap);
+            if (!nb) {
+                free(buf);
+                fclose(f);
+                tlsph_errors_add(err, "", "out of memory reading '%s'", path);
+                return -1;
+            }
+            buf = nb;
+            cap *= 2;
+        }
+        size_t got = fread(buf + len, 1, cap - len, f);
+        len += got;
+        if (got == 0)
+            break;
+    }
+    const int read_error = ferror(f);
+    fclose(f);
+    if (read_error) {
+        free(buf);
+        tlsph_errors_add(err, "", "error reading scene file '%s'", path);
+        return -1;
+    }
+    if (len > (size_t)TLSPH_SCENE_FILE_MAX) {
+        free(buf);
+        tlsph_errors_add(err, "", "scene file '%s' is larger than the limit of %ld bytes (16 MiB)",
+                         path, TLSPH_SCENE_FILE_MAX);
+        return -1;
+    }
+    const int rc = tlsph_scene_parse(buf, len, scene, err);
+    free(buf);
+    return rc;
+}
+
+void tlsph_scene_free(struct tlsph_scene *s)
+{
+    if (!s)
+        return;
+    for (size_t b = 0; b < s->nbodies; b++) {
+        tlsph_geometry_free(&s->bodies[b].geometry);
+        for (int k = 0; k < 3; k++)
+            tlsph_expr_free(&s->bodies[b].initial_velocity[k]);
+    }
+    for (size_t i = 0; i < s->nbcs; i++) {
+        tlsph_expr_free(&s->bcs[i].select.expression);
+        for (int k = 0; k < 3; k++)
+            tlsph_expr_free(&s->bcs[i].velocity[k]);
+    }
+    free(s->bodies);
+    free(s->bcs);
+    free(s->materials);
+    free(s->params);
+    free(s->json_text);
+    memset(s, 0, sizeof *s);
+}

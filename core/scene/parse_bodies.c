@@ -1,0 +1,205 @@
+/* Scene bodies: "bodies": [{name, material, spacing, lattice, origin, geometry,
+ * initial_velocity}, ...] -> s->bodies, and the particle-count checks that
+ * keep a scene from asking for an absurd number of particles. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "parse_internal.h"
+
+static const char *const xyz[] = {"x", "y", "z"};
+
+static int find_material(const struct tlsph_scene *s, const char *name)
+{
+    for (size_t i = 0; i < s->nmaterials; i++)
+        if (strcmp(s->materials[i].name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+static int parse_initial_velocity(const json_t *obj, struct tlsph_scene *s, struct tlsph_body *b,
+                                  const char *P, struct tlsph_errors *err)
+{
+    const json_t *v = json_object_get(obj, "initial_velocity");
+    if (!v)
+        return 0;
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, P, "initial_velocity");
+    if (!json_is_array(v) || json_array_size(v) != 3) {
+        tlsph_errors_add(err, p,
+                         "'initial_velocity' must be an array of 3 items, each a number (m/s) or "
+                         "an expression string of x, y, z (m) giving m/s");
+        return -1;
+    }
+    int bad = 0;
+    for (int k = 0; k < 3; k++) {
+        char q[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(q, sizeof q, p, (size_t)k);
+        if (tlsph_scene_expr(&b->initial_velocity[k], json_array_get(v, (size_t)k), xyz, 3, 0, s,
+                             q, err) != 0) {
+            bad = 1;
+            continue;
+        }
+        if (k == 2 && s->dimension == 2) {
+            const double X[3] = {0, 0, 0};
+            struct tlsph_expr *ex = &b->initial_velocity[2];
+            if (!ex->constant || tlsph_expr_eval(ex, X) != 0.0) {
+                tlsph_errors_add(err, q, "in a 2-D scene the z velocity must be 0");
+                bad = 1;
+            }
+            tlsph_expr_free(ex); /* evaluator NULL = 0 */
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
+                      struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"name", "material", "spacing", "lattice", "origin",
+                                       "geometry", "initial_velocity", NULL};
+    struct tlsph_body *b = &s->bodies[index];
+    char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
+    tlsph_pointer_index(P, sizeof P, "/bodies", index);
+    if (!json_is_object(obj)) {
+        tlsph_errors_add(err, P, "a body must be an object, got %s", tlsph_json_type_name(obj));
+        return -1;
+    }
+    b->material = -1;
+    int bad = jc_unknown_keys(obj, keys, P, err) != 0;
+    if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0) {
+        bad = 1;
+    } else {
+        for (size_t j = 0; j < index; j++)
+            if (strcmp(s->bodies[j].name, b->name) == 0) {
+                tlsph_pointer_join(p, sizeof p, P, "name");
+                tlsph_errors_add(err, p, "duplicate body name '%s' (also used by /bodies/%zu)",
+                                 b->name, j);
+                bad = 1;
+                break;
+            }
+    }
+    char mat[TLSPH_NAME_MAX];
+    if (jc_string(obj, "material", 1, P, mat, sizeof mat, err) != 0) {
+        bad = 1;
+    } else if ((b->material = find_material(s, mat)) < 0 && s->nmaterials > 0) {
+        tlsph_pointer_join(p, sizeof p, P, "material");
+        tlsph_errors_add(err, p, "unknown material '%s' (not a key of /materials)", mat);
+        bad = 1;
+    } else if (b->material < 0) {
+        bad = 1; /* /materials itself is reported */
+    }
+    bad |= jc_number(obj, "spacing", 1, JC_POSITIVE, "m", P, &b->spacing, err) != 0;
+    char lattice[32];
+    int r = jc_string(obj, "lattice", 0, P, lattice, sizeof lattice, err);
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 0 && strcmp(lattice, "simple_cubic") != 0) {
+        tlsph_pointer_join(p, sizeof p, P, "lattice");
+        tlsph_errors_add(err, p, "unknown lattice '%s' (accepted: simple_cubic)", lattice);
+        bad = 1;
+    }
+    tlsph_pointer_join(p, sizeof p, P, "geometry");
+    const json_t *g = json_object_get(obj, "geometry");
+    int geometry_ok = 0;
+    if (!g) {
+        tlsph_errors_add(err, p, "required object 'geometry' is missing");
+        bad = 1;
+    } else if (tlsph_parse_geometry(g, s->dimension, 0, p, &b->geometry, err) != 0) {
+        bad = 1;
+    } else {
+        geometry_ok = 1;
+    }
+    r = jc_vector(obj, "origin", 0, 3, "m", P, b->origin, err);
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 1 && geometry_ok) {
+        double hi[3];
+        tlsph_geometry_bounds(&b->geometry, b->origin, hi);
+    }
+    if (s->dimension == 2)
+        b->origin[2] = 0.0;
+    bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
+    return bad ? -1 : 0;
+}
+
+int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    const json_t *arr = json_object_get(root, "bodies");
+    if (!arr) {
+        tlsph_errors_add(err, "/bodies", "required array 'bodies' is missing");
+        return -1;
+    }
+    if (!json_is_array(arr) || json_array_size(arr) == 0) {
+        tlsph_errors_add(err, "/bodies", "'bodies' must be a non-empty array of body objects");
+        return -1;
+    }
+    const size_t n = json_array_size(arr);
+    if (n > 10000) {
+        tlsph_errors_add(err, "/bodies", "at most 10000 bodies are allowed, got %zu", n);
+        return -1;
+    }
+    s->bodies = calloc(n, sizeof *s->bodies);
+    if (!s->bodies) {
+        tlsph_errors_add(err, "/bodies", "out of memory");
+        return -1;
+    }
+    s->nbodies = n;
+    int bad = 0;
+    for (size_t i = 0; i < n; i++)
+        bad |= parse_body(json_array_get(arr, i), i, s, err) != 0;
+    return bad ? -1 : 0;
+}
+
+int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    int bad = 0;
+    size_t total = 0;
+    const long max = s->max_particles;
+    for (size_t i = 0; i < s->nbodies; i++) {
+        const struct tlsph_body *b = &s->bodies[i];
+        char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(P, sizeof P, "/bodies", i);
+        long lo[3], hi[3];
+        /* Estimate first: lattice points in the geometry's bounding box. */
+        const double estimate = tlsph_lattice_range(s, i, lo, hi);
+        if (!isfinite(estimate) || estimate > 10.0 * (double)max) {
+            tlsph_pointer_join(p, sizeof p, P, "spacing");
+            tlsph_errors_add(err, p,
+                             "body '%s': spacing %g m gives about %.3g particles in the bounding "
+                             "box of its geometry, far above the limit of %ld particles "
+                             "(/limits/max_particles); increase the spacing",
+                             b->name, b->spacing, estimate, max);
+            bad = 1;
+            continue;
+        }
+        const size_t count = tlsph_lattice_count(s, i);
+        if (count == 0) {
+            tlsph_pointer_join(p, sizeof p, P, "geometry");
+            tlsph_errors_add(err, p,
+                             "body '%s': the geometry contains no lattice point at spacing %g m "
+                             "(it is smaller than the spacing, or the origin misses it)",
+                             b->name, b->spacing);
+            bad = 1;
+            continue;
+        }
+        if (count > (size_t)max) {
+            tlsph_pointer_join(p, sizeof p, P, "spacing");
+            tlsph_errors_add(err, p,
+                             "body '%s': spacing %g m gives %zu particles, above the limit of %ld "
+                             "(/limits/max_particles)",
+                             b->name, b->spacing, count, max);
+            bad = 1;
+            continue;
+        }
+        total += count;
+    }
+    if (!bad && total > (size_t)max) {
+        tlsph_errors_add(err, "/bodies",
+                         "the bodies have %zu particles in total, above the limit of %ld "
+                         "(/limits/max_particles)",
+                         total, max);
+        bad = 1;
+    }
+    return bad ? -1 : 0;
+}

@@ -1,0 +1,290 @@
+/* Scene geometry objects: {"box"|"cylinder"|"sphere"|"plate"|"notched_bar"|
+ * "union"|"difference": ...} -> struct tlsph_geometry (see core/scene.h for the
+ * meaning of a[]).  Vectors always have 3 components; in 2-D the z components
+ * of points and directions are ignored (set to 0), a box spans z in
+ * [-0.5, 0.5] (the unit thickness), a sphere is a disk in the x-y plane and a
+ * plate is a rectangle of thickness "thickness" along its in-plane normal and
+ * length size[0]; cylinders and notched bars are 3-D only. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "parse_internal.h"
+
+static const char *const kinds[] = {"box", "cylinder", "sphere", "plate", "notched_bar",
+                                    "union", "difference", NULL};
+
+void tlsph_geometry_free(struct tlsph_geometry *g)
+{
+    for (size_t i = 0; i < g->nchildren; i++)
+        tlsph_geometry_free(&g->children[i]);
+    free(g->children);
+    g->children = NULL;
+    g->nchildren = 0;
+}
+
+/* Normalises v in place; 0 when it is (numerically) the zero vector. */
+static int normalise(double v[3])
+{
+    const double n = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    if (!(n > 1e-300) || !isfinite(n))
+        return 0;
+    for (int k = 0; k < 3; k++)
+        v[k] /= n;
+    return 1;
+}
+
+/* A unit direction at pointer/key; in 2-D its z component is dropped first. */
+static int direction(const json_t *obj, const char *key, int dimension, const char *pointer,
+                     double out[3], struct tlsph_errors *err)
+{
+    if (jc_vector(obj, key, 1, 3, "direction, any length", pointer, out, err) != 0)
+        return -1;
+    if (dimension == 2)
+        out[2] = 0.0;
+    if (!normalise(out)) {
+        char p[TLSPH_POINTER_MAX];
+        tlsph_pointer_join(p, sizeof p, pointer, key);
+        tlsph_errors_add(err, p, "'%s' must be a non-zero vector%s", key,
+                         dimension == 2 ? " in the x-y plane (2-D scene)" : "");
+        return -1;
+    }
+    return 0;
+}
+
+static int parse_box(const json_t *o, int dim, const char *P, double *a, struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"min", "max", NULL};
+    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int r1 = jc_vector(o, "min", 1, 3, "m", P, a, err);
+    int r2 = jc_vector(o, "max", 1, 3, "m", P, a + 3, err);
+    if (r1 || r2)
+        return -1;
+    if (dim == 2) {
+        a[2] = -0.5;
+        a[5] = 0.5;
+    }
+    for (int k = 0; k < dim; k++)
+        if (!(a[3 + k] > a[k])) {
+            char p[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
+            tlsph_pointer_join(p, sizeof p, P, "max");
+            tlsph_pointer_index(q, sizeof q, p, (size_t)k);
+            tlsph_errors_add(err, q, "box max[%d] = %g m must be greater than min[%d] = %g m", k,
+                             a[3 + k], k, a[k]);
+            bad = 1;
+        }
+    return bad ? -1 : 0;
+}
+
+static int parse_cylinder(const json_t *o, int dim, const char *P, double *a,
+                          struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"base", "axis", "radius", "length", NULL};
+    (void)dim;
+    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
+    bad |= direction(o, "axis", 3, P, a + 3, err) != 0;
+    bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
+    bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
+    return bad ? -1 : 0;
+}
+
+static int parse_sphere(const json_t *o, int dim, const char *P, double *a,
+                        struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"center", "radius", NULL};
+    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    bad |= jc_vector(o, "center", 1, 3, "m", P, a, err) != 0;
+    bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[3], err) != 0;
+    if (dim == 2)
+        a[2] = 0.0;
+    return bad ? -1 : 0;
+}
+
+/* In-plane axis u (stored in a[9..11]): 3-D: u = normalise(n x e_k), e_k the
+ * coordinate axis least aligned with n (first on ties); 2-D: u = e_z x n. */
+static void plate_axes(int dim, double *a)
+{
+    const double *n = a + 3;
+    double *u = a + 9;
+    if (dim == 2) {
+        u[0] = -n[1];
+        u[1] = n[0];
+        u[2] = 0.0;
+        return;
+    }
+    int k = 0;
+    for (int i = 1; i < 3; i++)
+        if (fabs(n[i]) < fabs(n[k]))
+            k = i;
+    double e[3] = {0, 0, 0};
+    e[k] = 1.0;
+    u[0] = n[1] * e[2] - n[2] * e[1];
+    u[1] = n[2] * e[0] - n[0] * e[2];
+    u[2] = n[0] * e[1] - n[1] * e[0];
+    normalise(u); /* |n x e_k| >= sqrt(2/3) since |n_k| <= 1/sqrt(3) */
+}
+
+static int parse_plate(const json_t *o, int dim, const char *P, double *a,
+                       struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"center", "normal", "size", "thickness", NULL};
+    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    bad |= jc_vector(o, "center", 1, 3, "m", P, a, err) != 0;
+    const int normal_bad = direction(o, "normal", dim, P, a + 3, err) != 0;
+    bad |= normal_bad;
+    bad |= jc_number(o, "thickness", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
+    double size[2];
+    if (jc_vector(o, "size", 1, 2, "m", P, size, err) != 0) {
+        bad = 1;
+    } else if (!(size[0] > 0.0) || !(size[1] > 0.0)) {
+        char p[TLSPH_POINTER_MAX];
+        tlsph_pointer_join(p, sizeof p, P, "size");
+        tlsph_errors_add(err, p, "plate 'size' = [%g, %g] m: both sides must be > 0", size[0],
+                         size[1]);
+        bad = 1;
+    } else {
+        a[7] = size[0];
+        a[8] = dim == 2 ? 1.0 : size[1];
+    }
+    if (dim == 2)
+        a[2] = 0.0;
+    if (!normal_bad)
+        plate_axes(dim, a);
+    return bad ? -1 : 0;
+}
+
+static int parse_notched_bar(const json_t *o, int dim, const char *P, double *a,
+                             struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"base", "axis", "radius", "length", "notch_root_radius",
+                                       "notch_radius", "notch_position", NULL};
+    (void)dim;
+    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
+    bad |= direction(o, "axis", 3, P, a + 3, err) != 0;
+    int dims_bad = 0;
+    dims_bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
+    dims_bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
+    dims_bad |= jc_number(o, "notch_root_radius", 1, JC_POSITIVE, "m", P, &a[8], err) != 0;
+    dims_bad |= jc_number(o, "notch_radius", 1, JC_POSITIVE, "m", P, &a[9], err) != 0;
+    dims_bad |= jc_number(o, "notch_position", 1, JC_POSITIVE, "m", P, &a[10], err) != 0;
+    if (dims_bad)
+        return -1;
+    const double R0 = a[6], L = a[7], r = a[8], R = a[9], zc = a[10];
+    char p[TLSPH_POINTER_MAX];
+    if (!(r < R0)) {
+        tlsph_pointer_join(p, sizeof p, P, "notch_root_radius");
+        tlsph_errors_add(err, p,
+                         "'notch_root_radius' = %g m must be smaller than the bar 'radius' = %g m",
+                         r, R0);
+        return -1;
+    }
+    if (!(R >= R0 - r)) {
+        tlsph_pointer_join(p, sizeof p, P, "notch_radius");
+        tlsph_errors_add(err, p,
+                         "'notch_radius' = %g m must be >= the notch depth radius - "
+                         "notch_root_radius = %g m (otherwise the notch profile undercuts)",
+                         R, R0 - r);
+        return -1;
+    }
+    /* Half-width of the notch where its circle meets the bar surface. */
+    const double c = r + R - R0, w = sqrt(fmax(0.0, R * R - c * c));
+    if (!(zc - w > 0.0) || !(zc + w < L)) {
+        tlsph_pointer_join(p, sizeof p, P, "notch_position");
+        tlsph_errors_add(err, p,
+                         "'notch_position' = %g m: the notch (half-width %g m at the surface) "
+                         "must lie inside the bar, i.e. notch_position in (%g, %g) m",
+                         zc, w, w, L - w);
+        return -1;
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse_list(const json_t *v, int dim, int depth, int min_items, const char *kind,
+                      const char *P, struct tlsph_geometry *g, struct tlsph_errors *err)
+{
+    if (!json_is_array(v) || json_array_size(v) < (size_t)min_items) {
+        tlsph_errors_add(err, P, "'%s' must be an array of at least %d geometry objects", kind,
+                         min_items);
+        return -1;
+    }
+    const size_t n = json_array_size(v);
+    if (n > 10000) {
+        tlsph_errors_add(err, P, "'%s' has %zu items; at most 10000 are allowed", kind, n);
+        return -1;
+    }
+    g->children = calloc(n, sizeof *g->children);
+    if (!g->children) {
+        tlsph_errors_add(err, P, "out of memory");
+        return -1;
+    }
+    g->nchildren = n;
+    int bad = 0;
+    for (size_t i = 0; i < n; i++) {
+        char p[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(p, sizeof p, P, i);
+        bad |= tlsph_parse_geometry(json_array_get(v, i), dim, depth + 1, p, &g->children[i],
+                                    err) != 0;
+    }
+    return bad ? -1 : 0;
+}
+
+int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *pointer,
+                         struct tlsph_geometry *g, struct tlsph_errors *err)
+{
+    memset(g, 0, sizeof *g);
+    if (depth > TLSPH_GEOMETRY_MAX_DEPTH) {
+        tlsph_errors_add(err, pointer, "geometry nested deeper than %d levels",
+                         TLSPH_GEOMETRY_MAX_DEPTH);
+        return -1;
+    }
+    if (!json_is_object(v) || json_object_size(v) != 1) {
+        tlsph_errors_add(err, pointer,
+                         "a geometry must be an object with exactly one key (box, cylinder, "
+                         "sphere, plate, notched_bar, union, difference)");
+        return -1;
+    }
+    const char *kind = json_object_iter_key(json_object_iter((json_t *)v));
+    const json_t *body = json_object_get(v, kind);
+    char P[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(P, sizeof P, pointer, kind);
+    int k = 0;
+    while (kinds[k] && strcmp(kinds[k], kind) != 0)
+        k++;
+    if (!kinds[k]) {
+        tlsph_errors_add(err, P,
+                         "unknown geometry '%s' (accepted: box, cylinder, sphere, plate, "
+                         "notched_bar, union, difference)",
+                         kind);
+        return -1;
+    }
+    static const enum tlsph_geometry_type types[] = {
+        TLSPH_GEOM_BOX, TLSPH_GEOM_CYLINDER, TLSPH_GEOM_SPHERE, TLSPH_GEOM_PLATE,
+        TLSPH_GEOM_NOTCHED_BAR, TLSPH_GEOM_UNION, TLSPH_GEOM_DIFFERENCE};
+    g->type = types[k];
+    if (g->type == TLSPH_GEOM_UNION)
+        return parse_list(body, dimension, depth, 1, kind, P, g, err);
+    if (g->type == TLSPH_GEOM_DIFFERENCE)
+        return parse_list(body, dimension, depth, 2, kind, P, g, err);
+    if (dimension == 2 && (g->type == TLSPH_GEOM_CYLINDER || g->type == TLSPH_GEOM_NOTCHED_BAR)) {
+        tlsph_errors_add(err, P,
+                         "'%s' is a 3-D geometry; in a 2-D scene use box, plate or sphere (a "
+                         "disk in the x-y plane)",
+                         kind);
+        return -1;
+    }
+    if (!json_is_object(body)) {
+        tlsph_errors_add(err, P, "'%s' must be an object, got %s", kind,
+                         tlsph_json_type_name(body));
+        return -1;
+    }
+    switch (g->type) {
+    case TLSPH_GEOM_BOX: return parse_box(body, dimension, P, g->a, err);
+    case TLSPH_GEOM_CYLINDER: return parse_cylinder(body, dimension, P, g->a, err);
+    case TLSPH_GEOM_SPHERE: return parse_sphere(body, dimension, P, g->a, err);
+    case TLSPH_GEOM_PLATE: return parse_plate(body, dimension, P, g->a, err);
+    case TLSPH_GEOM_NOTCHED_BAR: return parse_notched_bar(body, dimension, P, g->a, err);
+    default: return -1;
+    }
+}

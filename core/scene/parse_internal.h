@@ -1,0 +1,58 @@
+/* Internal interface between the scene parser's files (core/scene/parse*.c,
+ * geometry.c, condition.c).  Not part of the engine's API: the engine sees only
+ * core/scene.h. */
+#ifndef TLSPH_SCENE_PARSE_INTERNAL_H
+#define TLSPH_SCENE_PARSE_INTERNAL_H
+
+#include <jansson.h>
+
+#include "../scene.h"
+#include "json_check.h"
+
+#define TLSPH_GEOMETRY_MAX_DEPTH 16
+#define TLSPH_MAX_PARAMS 40
+#define TLSPH_POINTER_MAX 512
+
+/* parse.c: shared helpers */
+const char *tlsph_json_type_name(const json_t *v);
+/* Compiles a number (as its %.17g text) or an expression string at pointer;
+ * allow_conditions enables <, <=, >, >=, &&, || (see condition.c). */
+int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *free_vars,
+                     int nfree, int allow_conditions, const struct tlsph_scene *s,
+                     const char *pointer, struct tlsph_errors *err);
+/* Index of the body named name, or -1. */
+int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name);
+
+/* parse_geometry.c */
+int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *pointer,
+                         struct tlsph_geometry *g, struct tlsph_errors *err);
+void tlsph_geometry_free(struct tlsph_geometry *g);
+
+/* parse_bodies.c: fills s->bodies (s->materials and s->params already parsed). */
+int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+/* Counts each body's lattice points against s->max_particles. */
+int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err);
+
+/* parse_bcs.c: fills s->bcs (bodies already parsed). */
+int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+
+/* geometry.c: lattice index range of body b over its geometry bounds
+ * (i in [lo[d], hi[d]], empty when hi < lo) and the number of candidate
+ * points (product of the ranges, as a double so that it cannot overflow). */
+double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], long hi[3]);
+/* Number of lattice points of body b inside its geometry (no allocation). */
+size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
+
+/* condition.c: rewrites comparisons (<, <=, >, >=) and logical &&, || into
+ * libmatheval arithmetic with step(); returns a malloc'ed string, NULL on
+ * allocation failure or when the text is not a well-formed condition (msg
+ * then says why, unless it is an allocation failure). */
+char *tlsph_condition_rewrite(const char *text, char *msg, size_t msg_size);
+
+/* expr_syntax.c: checks text against libmatheval's grammar (0, or -1 with a
+ * message locating the problem); tlsph_expr_reserved: built-in function or
+ * constant name. */
+int tlsph_expr_syntax(const char *text, char *msg, size_t size);
+int tlsph_expr_reserved(const char *name);
+
+#endif

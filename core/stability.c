@@ -1,0 +1,88 @@
+/* The stability contract (cheap checks, run every scene.check_every steps and
+ * before every output frame, so no frame ever holds garbage):
+ *   - non-finite position, velocity or stress;
+ *   - det F <= 0 (an inverted particle), recorded by the constitutive update;
+ *   - a particle faster than speed_limit_factor times the largest wave speed;
+ *   - an energy balance (kinetic + internal + hourglass + viscous - external work
+ *     - initial) larger than energy_tolerance times the largest energy seen.
+ * The correction matrices L_i never change in TLSPH; their conditioning is
+ * checked once at setup (see correction.c) and reported with the run. */
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+#include "model.h"
+
+static void add_id(struct tlsph_diagnostic *d, int64_t id)
+{
+    if (d->nids < sizeof d->ids / sizeof *d->ids)
+        d->ids[d->nids++] = id;
+}
+
+static int fail(struct tlsph_model *m, struct tlsph_diagnostic *d, const char *quantity,
+                double value, double limit)
+{
+    d->step = m->step;
+    d->time = m->t;
+    snprintf(d->quantity, sizeof d->quantity, "%s", quantity);
+    d->value = value;
+    d->limit = limit;
+    char ids[160] = "";
+    size_t len = 0;
+    for (size_t k = 0; k < d->nids && len + 1 < sizeof ids; k++)
+        len += (size_t)snprintf(ids + len, sizeof ids - len, "%s%lld", k ? "," : "",
+                                (long long)d->ids[k]);
+    snprintf(d->message, sizeof d->message,
+             "numerically unstable at step %ld, t = %.6g s: %s = %.6g (limit %.6g), particles [%s]",
+             d->step, d->time, quantity, value, limit, ids);
+    return -1;
+}
+
+int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
+{
+    memset(d, 0, sizeof *d);
+    const struct tlsph_particles *p = &m->p;
+
+    for (size_t i = 0; i < p->n; i++) {
+        int ok = 1;
+        for (int c = 0; c < 3; c++)
+            ok &= isfinite(p->x[3 * i + c]) && isfinite(p->v[3 * i + c]);
+        for (int c = 0; c < 6; c++)
+            ok &= isfinite(p->sigma[6 * i + c]);
+        if (!ok)
+            add_id(d, p->id[i]);
+    }
+    if (d->nids)
+        return fail(m, d, "non_finite", NAN, 0.0);
+
+    if (m->inverted) {
+        for (size_t i = 0; i < p->n && d->nids < 16; i++) {
+            const double *F = p->F + 9 * i;
+            const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
+                             F[2] * (F[3] * F[7] - F[4] * F[6]);
+            if (!(J > 0.0))
+                add_id(d, p->id[i]);
+        }
+        return fail(m, d, "det_F", m->min_detF, 0.0);
+    }
+
+    const double vmax = m->scene.speed_limit_factor * m->max_wave_speed;
+    double worst = 0.0;
+    for (size_t i = 0; i < p->n; i++) {
+        const double *v = p->v + 3 * i;
+        const double s = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (s > vmax) {
+            add_id(d, p->id[i]);
+            worst = fmax(worst, s);
+        }
+    }
+    if (d->nids)
+        return fail(m, d, "speed", worst, vmax);
+
+    const struct tlsph_energy *e = &m->energy;
+    const double balance =
+        e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    if (e->scale > 0.0 && fabs(balance) > m->scene.energy_tolerance * e->scale)
+        return fail(m, d, "energy_balance", fabs(balance) / e->scale, m->scene.energy_tolerance);
+    return 0;
+}

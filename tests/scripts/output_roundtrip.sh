@@ -1,0 +1,93 @@
+#!/bin/bash
+# Output round trip: run tests/scenes/good/output_small.json with tlsph-run and check the
+# result files against docs/output.md (tests/scripts/h5_check.py does the checking):
+#  - while the run writes: an h5py SWMR reader sees the documented datasets with the
+#    documented shapes and units, and frame counts that grow;
+#  - after exit 0: plain h5py and h5dump read every documented dataset ([F,N,3] position,
+#    [F,N,6] stress with components "xx xy xz yy yz zz", units), times strictly increase,
+#    /cost values are positive, /parameters/scene is the submitted JSON, and result.xmf is
+#    XML whose HyperSlabs and HDF paths match the file.
+# If the scene runs too fast to observe two partial states, the live check is repeated
+# with the same scene and a longer end time (x8, then x64).
+# Environment (set by make check): top_srcdir, top_builddir, SYSTEM_PYTHON.
+set -u
+
+here=$(cd "$(dirname "$0")" && pwd)
+top_srcdir=${top_srcdir:-$(cd "$here/../.." && pwd)}
+top_builddir=${top_builddir:-$top_srcdir}
+PY=${SYSTEM_PYTHON:-/usr/bin/python3}
+if [ "$PY" = no ] || [ -z "$PY" ]; then PY=/usr/bin/python3; fi
+
+RUN=$top_builddir/tlsph-run
+CHECK=$top_srcdir/tests/scripts/h5_check.py
+DOCS=$top_srcdir/docs/output.md
+SCENE=$top_srcdir/tests/scenes/good/output_small.json
+
+fail() {
+    echo "FAIL: $*"
+    exit 1
+}
+
+[ -x "$RUN" ] || fail "$RUN not built"
+"$PY" -c 'import h5py, numpy' || fail "$PY cannot import h5py and numpy"
+command -v h5dump >/dev/null || fail "h5dump not found (hdf5-tools)"
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/tlsph-output.XXXXXX") || fail "mktemp"
+pid=
+cleanup() {
+    if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid"; wait "$pid" 2>/dev/null; fi
+    rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+# run SCENE OUTDIR: runs tlsph-run in the background with the live SWMR check alongside.
+# Sets run_rc (exit status of tlsph-run) and live_rc (0 ok, 1 failed, 3 too fast to see).
+run() {
+    "$RUN" "$1" -o "$2" --progress-fd 3 3>"$TMP/progress.jsonl" &
+    pid=$!
+    "$PY" "$CHECK" live "$DOCS" "$2/result.h5" "$pid"
+    live_rc=$?
+    if [ "$live_rc" = 1 ]; then
+        kill "$pid" 2>/dev/null
+    fi
+    wait "$pid"
+    run_rc=$?
+    pid=
+}
+
+echo "== run $SCENE"
+run "$SCENE" "$TMP/out"
+[ "$run_rc" = 0 ] || fail "tlsph-run exited with $run_rc"
+[ "$live_rc" = 1 ] && fail "live SWMR check"
+echo "== progress stream"
+"$PY" - "$TMP/progress.jsonl" <<'EOF' || fail "progress stream is not JSON lines"
+import json, sys
+lines = [l for l in open(sys.argv[1]) if l.strip()]
+assert lines, "no progress lines"
+for l in lines:
+    json.loads(l)
+print("progress: %d JSON lines" % len(lines))
+EOF
+
+echo "== final checks"
+"$PY" "$CHECK" final "$DOCS" "$TMP/out" "$SCENE" || fail "final checks"
+
+factor=8
+while [ "$live_rc" = 3 ]; do
+    [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"
+    echo "== too fast to observe growth; rerun with time.end x$factor"
+    "$PY" - "$SCENE" "$TMP/slow.json" "$factor" <<'EOF' || fail "cannot write the slower scene"
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["time"]["end"] *= int(sys.argv[3])
+json.dump(scene, open(sys.argv[2], "w"))
+EOF
+    rm -rf "$TMP/slow"
+    run "$TMP/slow.json" "$TMP/slow"
+    [ "$run_rc" = 0 ] || fail "tlsph-run (time.end x$factor) exited with $run_rc"
+    [ "$live_rc" = 1 ] && fail "live SWMR check (time.end x$factor)"
+    factor=$((factor * 8))
+done
+
+echo "PASS: output round trip"
+exit 0

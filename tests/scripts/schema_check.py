@@ -1,0 +1,87 @@
+#!/usr/bin/python3
+"""Checks that schemas/scene.schema.json agrees with the C validator.
+
+usage: schema_check.py SCHEMA --good FILE... --bad FILE...
+
+Every --good file must validate.  Every --bad file must be rejected by the
+schema too (or not even load as JSON), unless its name is in SEMANTIC_ONLY:
+cases the C validator rejects for reasons a JSON Schema cannot express.
+Prints one line per file; exits 1 when any check fails, 77 (skip) when the
+jsonschema module is missing.
+"""
+import json
+import os
+import sys
+
+# Bad scenes rejected only by the C validator (core/scene/parse*.c):
+SEMANTIC_ONLY = {
+    # JSON-level: Python's json module accepts these, jansson does not
+    "duplicate_key",          # JSON_REJECT_DUPLICATES
+    "huge_number",            # 1e400 overflows a double
+    "nan_literal",            # NaN is not JSON
+    # need the lattice
+    "empty_geometry",         # no lattice point inside the geometry
+    "absurd_particle_count",  # estimate > 10 x max_particles
+    "too_many_particles",     # actual count > max_particles
+    # expression language (only the character set is in the schema)
+    "expression_syntax",
+    "expression_unknown_variable",
+    "bad_selector_condition",
+    # cross references and uniqueness
+    "unknown_material",
+    "selector_unknown_body",
+    "duplicate_body_names",
+    # geometry and vector consistency
+    "wall_normal_zero",
+    "notch_root_too_large",
+    "box_max_below_min",
+    # depend on "dimension"
+    "cylinder_in_2d",
+    "z_velocity_in_2d",
+}
+
+
+def main(argv):
+    try:
+        import jsonschema
+    except ImportError:
+        print("schema_check: python module jsonschema missing; skipped")
+        return 77
+    schema = json.load(open(argv[1]))
+    jsonschema.Draft202012Validator.check_schema(schema)
+    validator = jsonschema.Draft202012Validator(schema)
+    mode, failed = None, 0
+    for arg in argv[2:]:
+        if arg in ("--good", "--bad"):
+            mode = arg
+            continue
+        name = os.path.splitext(os.path.basename(arg))[0]
+        try:
+            doc = json.load(open(arg))
+        except ValueError as e:
+            if mode == "--good":
+                print(f"FAIL schema good {arg}: not JSON: {e}")
+                failed += 1
+            else:
+                print(f"ok   schema bad  {name}: not JSON")
+            continue
+        errors = list(validator.iter_errors(doc))
+        if mode == "--good":
+            if errors:
+                failed += 1
+                e = errors[0]
+                print(f"FAIL schema good {arg}: /{'/'.join(map(str, e.absolute_path))}: {e.message[:200]}")
+            else:
+                print(f"ok   schema good {arg}")
+        elif name in SEMANTIC_ONLY:
+            print(f"ok   schema bad  {name}: semantic only ({'rejected' if errors else 'accepted'} by the schema)")
+        elif errors:
+            print(f"ok   schema bad  {name}: rejected")
+        else:
+            failed += 1
+            print(f"FAIL schema bad  {name}: the schema accepts it but the validator does not")
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))

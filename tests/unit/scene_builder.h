@@ -1,0 +1,13 @@
+/* Test support: build a model from a scene given as JSON text, failing the
+ * test (with every validation error printed) when the scene is rejected. */
+#ifndef TLSPH_TEST_SCENE_BUILDER_H
+#define TLSPH_TEST_SCENE_BUILDER_H
+
+#include "model.h"
+
+struct tlsph_model *build_model(const char *json);
+/* Runs steps until m->t >= t_end, calling the stability check every step;
+ * fails the test if the model goes unstable. */
+void run_until(struct tlsph_model *m, double t_end);
+
+#endif
