@@ -26,6 +26,11 @@ int tlsph_expr_compile(struct tlsph_expr *ex, const char *text, const char *cons
         tlsph_errors_add(err, pointer, "expression longer than 4096 characters");
         return -1;
     }
+    char msg[256];
+    if (tlsph_expr_syntax(text, msg, sizeof msg) != 0) {
+        tlsph_errors_add(err, pointer, "cannot parse expression '%s': %s", text, msg);
+        return -1;
+    }
     /* libmatheval takes a mutable string. */
     char *copy = strdup(text);
     if (!copy) {

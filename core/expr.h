@@ -38,4 +38,11 @@ int tlsph_expr_compile(struct tlsph_expr *ex, const char *text, const char *cons
 double tlsph_expr_eval(struct tlsph_expr *ex, const double *args);
 void tlsph_expr_free(struct tlsph_expr *ex);
 
+/* core/expr_syntax.c: checks text against libmatheval's grammar before
+ * libmatheval sees it (0, or -1 with a message locating the problem);
+ * tlsph_expr_compile calls it.  tlsph_expr_reserved: a built-in function or
+ * constant name, which a scene parameter may not shadow. */
+int tlsph_expr_syntax(const char *text, char *msg, size_t size);
+int tlsph_expr_reserved(const char *name);
+
 #endif

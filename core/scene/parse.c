@@ -79,16 +79,6 @@ int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *
         }
     }
     const char *compiled = rewritten ? rewritten : text;
-    char msg[256];
-    if (tlsph_expr_syntax(compiled, msg, sizeof msg) != 0) {
-        if (rewritten)
-            tlsph_errors_add(err, pointer, "cannot parse condition '%s' (rewritten as '%s'): %s",
-                             text, compiled, msg);
-        else
-            tlsph_errors_add(err, pointer, "cannot parse expression '%s': %s", text, msg);
-        free(rewritten);
-        return -1;
-    }
     int rc;
     if (rewritten) {
         /* Report problems against the text the user wrote. */

@@ -49,10 +49,5 @@ size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
  * then says why, unless it is an allocation failure). */
 char *tlsph_condition_rewrite(const char *text, char *msg, size_t msg_size);
 
-/* expr_syntax.c: checks text against libmatheval's grammar (0, or -1 with a
- * message locating the problem); tlsph_expr_reserved: built-in function or
- * constant name. */
-int tlsph_expr_syntax(const char *text, char *msg, size_t size);
-int tlsph_expr_reserved(const char *name);
 
 #endif

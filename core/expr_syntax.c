@@ -13,7 +13,7 @@
 #include <stdio.h>
 #include <string.h>
 
-#include "parse_internal.h"
+#include "expr.h"
 
 static const char *const functions[] = {
     "exp", "log", "sqrt", "sin", "cos", "tan", "cot", "sec", "csc", "asin", "acos", "atan",

@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# SIGTERM during a run: tlsph-run finishes the current frame, closes the file
+# and exits 5 ("cancelled").  The file must open with a plain (non-SWMR)
+# reader, say status "cancelled", hold at least one more frame than at start,
+# and end with a "finished" progress line whose status is "cancelled".
+set -u
+here=$(cd "$(dirname "$0")" && pwd)
+top_srcdir=${top_srcdir:-$here/../..}
+top_builddir=${top_builddir:-$top_srcdir}
+PY=${SYSTEM_PYTHON:-/usr/bin/python3}
+tmp=$(mktemp -d)
+trap 'rm -rf "$tmp"' EXIT
+# a scene long enough (~1 min) that it is certainly still running when signalled
+sed -e 's/"end": 2e-5/"end": 2e-3/' "$top_srcdir/tests/scenes/good/output_small.json" >"$tmp/long.json"
+grep -q '"end": 2e-3' "$tmp/long.json" || { echo "FAIL: could not derive the long scene"; exit 1; }
+"$top_builddir/tlsph-run" "$tmp/long.json" -o "$tmp/out" --progress-fd 3 3>"$tmp/progress.jsonl" 2>"$tmp/err" &
+pid=$!
+for _ in $(seq 1 100); do
+  grep -q '"event":"progress"' "$tmp/progress.jsonl" 2>/dev/null && break
+  sleep 0.1
+done
+kill -TERM $pid
+wait $pid
+code=$?
+cat "$tmp/err"
+[ $code -eq 5 ] || { echo "FAIL: exit code $code, expected 5 (cancelled)"; exit 1; }
+tail -n 1 "$tmp/progress.jsonl"
+"$PY" - "$tmp/out/result.h5" "$tmp/progress.jsonl" <<'PYEOF' || exit 1
+import sys, json, h5py, numpy as np
+last = json.loads(open(sys.argv[2]).read().strip().splitlines()[-1])
+assert last["event"] == "finished" and last["status"] == "cancelled", last
+f = h5py.File(sys.argv[1], "r")   # plain open: only works if the writer closed the file
+st = f["/diagnostics"].attrs["status"]
+st = st.decode() if isinstance(st, bytes) else str(st)
+assert st.strip("\x00 ") == "cancelled", st
+pos = f["/particles/solid/position/value"]
+t = f["/particles/solid/position/time"][()]
+assert pos.shape[0] >= 2 and np.all(np.isfinite(pos[()])), pos.shape
+assert t[-1] < 2e-3 * 0.99, t[-1]
+print("cancelled file: %d frames, last at t = %.3g s, status %s" % (pos.shape[0], t[-1], st))
+PYEOF
+echo "PASS: SIGTERM gave exit 5 and a cleanly closed file"
