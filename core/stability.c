@@ -33,7 +33,7 @@ static int fail(struct tlsph_model *m, struct tlsph_diagnostic *d, const char *q
         len += (size_t)snprintf(ids + len, sizeof ids - len, "%s%lld", k ? "," : "",
                                 (long long)d->ids[k]);
     snprintf(d->message, sizeof d->message,
-             "numerically unstable at step %ld, t = %.6g s: %s = %.6g (limit %.6g), particles [%s]",
+             "numerically unstable at step %ld, t = %.6g s: %.40s = %.6g (limit %.6g), particles [%.80s]",
              d->step, d->time, quantity, value, limit, ids);
     return -1;
 }

@@ -1,20 +1,47 @@
 #!/usr/bin/env bash
-# Sets everything up and runs the whole test suite (make check).
-# Ends with a line "N passed, N failed".
+# Sets everything up and runs the whole test suite twice:
+#   1. the optimised build (as users run it): make check;
+#   2. a copy of the tree built with AddressSanitizer + UndefinedBehaviorSanitizer
+#      (leak detection on): make check again, so every test also proves the code
+#      free of memory errors, leaks and undefined behaviour.
+# Ends with one line "N passed, N failed" over both runs.
 set -uo pipefail
 cd "$(dirname "$0")/.."
+top=$(pwd)
 bash deploy/install-deps.sh || exit 1
 bash deploy/build.sh || exit 1
-make -j"$(nproc)" check >make-check.out 2>&1
-status=$?
-grep -E '^(PASS|FAIL|XFAIL|XPASS|ERROR|SKIP):' make-check.out || true
-if [ $status -ne 0 ]; then
-  for log in $(grep -lE '^:test-result: (FAIL|ERROR)' tests/unit/*.trs tests/scripts/*.trs 2>/dev/null); do
-    echo "---- ${log%.trs}.log"; tail -n 40 "${log%.trs}.log"
-  done
-fi
-pass=$(grep -cE '^:test-result: (PASS|XFAIL)' tests/unit/*.trs tests/scripts/*.trs 2>/dev/null | awk -F: '{s+=$NF} END {print s+0}')
-fail=$(grep -cE '^:test-result: (FAIL|XPASS|ERROR)' tests/unit/*.trs tests/scripts/*.trs 2>/dev/null | awk -F: '{s+=$NF} END {print s+0}')
-if [ $status -ne 0 ] && [ "$fail" -eq 0 ]; then fail=1; fi
+
+pass=0
+fail=0
+run_check() { # dir label
+  local dir=$1 label=$2 status p f
+  (cd "$dir" && make -j"$(nproc)" check >make-check.out 2>&1)
+  status=$?
+  echo "== $label"
+  grep -E '^(PASS|FAIL|XFAIL|XPASS|ERROR|SKIP):' "$dir/make-check.out" || true
+  p=$(cat "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null | grep -cE '^:test-result: (PASS|XFAIL)')
+  f=$(cat "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null | grep -cE '^:test-result: (FAIL|XPASS|ERROR)')
+  if [ $status -ne 0 ]; then
+    for trs in $(grep -lE '^:test-result: (FAIL|ERROR)' "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null); do
+      echo "---- ${trs%.trs}.log"; tail -n 40 "${trs%.trs}.log"
+    done
+    [ "$f" -eq 0 ] && f=1
+  fi
+  pass=$((pass + p)); fail=$((fail + f))
+}
+
+run_check "$top" "optimised build"
+
+# Sanitizer build in a private copy of the tracked sources (the source tree is
+# configured in place, so an out-of-tree build of it is not possible).
+san="$top/.build-sanitize"
+rm -rf "$san" && mkdir -p "$san"
+git ls-files -z | xargs -0 tar cf - | tar xf - -C "$san"
+(cd "$san" && autoreconf -fi >/dev/null 2>&1 &&
+  ./configure --quiet CFLAGS="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
+              LDFLAGS="-fsanitize=address,undefined" >/dev/null 2>&1 &&
+  make -j"$(nproc)" >/dev/null 2>&1) || { echo "sanitizer build failed"; fail=$((fail + 1)); }
+[ -x "$san/tlsph-run" ] && run_check "$san" "sanitizer build (ASan + UBSan + LeakSanitizer)"
+
 echo "${pass} passed, ${fail} failed"
 [ "$fail" -eq 0 ]
