@@ -925,10 +925,11 @@ static int flush_series(struct tlsph_output *o)
         if (append_rows(s->value, H5T_NATIVE_DOUBLE, o->nsamples, o->nrows, ms, o->rows) < 0)
             goto done;
     }
-    if (append_rows(o->series_step, H5T_NATIVE_INT64, o->nsamples, o->nrows, H5I_INVALID_HID,
-                    o->row_step) < 0 ||
-        append_rows(o->series_time, H5T_NATIVE_DOUBLE, o->nsamples, o->nrows, H5I_INVALID_HID,
-                    o->row_time) < 0)
+    /* step last, as for frames: it marks the rows as complete for SWMR readers */
+    if (append_rows(o->series_time, H5T_NATIVE_DOUBLE, o->nsamples, o->nrows, H5I_INVALID_HID,
+                    o->row_time) < 0 ||
+        append_rows(o->series_step, H5T_NATIVE_INT64, o->nsamples, o->nrows, H5I_INVALID_HID,
+                    o->row_step) < 0)
         goto done;
     o->nsamples += o->nrows;
     o->last_step_written = o->row_step[o->nrows - 1];
@@ -982,10 +983,12 @@ int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
     if (o->nframe_fields) {
         int64_t step = m->step;
         double t = m->t;
-        if (append_rows(o->frame_step, H5T_NATIVE_INT64, o->nframes, 1, H5I_INVALID_HID,
-                        &step) < 0 ||
-            append_rows(o->frame_time, H5T_NATIVE_DOUBLE, o->nframes, 1, H5I_INVALID_HID, &t) <
-                0)
+        /* step is written last: a SWMR reader that counts rows of step finds
+         * time and every value at least that long (step is the commit marker). */
+        if (append_rows(o->frame_time, H5T_NATIVE_DOUBLE, o->nframes, 1, H5I_INVALID_HID, &t) <
+                0 ||
+            append_rows(o->frame_step, H5T_NATIVE_INT64, o->nframes, 1, H5I_INVALID_HID,
+                        &step) < 0)
             return -1;
     }
     if (o->nframes == o->frame_times_cap) {

@@ -4,7 +4,7 @@
 #include <stdio.h>
 #include <string.h>
 
-static const char *type_name(const json_t *v)
+const char *jc_type_name(const json_t *v)
 {
     switch (json_typeof(v)) {
     case JSON_OBJECT: return "object";
@@ -86,7 +86,7 @@ int jc_number(const json_t *obj, const char *key, int required, struct jc_range 
         return 1;
     }
     if (!json_is_number(v)) {
-        tlsph_errors_add(err, p, "'%s' must be a number (%s), got %s", key, units, type_name(v));
+        tlsph_errors_add(err, p, "'%s' must be a number (%s), got %s", key, units, jc_type_name(v));
         return -1;
     }
     double x = json_number_value(v);
@@ -114,7 +114,7 @@ int jc_integer(const json_t *obj, const char *key, int required, long min, long 
         return 1;
     }
     if (!json_is_integer(v)) {
-        tlsph_errors_add(err, p, "'%s' must be an integer, got %s", key, type_name(v));
+        tlsph_errors_add(err, p, "'%s' must be an integer, got %s", key, jc_type_name(v));
         return -1;
     }
     json_int_t x = json_integer_value(v);
@@ -141,7 +141,7 @@ int jc_boolean(const json_t *obj, const char *key, int required, const char *poi
         return 1;
     }
     if (!json_is_boolean(v)) {
-        tlsph_errors_add(err, p, "'%s' must be true or false, got %s", key, type_name(v));
+        tlsph_errors_add(err, p, "'%s' must be true or false, got %s", key, jc_type_name(v));
         return -1;
     }
     *out = json_is_true(v);
@@ -162,7 +162,7 @@ int jc_string(const json_t *obj, const char *key, int required, const char *poin
         return 1;
     }
     if (!json_is_string(v)) {
-        tlsph_errors_add(err, p, "'%s' must be a string, got %s", key, type_name(v));
+        tlsph_errors_add(err, p, "'%s' must be a string, got %s", key, jc_type_name(v));
         return -1;
     }
     const char *s = json_string_value(v);
@@ -220,7 +220,7 @@ const json_t *jc_object(const json_t *obj, const char *key, int required, const 
         return NULL;
     }
     if (!json_is_object(v)) {
-        tlsph_errors_add(err, p, "'%s' must be an object, got %s", key, type_name(v));
+        tlsph_errors_add(err, p, "'%s' must be an object, got %s", key, jc_type_name(v));
         return NULL;
     }
     return v;

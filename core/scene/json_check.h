@@ -16,6 +16,8 @@ struct jc_range {
     enum jc_bound lo, hi; /* JC_NONE = unbounded on that side */
 };
 
+/* "object", "array", "string", "integer", "number", "boolean" or "null". */
+const char *jc_type_name(const json_t *v);
 /* Reports every key of obj not in allowed (NULL-terminated). Returns count of unknown keys. */
 int jc_unknown_keys(const json_t *obj, const char *const *allowed, const char *pointer,
                     struct tlsph_errors *err);

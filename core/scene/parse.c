@@ -19,21 +19,6 @@
 
 #define TLSPH_SCENE_FILE_MAX (16L * 1024 * 1024)
 
-const char *tlsph_json_type_name(const json_t *v)
-{
-    switch (json_typeof(v)) {
-    case JSON_OBJECT: return "object";
-    case JSON_ARRAY: return "array";
-    case JSON_STRING: return "string";
-    case JSON_INTEGER: return "integer";
-    case JSON_REAL: return "number";
-    case JSON_TRUE:
-    case JSON_FALSE: return "boolean";
-    case JSON_NULL: return "null";
-    }
-    return "unknown";
-}
-
 int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name)
 {
     for (size_t i = 0; i < s->nbodies; i++)
@@ -65,7 +50,7 @@ int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *
     } else {
         tlsph_errors_add(err, pointer,
                          "must be a number or an expression string of %s, got %s",
-                         nfree == 1 ? free_vars[0] : "x, y, z", tlsph_json_type_name(v));
+                         nfree == 1 ? free_vars[0] : "x, y, z", jc_type_name(v));
         return -1;
     }
     char *rewritten = NULL;
@@ -155,7 +140,7 @@ static int parse_parameters(const json_t *root, struct tlsph_scene *s, struct tl
         }
         if (!json_is_number(val) || !isfinite(json_number_value(val))) {
             tlsph_errors_add(err, p, "parameter '%s' must be a finite number, got %s", key,
-                             tlsph_json_type_name(val));
+                             jc_type_name(val));
             ok = 0;
         }
         if (!ok) {
@@ -302,7 +287,7 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
     tlsph_pointer_join(P, sizeof P, "/materials", name);
     if (!json_is_object(mat)) {
         tlsph_errors_add(err, P, "material '%s' must be an object, got %s", name,
-                         tlsph_json_type_name(mat));
+                         jc_type_name(mat));
         return -1;
     }
     if (strlen(name) == 0 || strlen(name) >= sizeof m->name) {
@@ -452,7 +437,7 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     }
     if (!json_is_object(root)) {
         tlsph_errors_add(err, "", "the scene must be a JSON object, got %s",
-                         tlsph_json_type_name(root));
+                         jc_type_name(root));
         json_decref(root);
         memset(scene, 0, sizeof *scene);
         return -1;

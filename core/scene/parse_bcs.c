@@ -35,7 +35,7 @@ static int parse_selector(const json_t *obj, int required, struct tlsph_scene *s
         return 0;
     }
     if (!json_is_object(v)) {
-        tlsph_errors_add(err, p, "'select' must be an object, got %s", tlsph_json_type_name(v));
+        tlsph_errors_add(err, p, "'select' must be an object, got %s", jc_type_name(v));
         return -1;
     }
     int bad = jc_unknown_keys(v, keys, p, err) != 0;
@@ -89,7 +89,7 @@ static int parse_selector(const json_t *obj, int required, struct tlsph_scene *s
         if (!json_is_string(e)) {
             tlsph_errors_add(err, q,
                              "'expression' must be a string condition of x, y, z (m), got %s",
-                             tlsph_json_type_name(e));
+                             jc_type_name(e));
             bad = 1;
         } else if (tlsph_scene_expr(&sel->expression, e, xyz, 3, 1, s, q, err) != 0) {
             bad = 1;
@@ -191,7 +191,7 @@ static int parse_bc(const json_t *obj, size_t index, struct tlsph_scene *s,
     snprintf(bc->name, sizeof bc->name, "bc%zu", index);
     if (!json_is_object(obj)) {
         tlsph_errors_add(err, P, "a boundary condition must be an object, got %s",
-                         tlsph_json_type_name(obj));
+                         jc_type_name(obj));
         return -1;
     }
     int bad = jc_string(obj, "name", 0, P, bc->name, sizeof bc->name, err) < 0;
@@ -253,7 +253,7 @@ int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_erro
     if (!json_is_array(arr)) {
         tlsph_errors_add(err, "/boundary_conditions",
                          "'boundary_conditions' must be an array, got %s",
-                         tlsph_json_type_name(arr));
+                         jc_type_name(arr));
         return -1;
     }
     const size_t n = json_array_size(arr);

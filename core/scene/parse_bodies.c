@@ -62,7 +62,7 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
     tlsph_pointer_index(P, sizeof P, "/bodies", index);
     if (!json_is_object(obj)) {
-        tlsph_errors_add(err, P, "a body must be an object, got %s", tlsph_json_type_name(obj));
+        tlsph_errors_add(err, P, "a body must be an object, got %s", jc_type_name(obj));
         return -1;
     }
     b->material = -1;

@@ -276,7 +276,7 @@ int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *
     }
     if (!json_is_object(body)) {
         tlsph_errors_add(err, P, "'%s' must be an object, got %s", kind,
-                         tlsph_json_type_name(body));
+                         jc_type_name(body));
         return -1;
     }
     switch (g->type) {

@@ -14,7 +14,6 @@
 #define TLSPH_POINTER_MAX 512
 
 /* parse.c: shared helpers */
-const char *tlsph_json_type_name(const json_t *v);
 /* Compiles a number (as its %.17g text) or an expression string at pointer;
  * allow_conditions enables <, <=, >, >=, &&, || (see condition.c). */
 int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *free_vars,
