@@ -86,7 +86,10 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
             mat3_mul_bt(P, p->Linv + 9 * i, p->P_tilde + 9 * i);
 
             /* P-wave speed in the current state; the step shrinks with the
-             * particle's smallest principal stretch. */
+             * particle's smallest principal stretch.  A negative tangent bulk
+             * modulus (Mie-Grueneisen far in tension) is a material instability,
+             * not a wave speed: the estimate falls back to the shear part only
+             * and the stability checks report what follows. */
             const double c = sqrt(fmax(K_t + G43, G43) * J / rho0);
             const double *v = p->v + 3 * i;
             const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);

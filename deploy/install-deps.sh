@@ -7,7 +7,7 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 PACKAGES=(
   build-essential autoconf automake pkg-config
   libjansson-dev libhdf5-dev hdf5-tools libmatheval-dev check
-  libmicrohttpd-dev libsqlite3-dev libcurl4-openssl-dev
+  libmicrohttpd-dev libsqlite3-dev libgnutls28-dev libcurl4-openssl-dev
   python3 python3-h5py python3-numpy python3-jsonschema
   curl valgrind
 )

@@ -553,9 +553,16 @@ static int create_metadata(hid_t file, const struct tlsph_model *m)
                        "the scene as submitted (JSON)") < 0 ||
         string_dataset(par, "modules", modules, "active modules (JSON array of names)") < 0)
         goto done;
+    /* setup statistics: how well the discretisation resolves every particle */
     if (attr_int64(par, "dimension", m->scene.dimension) < 0 ||
         attr_string(par, "engine_version", PACKAGE_VERSION) < 0 ||
-        attr_string(par, "units_system", "SI") < 0)
+        attr_string(par, "units_system", "SI") < 0 ||
+        attr_int64(par, "particles", (int64_t)m->p.n) < 0 ||
+        attr_int64(par, "pairs", (int64_t)m->pairs.npairs) < 0 ||
+        attr_int64(par, "deficient_supports", (int64_t)m->deficient_supports) < 0 ||
+        attr_int64(par, "isolated_particles", (int64_t)m->isolated) < 0 ||
+        attr_double(par, "max_L_condition", m->max_L_condition) < 0 ||
+        attr_double(par, "initial_time_step", m->dt) < 0)
         goto done;
     rc = 0;
 done:

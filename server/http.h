@@ -1,0 +1,121 @@
+/* The HTTP layer of tlsphd (server/http.c) over libmicrohttpd 0.9.75.
+ *
+ * Threading: one MHD internal polling thread (epoll) runs every access
+ * handler; handlers never block.  Two helper threads:
+ *   - the worker runs deferred tasks (HDF5 reads, scene validation and job
+ *     insertion, study summaries): the handler suspends the connection
+ *     (MHD_suspend_connection), the worker fills the reply and resumes it,
+ *     and the MHD thread queues the reply when the handler is called again;
+ *   - the watcher serves long-polls (GET /jobs/{id}?wait=S): suspended
+ *     connections are checked every 200 ms with a caller-supplied predicate
+ *     (on the watcher's own database handle) and resumed when it says so or
+ *     the deadline passes; the route then runs again with r->resumed = 1.
+ * Each helper thread gets a context from thread_init (e.g. its own queue handle).
+ *
+ * Bodies: accumulated up to body_limit (Content-Length above the limit is
+ * refused with 413 before the upload; chunked bodies are counted and dropped).
+ * One log line per request on stderr: time, method, path, status, ms. */
+#ifndef TLSPHD_HTTP_H
+#define TLSPHD_HTTP_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <sys/socket.h>
+
+#include <jansson.h>
+
+#include "problem.h"
+
+struct MHD_Connection;
+struct http;
+
+#define HTTP_MAX_HEADERS 10
+
+struct hreply {
+    unsigned status;
+    char *ctype;        /* owned */
+    char *body;         /* owned, may be NULL (empty) */
+    size_t len;
+    int fd;             /* >= 0: file response of len bytes from offset */
+    uint64_t offset;
+    int nhdr;
+    char *hname[HTTP_MAX_HEADERS], *hvalue[HTTP_MAX_HEADERS]; /* owned */
+};
+
+struct hreq {
+    struct MHD_Connection *conn;
+    struct http *http;
+    char method[16];
+    char *path;            /* decoded request path (owned) */
+    char *body;            /* request body (owned, NUL-terminated) */
+    size_t body_len, body_cap;
+    int too_big;           /* body exceeded the limit */
+    double t0;             /* start, monotonic s */
+    int resumed;           /* route re-run after a long-poll wait */
+    int has_reply;
+    struct hreply reply;
+    /* route scratch space, filled on the MHD thread for deferred tasks */
+    char id[40];
+    char arg[512];
+    char arg2[64];
+    long num;
+    int flags;
+    void *data;            /* freed with free() at completion */
+    /* internal */
+    int phase;
+    unsigned logged_status;
+};
+
+struct http_config {
+    const struct sockaddr *addr;
+    socklen_t addrlen;
+    int connection_limit, per_ip_limit, connection_timeout;
+    size_t body_limit;
+    size_t max_waiters;
+    /* routing: called on the MHD thread once the request (and body) is complete;
+     * must set a reply (http_reply_*) or suspend (http_defer / http_wait). */
+    void (*route)(struct hreq *r, void *app);
+    /* per helper thread context (worker, watcher) */
+    void *(*thread_init)(void *app);
+    void (*thread_fini)(void *ctx);
+    /* watcher: 1 when the long-poll on job `id` may be answered now */
+    int (*wait_ready)(void *app, void *ctx, const char *id);
+    void *app;
+};
+
+/* Starts the MHD daemon and the helper threads. NULL on failure (logged). */
+struct http *http_start(const struct http_config *cfg);
+/* Stops accepting connections (MHD_quiesce_daemon). */
+void http_quiesce(struct http *h);
+/* Resumes every parked connection, finishes deferred tasks, stops MHD and
+ * joins the helper threads. */
+void http_stop(struct http *h);
+
+/* Request accessors (MHD thread only). */
+const char *http_header(struct hreq *r, const char *name);
+const char *http_query(struct hreq *r, const char *name);
+
+/* Replies (any thread that owns the request: the MHD thread in a route, the
+ * worker inside a task).  A later reply replaces an earlier one. */
+void http_reply_buf(struct hreq *r, unsigned status, const char *ctype, char *body, size_t len);
+void http_reply_text(struct hreq *r, unsigned status, const char *ctype, const char *text);
+/* Steals body. */
+void http_reply_json(struct hreq *r, unsigned status, json_t *body);
+/* Steals problem (its "status" member gives the HTTP status). */
+void http_reply_problem_json(struct hreq *r, json_t *problem);
+void http_reply_problem(struct hreq *r, enum problem_kind kind, const char *detail);
+/* File response: len bytes of fd from offset (fd is owned from here on). */
+void http_reply_fd(struct hreq *r, unsigned status, const char *ctype, int fd, uint64_t offset,
+                   uint64_t len);
+void http_add_header(struct hreq *r, const char *name, const char *value);
+
+/* Runs task on the worker thread with the worker's context; the task sets the
+ * reply.  Returns 0, or -1 when shutting down (the route must reply itself). */
+int http_defer(struct hreq *r, void (*task)(struct hreq *r, void *app, void *ctx));
+/* Parks the request until wait_ready(job id) or the deadline (monotonic s).
+ * Returns 0, or -1 when it cannot wait (shutdown, too many waiters). */
+int http_wait(struct hreq *r, const char *id, double deadline);
+
+double http_now(void); /* monotonic seconds */
+
+#endif

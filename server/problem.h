@@ -1,0 +1,47 @@
+/* RFC 9457 problem details (application/problem+json) for tlsphd (server/problem.c).
+ *
+ * Every error response of the daemon is one of these objects:
+ *   {"type": URI, "title", "status", "detail", "instance", ["errors": [{pointer, detail}]]}
+ * The type is an OGC API - Processes 1.0 exception URI where one applies
+ * (no-such-job, no-such-process, result-not-ready), else urn:tlsph:problem:<slug>. */
+#ifndef TLSPHD_PROBLEM_H
+#define TLSPHD_PROBLEM_H
+
+#include <jansson.h>
+
+#include "errors.h"
+
+#define PROBLEM_CONTENT_TYPE "application/problem+json"
+
+enum problem_kind {
+    PROBLEM_BAD_REQUEST,       /* 400 */
+    PROBLEM_BAD_JSON,          /* 400 */
+    PROBLEM_UNAUTHORIZED,      /* 401 */
+    PROBLEM_NOT_FOUND,         /* 404 */
+    PROBLEM_NO_SUCH_JOB,       /* 404 (OGC) */
+    PROBLEM_NO_SUCH_PROCESS,   /* 404 (OGC) */
+    PROBLEM_NO_SUCH_RESULT,    /* 404: unknown series / field / frame */
+    PROBLEM_METHOD,            /* 405 */
+    PROBLEM_NOT_ACCEPTABLE,    /* 406 */
+    PROBLEM_RESULT_NOT_READY,  /* 409 (OGC type URI) */
+    PROBLEM_CONFLICT,          /* 409 */
+    PROBLEM_TOO_LARGE,         /* 413 */
+    PROBLEM_MEDIA_TYPE,        /* 415 */
+    PROBLEM_RANGE,             /* 416 */
+    PROBLEM_VALIDATION,        /* 422 */
+    PROBLEM_INTERNAL,          /* 500 */
+    PROBLEM_UNAVAILABLE,       /* 503 */
+    PROBLEM_KIND_COUNT
+};
+
+/* HTTP status of a kind. */
+unsigned problem_status(enum problem_kind kind);
+/* A new problem object (detail may be NULL; instance is the request path). */
+json_t *problem_new(enum problem_kind kind, const char *detail, const char *instance);
+/* Appends {"pointer": "#" + prefix + pointer, "detail": message} for every error
+ * (prefix like "/inputs/scene"). */
+void problem_add_errors(json_t *problem, const char *prefix, const struct tlsph_errors *errs);
+/* Appends one {"pointer": "#" + pointer, "detail"} entry. */
+void problem_add_error(json_t *problem, const char *pointer, const char *detail);
+
+#endif

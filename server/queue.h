@@ -1,0 +1,119 @@
+/* The job queue: the only file with SQL (server/queue.c).
+ *
+ * One SQLite database in WAL mode, busy timeout 5 s, foreign keys on, every write
+ * in BEGIN IMMEDIATE; schema versioned with PRAGMA user_version and migrated
+ * forward on open.  Each thread opens its own handle (tq_open); SQLite
+ * serialises writers, WAL lets readers run beside them.  Only the daemon
+ * opens the database (engine processes report over a pipe).
+ *
+ * Times are Unix seconds (double).  Ownership: strings in struct tq_job are
+ * owned by the struct; tq_job_free releases them. */
+#ifndef TLSPHD_QUEUE_H
+#define TLSPHD_QUEUE_H
+
+#include <stddef.h>
+
+#define TQ_ID_LEN 32 /* 128 random bits as lowercase hex */
+
+/* OGC status values */
+#define TQ_ACCEPTED "accepted"
+#define TQ_RUNNING "running"
+#define TQ_SUCCESSFUL "successful"
+#define TQ_FAILED "failed"
+#define TQ_DISMISSED "dismissed"
+
+struct tq_job {
+    char id[TQ_ID_LEN + 1];
+    char process[16];          /* "run" or "study" */
+    char study_id[TQ_ID_LEN + 1]; /* parent study, "" if none */
+    long seq;                  /* index of a study child (0-based), -1 otherwise */
+    char status[16];           /* accepted|running|successful|failed|dismissed */
+    char outcome[16];          /* "", successful|invalid|unstable|crashed|timed_out|cancelled|io_error|interrupted */
+    char *message;             /* human-readable, may be NULL */
+    char *input;               /* the scene JSON (run) or the study JSON (study) */
+    char *params;              /* study child: JSON object {pointer: value}; NULL otherwise */
+    char *cost;                /* JSON object from the engine's finished line; NULL until then */
+    double progress;           /* 0..100 */
+    double sim_time, end_time; /* s */
+    long step;
+    double eta;                /* s, -1 unknown */
+    double created, started, finished; /* 0 = not yet */
+    int attempts;
+    long pid;                  /* engine process (group leader), 0 = none */
+    int cancel_requested;
+    long threads;              /* OpenMP threads for this job */
+    double wall_limit;         /* s */
+};
+
+struct tq; /* opaque: one SQLite connection and its prepared statements */
+
+/* Opens (creating and migrating) the database. Returns 0 or -1 with err filled. */
+int tq_open(const char *path, struct tq **out, char *err, size_t errsize);
+void tq_close(struct tq *q);
+void tq_job_free(struct tq_job *j);
+/* [added] Message of the last error on this handle ("" if none); valid until the
+ * next call on the handle.  Every function below that returns -1 sets it. */
+const char *tq_last_error(struct tq *q);
+/* [added] Fills out with a fresh id: 128 random bits (getrandom) as 32 lowercase
+ * hex digits.  0 or -1. */
+int tq_new_id(char out[TQ_ID_LEN + 1]);
+
+/* Common conventions (all functions): ids are 1..TQ_ID_LEN characters of
+ * [0-9A-Za-z_-]; a tq_job filled by tq_get/tq_list/tq_claim_next is fully
+ * overwritten (zeroed and tq_job_free-safe when nothing is returned).
+ * Functions that change one job return 0 changed, 1 no such job or the job is
+ * not in a state the change applies to (nothing changed), -1 error. */
+
+/* Inserts a job (id, process, input, ... as given; status accepted, created now).
+ * Returns 0, or -1 on error. */
+int tq_insert(struct tq *q, const struct tq_job *j);
+/* Inserts a study and its children in one transaction. */
+int tq_insert_study(struct tq *q, const struct tq_job *study, const struct tq_job *children,
+                    size_t n);
+/* 0 found, 1 no such job, -1 error. */
+int tq_get(struct tq *q, const char *id, struct tq_job *out);
+/* Jobs newest first; NULL/"" filters are ignored. *out is an array of *n jobs
+ * (free each with tq_job_free, then free(*out)). */
+int tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
+            long limit, long offset, struct tq_job **out, size_t *n);
+/* Atomically moves the oldest accepted job (not a study parent) to running
+ * (attempts+1, started = now, outcome "") and returns it: 0 claimed, 1 none, -1 error. */
+int tq_claim_next(struct tq *q, struct tq_job *out);
+int tq_set_pid(struct tq *q, const char *id, long pid);
+int tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
+                       double end_time, long step, double eta);
+/* Final state of a run job: status successful/failed/dismissed, outcome, message, cost (may be NULL).
+ * Only jobs that are running or accepted change (else 1); finished = now, pid = 0,
+ * progress = 100 when successful; cost NULL keeps the stored cost.  A study child
+ * refreshes its study in the same transaction. */
+int tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
+              const char *message, const char *cost_json);
+/* Puts a running job back in the queue (daemon restart, shutdown): status accepted,
+ * pid 0, progress reset; attempts is kept.  A running job with cancel_requested
+ * is dismissed (outcome cancelled) instead.  0, 1 not running, -1. */
+int tq_requeue(struct tq *q, const char *id, const char *message);
+/* Cancel: accepted -> dismissed now (outcome cancelled); running -> cancel_requested = 1
+ * (the supervisor stops it and finishes it as dismissed); final -> no change.
+ * For a study, applies to every child.  0 done, 1 no such job, -1 error. */
+int tq_request_cancel(struct tq *q, const char *id);
+/* Ids of running jobs with cancel_requested = 1 (array of *n ids, free(*ids)). */
+int tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n);
+/* Removes a job in a final state (and a study's children). 0, 1 no such job, 2 not final, -1.
+ * A study child whose study is not final is refused with 2 too. */
+int tq_delete(struct tq *q, const char *id);
+/* Start-up recovery: every job left "running" by a previous daemon is requeued
+ * when attempts < max_attempts, else failed with outcome "interrupted".
+ * Returns the number of jobs touched, or -1. */
+int tq_recover(struct tq *q, int max_attempts);
+/* Study status from its children: counts per status; the study row itself is
+ * updated (status, progress, started/finished) by tq_study_refresh.
+ * All children final: successful if all successful, else failed ("k of n children
+ * failed/dismissed"), or dismissed (outcome cancelled) if the study was cancelled.
+ * All accepted: accepted.  Otherwise running.  progress = (100 * final + sum of
+ * running children's progress) / n.  0, 1 no such study, -1 (also: not a study). */
+int tq_study_refresh(struct tq *q, const char *study_id);
+/* Number of jobs in each state (for /healthz and tests).  Counts run jobs only
+ * (study children included, study parents not); any pointer may be NULL. */
+int tq_counts(struct tq *q, long *accepted, long *running, long *final);
+
+#endif

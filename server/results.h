@@ -1,0 +1,56 @@
+/* Reading results for the API (server/results.c): time series and one field
+ * at one frame from a job's result.h5, opened with H5F_ACC_SWMR_READ so this
+ * works while the engine is still writing and after it has finished.
+ * Frames and rows are bounded by the length of the `step` dataset (the
+ * writer's commit marker, see docs/output.md). */
+#ifndef TLSPHD_RESULTS_H
+#define TLSPHD_RESULTS_H
+
+#include <stddef.h>
+#include <jansson.h>
+
+/* Names of the available series: "kinetic_energy", ..., "groups/<bc>/reaction_force".
+ * Returns a JSON array of {"name","units","components"} or NULL with err. */
+json_t *tres_series_list(const char *h5path, char *err, size_t errsize);
+/* One series: {"name","units","components":[..] or null,"step":[...],"time":[...],
+ * "value":[...] or [[x,y,z],...]}.  Returns NULL with err; *not_found set when the
+ * name does not exist (as opposed to a read error). */
+json_t *tres_series(const char *h5path, const char *name, int *not_found, char *err,
+                    size_t errsize);
+/* The same as CSV text: header "step,time,<name>[_x,_y,_z]" then rows (malloc'ed). */
+char *tres_series_csv(const char *h5path, const char *name, int *not_found, char *err,
+                      size_t errsize);
+
+struct tres_field {
+    void *data;        /* little-endian values, n_rows * ncomp elements (malloc'ed) */
+    size_t bytes;
+    size_t n_rows;     /* particles */
+    int ncomp;         /* 1, 3 or 6 */
+    const char *dtype; /* numpy-style: "<f4", "<f8", "<i8", "<i4" */
+    char units[32];
+    long frames;       /* frames available */
+    double time;       /* s, time of the frame */
+    long step;
+};
+/* Field `name` (a frame field) at frame k (negative: from the end, -1 = last);
+ * reference fields (id, volume, ...) ignore frame.  0 ok, 1 no such field,
+ * 2 no such frame, -1 error (err). */
+int tres_field(const char *h5path, const char *name, long frame, struct tres_field *out,
+               char *err, size_t errsize);
+void tres_field_free(struct tres_field *f);
+/* The field as JSON {"name","units","frame","time","shape":[N,C],"data":[...]} (small N). */
+json_t *tres_field_json(const struct tres_field *f, const char *name, long frame);
+/* Frames: [{"index","step","time"}]. */
+json_t *tres_frames(const char *h5path, char *err, size_t errsize);
+/* Final value (last row), max and min of a scalar series or of component c of a
+ * vector series (c = -1 for the magnitude). 0 ok, 1 not found, -1 error. */
+int tres_series_reduce(const char *h5path, const char *name, int component, double *final,
+                       double *max, double *min, char *err, size_t errsize);
+
+/* [added] Name checks applied before any HDF5 path is built (1 ok, 0 rejected).
+ * Series: [A-Za-z0-9_./-], at most 200 characters, no "..", no leading or
+ * trailing "/", no empty or "." segment.  Field: [A-Za-z0-9_], at most 64. */
+int tres_series_name_ok(const char *name);
+int tres_field_name_ok(const char *name);
+
+#endif

@@ -1,0 +1,50 @@
+/* The supervisor: the only file that forks, signals and reaps (server/supervisor.c).
+ *
+ * One thread claims accepted jobs from the queue (up to max_jobs at once) and
+ * runs each as a child process: fork + exec of the engine CLI
+ *   tlsph-run JOBDIR/scene.json -o JOBDIR --progress-fd 3 --threads N
+ * in its own process group, with PR_SET_PDEATHSIG(SIGKILL) (so a dying daemon
+ * takes its engines along), rlimits (address space, core dumps off, open files),
+ * stdout+stderr to JOBDIR/log.txt, and a wall-clock limit.  It reads the JSON
+ * progress lines from fd 3, writes progress to the queue, and classifies the
+ * outcome from the exit status:
+ *   0 -> successful; 2 -> failed/invalid; 3 -> failed/unstable (diagnostic message);
+ *   4 -> failed/io_error; 5 or cancel -> dismissed/cancelled;
+ *   wall limit -> failed/timed_out; killed by a signal / other -> failed/crashed.
+ * Cancellation: SIGTERM to the process group, SIGKILL after a grace period.
+ *
+ * Job directories: jobs_dir/<id>/ (the id is validated hex, never a raw path
+ * from a request). */
+#ifndef TLSPHD_SUPERVISOR_H
+#define TLSPHD_SUPERVISOR_H
+
+#include <stddef.h>
+
+struct tsup_config {
+    const char *db_path;       /* SQLite file (the supervisor opens its own handle) */
+    const char *engine_path;   /* tlsph-run */
+    const char *jobs_dir;      /* one directory per job underneath */
+    int max_jobs;              /* concurrent engine processes, >= 1 */
+    int threads_per_job;       /* OpenMP threads per engine, >= 1 */
+    double wall_limit;         /* default wall-clock limit per job, s */
+    double kill_grace;         /* s between SIGTERM and SIGKILL */
+    long memory_limit_mb;      /* RLIMIT_AS per engine, 0 = none */
+    int max_attempts;          /* requeue limit after daemon crashes */
+};
+
+struct tsup; /* opaque */
+
+/* Starts the supervisor thread. Returns 0 or -1 with err. */
+int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size_t errsize);
+/* Wakes the supervisor (new job queued, cancel requested). Async-signal-unsafe; thread-safe. */
+void tsup_wake(struct tsup *s);
+/* Stops: running engines get SIGTERM (then SIGKILL after the grace period) and
+ * their jobs are requeued so the next daemon runs them again; joins the thread. */
+void tsup_stop(struct tsup *s);
+/* Writes the scene file for a job: jobs_dir/<id>/scene.json (0 or -1). */
+int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene_json,
+                         char *err, size_t errsize);
+/* Removes jobs_dir/<id> recursively (only files the daemon writes). */
+int tsup_remove_job_dir(const char *jobs_dir, const char *id);
+
+#endif
