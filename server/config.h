@@ -1,0 +1,68 @@
+/* tlsphd configuration (server/config.c): embedded defaults, then the config
+ * file (--config FILE: "key = value" lines, '#' comments), then command-line
+ * flags, each overriding the previous.
+ *
+ * Keys (file) / flags:
+ *   listen = ADDR:PORT        --listen        127.0.0.1:8080 ([::1]:8080 for IPv6)
+ *   data_dir = DIR            --data-dir      $XDG_STATE_HOME/tlsphd if XDG_STATE_HOME is set,
+ *                                             else ./tlsphd-data
+ *   engine = PATH             --engine        tlsph-run next to the tlsphd executable, else
+ *                                             TLSPH_ENGINE_DEFAULT ($bindir/tlsph-run)
+ *   schemas_dir = DIR         --schemas-dir   where openapi.json is read from (see config.c)
+ *   max_jobs = N              --max-jobs      1
+ *   threads_per_job = N       --threads-per-job  number of online cores
+ *   wall_limit = S            --wall-limit    3600
+ *   max_particles = N         --max-particles 2000000
+ *   max_children = N          --max-children  1000 (study size)
+ *   body_limit = BYTES        --body-limit    8388608
+ *   connection_limit = N      --connection-limit 256
+ *   per_ip_limit = N          --per-ip-limit  64
+ *   connection_timeout = S    --connection-timeout 30
+ *   memory_limit_mb = N       --memory-limit-mb 0 (RLIMIT_AS per engine; 0 = none)
+ *   kill_grace = S            --kill-grace    5
+ *   max_attempts = N          --max-attempts  3
+ *   token_sha256 = HEX        (repeatable)    SHA-256 of an accepted bearer token
+ *   token_file = FILE         --token-file    plaintext tokens, one per line (hashed at load)
+ *
+ * Layout under data_dir: tlsphd.sqlite (+ -wal, -shm) and jobs/<id>/. */
+#ifndef TLSPHD_CONFIG_H
+#define TLSPHD_CONFIG_H
+
+#include <stddef.h>
+#include <stdio.h>
+#include <sys/socket.h>
+
+#include "auth.h"
+
+struct tcfg {
+    char listen[128];        /* as given */
+    struct sockaddr_storage addr;
+    socklen_t addrlen;
+    int loopback;            /* the address is a loopback address */
+    char data_dir[1024];
+    char db_path[1100];
+    char jobs_dir[1100];
+    char engine[1024];
+    char schemas_dir[1024];
+    int max_jobs;
+    int threads_per_job;
+    double wall_limit;
+    long max_particles;
+    long max_children;
+    size_t body_limit;
+    int connection_limit;
+    int per_ip_limit;
+    int connection_timeout;
+    long memory_limit_mb;
+    double kill_grace;
+    int max_attempts;
+    struct tauth auth;       /* token hashes (empty = no authentication) */
+};
+
+/* Fills cfg from defaults, the config file and argv.  Returns 0, 1 when
+ * --help was printed (exit 0), or -1 with err (usage error). */
+int tcfg_load(struct tcfg *cfg, int argc, char **argv, char *err, size_t errsize);
+void tcfg_free(struct tcfg *cfg);
+void tcfg_usage(FILE *f);
+
+#endif
