@@ -119,8 +119,8 @@ static int parse_listen(struct tcfg *c, const char *v)
 /* Applies one key = value.  Returns 0, -1 bad value, -2 unknown key. */
 static int apply(struct tcfg *c, const char *key, const char *v, char *err, size_t errsize)
 {
-    long l;
-    double d;
+    long l = 0;
+    double d = 0.0;
     int r = 0;
     if (!strcmp(key, "listen"))
         r = parse_listen(c, v);
