@@ -1,34 +1,63 @@
 #!/usr/bin/env bash
-# The main job: install dependencies, build, run an example scene through the
-# engine and report where the result is, with a short summary read back from
-# the HDF5 file.  (The daemon issue will route this through tlsphd.)
+# The main job: install dependencies, build, start the daemon tlsphd with its
+# embedded defaults (127.0.0.1:8080, data under $XDG_STATE_HOME/tlsphd or
+# ./tlsphd-data), submit an example scene with curl, wait for it, fetch
+# result.h5 and result.xmf by job id and print where they are with a summary.
 #
 # usage: bash deploy/quickstart.sh [SCENE.json] [OUTPUT_DIR]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scene=${1:-examples/elastic-strip.json}
 out=${2:-results/$(basename "$scene" .json)}
+url=http://127.0.0.1:8080
 bash deploy/install-deps.sh
 bash deploy/build.sh
-mkdir -p "$(dirname "$out")"
-rm -rf "$out"
-./tlsph-run "$scene" -o "$out"
-/usr/bin/python3 - "$out/result.h5" <<'PY'
-import sys, h5py
+
+if curl -sf "$url/healthz" >/dev/null 2>&1; then
+  echo "quickstart: something already listens on $url; stop it first (or use its API directly)" >&2
+  exit 1
+fi
+mkdir -p results
+./tlsphd >results/tlsphd.log 2>&1 &
+daemon=$!
+trap 'kill -TERM $daemon 2>/dev/null; wait $daemon 2>/dev/null || true' EXIT
+for _ in $(seq 100); do curl -sf "$url/healthz" >/dev/null 2>&1 && break; sleep 0.1; done
+echo "quickstart: tlsphd running on $url (log: results/tlsphd.log)"
+
+# submit: POST /processes/run/execution with {"inputs": {"scene": ...}}
+{ printf '{"inputs":{"scene":'; cat "$scene"; printf '}}'; } >results/request.json
+curl -sS -D results/submit.headers -o results/submit.json -H 'Content-Type: application/json' \
+     --data-binary @results/request.json "$url/processes/run/execution"
+job=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["jobID"])' results/submit.json)
+echo "quickstart: submitted $scene as job $job ($(grep -i '^location' results/submit.headers | tr -d '\r'))"
+
+# wait: long-poll GET /jobs/{id}?wait=30 until the job is final
+status=accepted
+while [ "$status" = accepted ] || [ "$status" = running ]; do
+  curl -sS "$url/jobs/$job?wait=30" -o results/status.json
+  status=$(/usr/bin/python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["status"])' results/status.json)
+  echo "quickstart: job $job is $status"
+done
+[ "$status" = successful ] || { cat results/status.json; exit 1; }
+
+# fetch the results by job id
+rm -rf "$out"; mkdir -p "$out"
+curl -sSf "$url/jobs/$job/results/result.h5" -o "$out/result.h5"
+curl -sSf "$url/jobs/$job/results/result.xmf" -o "$out/result.xmf"
+curl -sSf "$url/jobs/$job/results/series/kinetic_energy?format=csv" -o "$out/kinetic_energy.csv"
+
+/usr/bin/python3 - "$out/result.h5" results/status.json <<'PY'
+import json, sys, h5py
 f = h5py.File(sys.argv[1], "r")
-cost = f["/cost"]
-get = lambda g, k: (g.attrs[k] if k in g.attrs else g[k][()])
+st = json.load(open(sys.argv[2]))
 print("summary of", sys.argv[1])
-print("  modules:", get(f["/parameters"], "modules").decode() if isinstance(get(f["/parameters"], "modules"), bytes) else get(f["/parameters"], "modules"))
+print("  modules:", f["/parameters/modules"][()].decode())
 print("  frames: %d, particles: %d" % f["/particles/solid/position/value"].shape[:2])
 for k in ("kinetic_energy", "internal_energy", "external_work", "energy_balance"):
     print("  final %-16s %.6g J" % (k, f["/observables/%s/value" % k][-1]))
-if "groups" in f["/observables"]:
-    for g, grp in f["/observables/groups"].items():
-        r = grp["reaction_force/value"][-1]
-        print("  group %-8s reaction force [%.4g, %.4g, %.4g] N" % (g, *r))
-for k in ("particles", "steps", "wall_seconds", "particle_steps_per_second", "bytes_per_particle"):
-    v = get(cost, k)
+for g, grp in f["/observables/groups"].items() if "groups" in f["/observables"] else []:
+    print("  group %-8s reaction force [%.4g, %.4g, %.4g] N" % (g, *grp["reaction_force/value"][-1]))
+for k, v in st.get("cost", {}).items():
     print("  cost %-26s %s" % (k, v))
 PY
 echo "result: $(pwd)/$out/result.h5 and $(pwd)/$out/result.xmf (ParaView: File > Open, choose \"XDMF Reader\")"
