@@ -3,8 +3,12 @@
 #   1. the optimised build (as users run it): make check;
 #   2. a copy of the tree built with AddressSanitizer + UndefinedBehaviorSanitizer
 #      (leak detection on): make check again, so every test also proves the code
-#      free of memory errors, leaks and undefined behaviour.
-# Ends with one line "N passed, N failed" over both runs.
+#      free of memory errors, leaks and undefined behaviour;
+#   3. make distcheck in another private copy, counted as one test: the release
+#      tarball holds everything the build and the tests need, the whole suite
+#      passes in a VPATH build from the read-only unpacked sources, and
+#      install (systemd unit included) / installcheck / uninstall are clean.
+# Ends with one line "N passed, N failed" over all of it.
 set -uo pipefail
 cd "$(dirname "$0")/.."
 top=$(pwd)
@@ -14,15 +18,16 @@ bash deploy/build.sh || exit 1
 pass=0
 fail=0
 run_check() { # dir label
-  local dir=$1 label=$2 status p f
+  local dir=$1 label=$2 status p f trs_files
   (cd "$dir" && make -j"$(nproc)" check >make-check.out 2>&1)
   status=$?
   echo "== $label"
   grep -E '^(PASS|FAIL|XFAIL|XPASS|ERROR|SKIP):' "$dir/make-check.out" || true
-  p=$(cat "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null | grep -cE '^:test-result: (PASS|XFAIL)')
-  f=$(cat "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null | grep -cE '^:test-result: (FAIL|XPASS|ERROR)')
+  trs_files=$(find "$dir/tests" -name '*.trs' 2>/dev/null)
+  p=$(cat $trs_files /dev/null | grep -cE '^:test-result: (PASS|XFAIL)')
+  f=$(cat $trs_files /dev/null | grep -cE '^:test-result: (FAIL|XPASS|ERROR)')
   if [ $status -ne 0 ]; then
-    for trs in $(grep -lE '^:test-result: (FAIL|ERROR)' "$dir"/tests/unit/*.trs "$dir"/tests/scripts/*.trs 2>/dev/null); do
+    for trs in $(grep -lE '^:test-result: (FAIL|ERROR)' $trs_files /dev/null); do
       echo "---- ${trs%.trs}.log"; tail -n 40 "${trs%.trs}.log"
     done
     [ "$f" -eq 0 ] && f=1
@@ -42,6 +47,24 @@ git ls-files -z | xargs -0 tar cf - | tar xf - -C "$san"
               LDFLAGS="-fsanitize=address,undefined" >/dev/null 2>&1 &&
   make -j"$(nproc)" >/dev/null 2>&1) || { echo "sanitizer build failed"; fail=$((fail + 1)); }
 [ -x "$san/tlsph-run" ] && run_check "$san" "sanitizer build (ASan + UBSan + LeakSanitizer)"
+
+# make distcheck in a private copy of the tracked sources (~1-2 min on 2 cores).
+dc="$top/.build-distcheck"
+rm -rf "$dc" && mkdir -p "$dc"
+git ls-files -z | xargs -0 tar cf - | tar xf - -C "$dc"
+t0=$(date +%s)
+if (cd "$dc" && autoreconf -fi >/dev/null 2>&1 && ./configure --quiet >/dev/null 2>&1 &&
+    make -j"$(nproc)" distcheck >make-distcheck.out 2>&1); then
+  echo "== make distcheck"
+  echo "PASS: distcheck ($(grep -m1 -E '^# TOTAL:' "$dc/make-distcheck.out" | sed 's/# TOTAL: *//') tests in the VPATH build, $(($(date +%s) - t0)) s)"
+  pass=$((pass + 1))
+else
+  echo "== make distcheck"
+  echo "FAIL: distcheck"
+  grep -E '^(FAIL|ERROR):' "$dc/make-distcheck.out"
+  tail -n 40 "$dc/make-distcheck.out"
+  fail=$((fail + 1))
+fi
 
 echo "${pass} passed, ${fail} failed"
 [ "$fail" -eq 0 ]

@@ -1,0 +1,34 @@
+/* The subcommands.  Each takes argv with argv[0] = the command name and returns
+ * an RC_* exit code. */
+#ifndef TLSPH_CLIENT_COMMANDS_H
+#define TLSPH_CLIENT_COMMANDS_H
+
+#include <jansson.h>
+
+#include "settings.h"
+
+int cmd_submit(const settings *s, int argc, char **argv);
+int cmd_status(const settings *s, int argc, char **argv);
+int cmd_wait(const settings *s, int argc, char **argv);
+int cmd_cancel(const settings *s, int argc, char **argv);
+int cmd_list(const settings *s, int argc, char **argv);
+int cmd_watch(const settings *s, int argc, char **argv);
+int cmd_fetch(const settings *s, int argc, char **argv);
+int cmd_series(const settings *s, int argc, char **argv);
+int cmd_plot(const settings *s, int argc, char **argv);
+int cmd_study(const settings *s, int argc, char **argv);
+
+/* GET /jobs/ID?wait=wait_s (long-poll; wait_s <= 0: no wait).  *out is the statusInfo. */
+int job_poll(const settings *s, const char *id, double wait_s, json_t **out);
+
+/* POSTs {"inputs": inputs} (reference stolen) to /processes/PROCESS/execution and
+ * prints the new job id. */
+int submit_job(const settings *s, const char *process, json_t *inputs);
+
+/* Monotonic clock in seconds. */
+double now_seconds(void);
+
+/* Usage error helper: prints "tlsph CMD: msg" and returns RC_USAGE. */
+int usage_error(const char *cmd, const char *msg, const char *arg);
+
+#endif
