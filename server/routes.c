@@ -141,6 +141,7 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
     double progress = j->progress, started = j->started;
     struct tq_job *kids = NULL;
     size_t nk = 0;
+    char live_message[128] = "";
     if (study && study_children(a, q, j->id, &kids, &nk) == 0 && nk > 0 && !is_final(j->status)) {
         size_t nacc = 0, nfinal = 0;
         double sum = 0;
@@ -158,12 +159,17 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
         if (nfinal == nk)
             status = j->status; /* the queue refreshes it with the last child */
         progress = sum / (double)nk;
+        /* the stored message is refreshed only when a child finishes */
+        snprintf(live_message, sizeof live_message, "%zu of %zu children finished, %zu running",
+                 nfinal, nk, nk - nacc - nfinal);
     }
     json_object_set_new(o, "type", json_string("process"));
     json_object_set_new(o, "processID", json_string(j->process));
     json_object_set_new(o, "jobID", json_string(j->id));
     json_object_set_new(o, "status", json_string(status));
-    if (j->message && *j->message)
+    if (live_message[0])
+        json_object_set_new(o, "message", json_string(live_message));
+    else if (j->message && *j->message)
         json_object_set_new(o, "message", json_string(j->message));
     if (j->outcome[0])
         json_object_set_new(o, "outcome", json_string(j->outcome));

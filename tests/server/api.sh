@@ -170,6 +170,8 @@ req POST "$B/processes/study/execution" -H 'Content-Type: application/json' --da
 check "submit study: 201" [ "$STATUS" = 201 ]
 check "study statusInfo valid" valid job
 SID=$(jget "$BODY" "d['jobID']")
+req GET "$B/jobs/$SID"
+check "unfinished study message counts its children" [ "$(jget "$BODY" "d['status'] in ('successful', 'failed') or bool(__import__('re').fullmatch(r'[0-6] of 6 children finished, [0-6] running', d.get('message', '')))")" = True ]
 for _ in 1 2 3 4; do
     req GET "$B/jobs/$SID?wait=30"
     case "$(jget "$BODY" "d['status']")" in successful | failed | dismissed) break ;; esac
