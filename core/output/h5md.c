@@ -52,6 +52,7 @@
 #define XMF_NAME "result.xmf"
 #define SERIES_CHUNK 1024        /* rows per series chunk and per memory buffer */
 #define SERIES_MAX_AGE 1.0       /* s of wall time before buffered rows are written */
+#define XMF_MAX_AGE 2.0          /* s of wall time between rewrites of the XDMF sidecar */
 #define FRAME_CHUNK_BYTES (512u * 1024u) /* target chunk size of frame values */
 #define CHUNK_CACHE_BYTES (4u * 1024u * 1024u)
 #define DEFLATE_LEVEL 1
@@ -103,6 +104,7 @@ struct tlsph_output {
     size_t nsamples;     /* rows written to the file */
     int64_t last_step_written;
     double last_series_write;
+    double last_xmf_write;    /* wall clock of the last sidecar rewrite, s */
 };
 
 /* ------------------------------------------------------------ helpers */
@@ -1009,9 +1011,16 @@ int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
     o->frame_times[o->nframes++] = m->t;
     if (flush_series(o) < 0)
         return -1;
-    if (tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, o->nframes, o->frame_times, o->present,
-                         o->npresent) < 0)
-        return -1;
+    /* The sidecar lists every frame, so rewriting it after each one costs
+     * O(frames^2) bytes over a run; ParaView cannot open the HDF5 file before
+     * the writer closes it anyway.  Rewrite it at most every XMF_MAX_AGE seconds
+     * (so a killed run still leaves a recent one) and always at close. */
+    if (now_seconds() - o->last_xmf_write >= XMF_MAX_AGE) {
+        if (tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, o->nframes, o->frame_times, o->present,
+                             o->npresent) < 0)
+            return -1;
+        o->last_xmf_write = now_seconds();
+    }
     return 0;
 }
 
@@ -1075,6 +1084,9 @@ int tlsph_output_close(struct tlsph_output *o, const struct tlsph_model *m,
     if (flush_series(o) < 0)
         rc = -1;
     if (write_records(o, cost, status, d) < 0)
+        rc = -1;
+    if (tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, o->nframes, o->frame_times, o->present,
+                         o->npresent) < 0)
         rc = -1;
     /* Close the datasets, then the file, checking each (free_output ignores). */
     for (size_t i = 0; i < o->nframe_fields; i++) {

@@ -37,7 +37,8 @@ struct tlsph_cost {
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
                                        struct tlsph_errors *err);
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf
- * (via a temporary file and rename). Returns 0 or -1. */
+ * (via a temporary file and rename) when the last rewrite is more than 2 s old;
+ * tlsph_output_close always rewrites it.  Returns 0 or -1. */
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m);
 /* Appends one sample of every time-series column.  Rows are buffered and written
  * (and flushed) when 1024 are pending, at every frame, after ~1 s of wall time and
