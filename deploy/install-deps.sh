@@ -8,8 +8,8 @@ PACKAGES=(
   build-essential autoconf automake pkg-config
   libjansson-dev libhdf5-dev hdf5-tools libmatheval-dev check
   libmicrohttpd-dev libsqlite3-dev libgnutls28-dev libcurl4-openssl-dev
-  python3 python3-h5py python3-numpy python3-jsonschema
-  curl valgrind
+  python3 python3-h5py python3-numpy python3-jsonschema python3-yaml
+  curl procps valgrind
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
