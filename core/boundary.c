@@ -55,14 +55,6 @@ int tlsph_boundary_select(struct tlsph_model *m, struct tlsph_errors *err)
                 g->index[g->n++] = (int32_t)i;
                 g->mass += m->p.mass[i];
             }
-        uint8_t mask = 0;
-        if (bc->type == TLSPH_BC_FIXED)
-            mask = 7;
-        else if (bc->type == TLSPH_BC_VELOCITY)
-            for (int c = 0; c < 3; c++)
-                mask |= (uint8_t)(bc->velocity_set[c] << c);
-        for (size_t a = 0; a < g->n; a++)
-            m->p.constrained[g->index[a]] |= mask;
     }
     return 0;
 }

@@ -5,6 +5,8 @@
 #include <math.h>
 #include <string.h>
 
+#include "mat3.h"
+
 static void ex_id(const struct tlsph_model *m, void *out)
 {
     memcpy(out, m->p.id, m->p.n * sizeof(int64_t));
@@ -78,8 +80,7 @@ static void ex_detF(const struct tlsph_model *m, void *out)
     double *o = out;
     for (size_t i = 0; i < m->p.n; i++) {
         const double *F = m->p.F + 9 * i;
-        o[i] = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-               F[2] * (F[3] * F[7] - F[4] * F[6]);
+        o[i] = mat3_det(F);
     }
 }
 

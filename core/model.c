@@ -47,7 +47,7 @@ void tlsph_model_free(struct tlsph_model *m)
     struct tlsph_particles *p = &m->p;
     free(p->id); free(p->body); free(p->X); free(p->x); free(p->v); free(p->f);
     free(p->vol0); free(p->mass); free(p->h); free(p->Linv); free(p->F); free(p->Fdot);
-    free(p->P_tilde); free(p->sigma); free(p->e); free(p->constrained);
+    free(p->P_tilde); free(p->sigma); free(p->e);
     free(p->f_hourglass); free(p->f_viscous);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
@@ -118,14 +118,13 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     p->P_tilde = tlsph_alloc(m, 9 * n, sizeof(double));
     p->sigma = tlsph_alloc(m, 6 * n, sizeof(double));
     p->e = tlsph_alloc(m, n, sizeof(double));
-    p->constrained = tlsph_alloc(m, n, sizeof *p->constrained);
     /* only the modules the scene asks for get their arrays */
     if (m->scene.hourglass && !(p->f_hourglass = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
     if (m->scene.viscosity && !(p->f_viscous = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
     return p->id && p->body && p->X && p->x && p->v && p->f && p->vol0 && p->mass && p->h &&
-                   p->Linv && p->F && p->Fdot && p->P_tilde && p->sigma && p->e && p->constrained
+                   p->Linv && p->F && p->Fdot && p->P_tilde && p->sigma && p->e
                ? 0
                : -1;
 }

@@ -34,7 +34,6 @@ struct tlsph_particles {
     double *P_tilde;  /* P_i L_i^-T: first Piola-Kirchhoff stress folded with the correction, Pa [9n] */
     double *sigma;    /* Cauchy stress, Pa [6n] */
     double *e;        /* specific internal energy, J/kg */
-    uint8_t *constrained; /* bit k set: velocity component k is prescribed */
     double *f_hourglass;  /* hourglass-control force of the last evaluation, N [3n]; only with hourglass */
     double *f_viscous;    /* artificial-viscosity force of the last evaluation, N [3n]; only with viscosity */
 };

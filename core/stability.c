@@ -11,6 +11,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "mat3.h"
 #include "model.h"
 
 static void add_id(struct tlsph_diagnostic *d, int64_t id)
@@ -58,9 +59,7 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
     if (m->inverted) {
         for (size_t i = 0; i < p->n && d->nids < 16; i++) {
             const double *F = p->F + 9 * i;
-            const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                             F[2] * (F[3] * F[7] - F[4] * F[6]);
-            if (!(J > 0.0))
+            if (!(mat3_det(F) > 0.0))
                 add_id(d, p->id[i]);
         }
         return fail(m, d, "det_F", m->min_detF, 0.0);
