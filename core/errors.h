@@ -9,6 +9,9 @@
 #include <stddef.h>
 #include <jansson.h>
 
+/* Enough for any pointer the scene validator builds (nesting is bounded). */
+#define TLSPH_POINTER_MAX 512
+
 struct tlsph_error {
     char *pointer; /* RFC 6901 JSON pointer into the scene ("" = whole document) */
     char *message; /* human-readable, names the field and the accepted range */

@@ -89,6 +89,31 @@ static void ex_e(const struct tlsph_model *m, void *out)
     memcpy(out, m->p.e, m->p.n * sizeof(double));
 }
 
+static int has_plasticity(const struct tlsph_model *m)
+{
+    return m->p.eps_p != NULL;
+}
+
+static int has_temperature(const struct tlsph_model *m)
+{
+    return m->p.T != NULL;
+}
+
+static void ex_eps_p(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.eps_p, m->p.n * sizeof(double));
+}
+
+static void ex_eps_p_rate(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.eps_p_rate, m->p.n * sizeof(double));
+}
+
+static void ex_T(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.T, m->p.n * sizeof(double));
+}
+
 const struct tlsph_field tlsph_fields[] = {
     {"id", TLSPH_FIELD_REFERENCE, TLSPH_INT64, 1, "1", NULL,
      "stable particle id (generation order, body by body)", NULL, ex_id},
@@ -113,25 +138,72 @@ const struct tlsph_field tlsph_fields[] = {
      "volume ratio J = det F", NULL, ex_detF},
     {"internal_energy", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "J/kg", NULL,
      "specific internal energy", NULL, ex_e},
+    {"plastic_strain", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "equivalent (von Mises) plastic strain, logarithmic; 0 in elastic bodies", has_plasticity,
+     ex_eps_p},
+    {"plastic_strain_rate", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1/s", NULL,
+     "equivalent plastic strain rate of the last step", has_plasticity, ex_eps_p_rate},
+    {"temperature", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "K", NULL,
+     "temperature (adiabatic heating by plastic work); NaN where the material has no "
+     "thermal block",
+     has_temperature, ex_T},
 };
 const size_t tlsph_nfields = sizeof tlsph_fields / sizeof *tlsph_fields;
 
+static void sv_kinetic(const struct tlsph_model *m, double *o) { o[0] = m->energy.kinetic; }
+static void sv_internal(const struct tlsph_model *m, double *o) { o[0] = m->energy.internal; }
+static void sv_external(const struct tlsph_model *m, double *o) { o[0] = m->energy.external_work; }
+static void sv_hourglass(const struct tlsph_model *m, double *o) { o[0] = m->energy.hourglass; }
+static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energy.viscous; }
+static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
+static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
+
+static void sv_balance(const struct tlsph_model *m, double *o)
+{
+    const struct tlsph_energy *e = &m->energy;
+    o[0] = e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+}
+
+static void sv_momentum(const struct tlsph_model *m, double *o)
+{
+    tlsph_model_momentum(m, o);
+}
+
+static void sv_max_temperature(const struct tlsph_model *m, double *o)
+{
+    double tmax = -INFINITY;
+    for (size_t i = 0; i < m->p.n; i++)
+        tmax = fmax(tmax, m->p.T[i]); /* fmax skips the NaN of bodies without temperature */
+    o[0] = tmax;
+}
+
 const struct tlsph_series_column tlsph_global_series[] = {
-    {"kinetic_energy", 1, "J", "sum of m v^2 / 2"},
-    {"internal_energy", 1, "J", "stored internal (strain) energy, sum of m e"},
-    {"external_work", 1, "J", "work done on the bodies by boundary conditions and body forces"},
-    {"hourglass_energy", 1, "J", "work done against hourglass-control forces"},
-    {"viscous_energy", 1, "J", "work done against artificial-viscosity forces"},
+    {"kinetic_energy", 1, "J", "sum of m v^2 / 2", NULL, sv_kinetic},
+    {"internal_energy", 1, "J",
+     "internal energy, sum of m e: stored (strain) energy plus plastic work", NULL, sv_internal},
+    {"external_work", 1, "J", "work done on the bodies by boundary conditions and body forces",
+     NULL, sv_external},
+    {"hourglass_energy", 1, "J", "work done against hourglass-control forces", NULL, sv_hourglass},
+    {"viscous_energy", 1, "J", "work done against artificial-viscosity forces", NULL, sv_viscous},
     {"energy_balance", 1, "J",
-     "kinetic + internal + hourglass + viscous - external work - initial energy (0 when energy is conserved)"},
-    {"linear_momentum", 3, "kg m/s", "total linear momentum"},
-    {"time_step", 1, "s", "time step used for the last step"},
+     "kinetic + internal + hourglass + viscous - external work - initial energy (0 when energy "
+     "is conserved)",
+     NULL, sv_balance},
+    {"linear_momentum", 3, "kg m/s", "total linear momentum", NULL, sv_momentum},
+    {"time_step", 1, "s", "time step used for the last step", NULL, sv_dt},
+    {"plastic_work", 1, "J",
+     "plastic dissipation, sum over particles of the integral of sigma : d^p dV (part of "
+     "internal_energy)",
+     has_plasticity, sv_plastic},
+    {"max_temperature", 1, "K", "highest particle temperature", has_temperature,
+     sv_max_temperature},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
 const struct tlsph_series_column tlsph_group_series[] = {
-    {"reaction_force", 3, "N", "force exerted by the constraint on the group's particles"},
-    {"displacement", 3, "m", "mean displacement of the group's particles"},
+    {"reaction_force", 3, "N", "force exerted by the constraint on the group's particles", NULL,
+     NULL},
+    {"displacement", 3, "m", "mean displacement of the group's particles", NULL, NULL},
 };
 const size_t tlsph_ngroup_series = sizeof tlsph_group_series / sizeof *tlsph_group_series;
 
@@ -141,11 +213,17 @@ int tlsph_group_has_series(const struct tlsph_model *m, size_t k)
     return t == TLSPH_BC_FIXED || t == TLSPH_BC_VELOCITY;
 }
 
-size_t tlsph_global_series_width(void)
+int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)
+{
+    return c->present == NULL || c->present(m);
+}
+
+size_t tlsph_global_series_width(const struct tlsph_model *m)
 {
     size_t w = 0;
     for (size_t c = 0; c < tlsph_nglobal_series; c++)
-        w += (size_t)tlsph_global_series[c].ncomp;
+        if (tlsph_series_present(&tlsph_global_series[c], m))
+            w += (size_t)tlsph_global_series[c].ncomp;
     return w;
 }
 
@@ -159,19 +237,13 @@ size_t tlsph_group_series_width(void)
 
 void tlsph_global_series_values(const struct tlsph_model *m, double *out)
 {
-    const struct tlsph_energy *e = &m->energy;
-    double mom[3];
-    tlsph_model_momentum(m, mom);
-    out[0] = e->kinetic;
-    out[1] = e->internal;
-    out[2] = e->external_work;
-    out[3] = e->hourglass;
-    out[4] = e->viscous;
-    out[5] = e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
-    out[6] = mom[0];
-    out[7] = mom[1];
-    out[8] = mom[2];
-    out[9] = m->dt;
+    for (size_t c = 0; c < tlsph_nglobal_series; c++) {
+        const struct tlsph_series_column *col = &tlsph_global_series[c];
+        if (!tlsph_series_present(col, m))
+            continue;
+        col->value(m, out);
+        out += col->ncomp;
+    }
 }
 
 void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *out)

@@ -33,13 +33,16 @@ extern const struct tlsph_field tlsph_fields[];
 extern const size_t tlsph_nfields;
 
 /* A time-series column: the run samples these every scene.series_every steps.
- * Group columns repeat for each boundary group that carries load (fixed and
+ * Global columns are present when their module is (present == NULL: always);
+ * group columns repeat for each boundary group that carries load (fixed and
  * velocity conditions) under the name "<group>/<column>". */
 struct tlsph_series_column {
     const char *name;
     int ncomp;               /* 1 or 3 */
     const char *units;
     const char *description;
+    int (*present)(const struct tlsph_model *m);
+    void (*value)(const struct tlsph_model *m, double *out); /* global columns: ncomp values */
 };
 
 extern const struct tlsph_series_column tlsph_global_series[];
@@ -47,14 +50,15 @@ extern const size_t tlsph_nglobal_series;
 extern const struct tlsph_series_column tlsph_group_series[];
 extern const size_t tlsph_ngroup_series;
 
+int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m);
 /* Does boundary condition k produce group series (reaction force, displacement)? */
 int tlsph_group_has_series(const struct tlsph_model *m, size_t k);
-/* Writes the current values of all global columns (concatenated components). */
+/* Writes the current values of the present global columns (concatenated components). */
 void tlsph_global_series_values(const struct tlsph_model *m, double *out);
 /* Writes the current values of group k's columns. */
 void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *out);
-/* Number of doubles tlsph_global_series_values writes. */
-size_t tlsph_global_series_width(void);
+/* Number of doubles tlsph_global_series_values writes for this model. */
+size_t tlsph_global_series_width(const struct tlsph_model *m);
 size_t tlsph_group_series_width(void);
 
 #endif

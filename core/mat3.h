@@ -60,6 +60,22 @@ static inline void mat3_mul_at(const double *A, const double *B, double *C)
             C[3 * r + c] = A[r] * B[c] + A[3 + r] * B[3 + c] + A[6 + r] * B[6 + c];
 }
 
+/* B = Q^T A Q: A expressed in the orthonormal basis of Q's columns. */
+static inline void mat3_to_basis(const double *Q, const double *A, double *B)
+{
+    double T[9];
+    mat3_mul_at(Q, A, T);
+    mat3_mul(T, Q, B);
+}
+
+/* A = Q B Q^T: back from the basis of Q's columns. */
+static inline void mat3_from_basis(const double *Q, const double *B, double *A)
+{
+    double T[9];
+    mat3_mul(Q, B, T);
+    mat3_mul_bt(T, Q, A);
+}
+
 static inline void sym6_to_mat3(const double *s, double *A)
 {
     A[0] = s[0]; A[1] = s[1]; A[2] = s[2];

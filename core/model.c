@@ -49,6 +49,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->vol0); free(p->mass); free(p->h); free(p->Linv); free(p->F); free(p->Fdot);
     free(p->P_tilde); free(p->sigma); free(p->e);
     free(p->f_hourglass); free(p->f_viscous);
+    free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->T);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -75,12 +76,36 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, s->kernel == TLSPH_KERNEL_CUBIC_SPLINE ? "kernel:cubic_spline"
                                                          : "kernel:wendland_c2");
     add_module(m, "kinematics:corrected_gradient");
+    /* Module names are "family:name" literals built from the registries' static
+     * names; the table below keeps them static strings. */
+    static const char *const strength_modules[][2] = {
+        {"elastic", "strength:elastic"},
+        {"linear_hardening", "strength:linear_hardening"},
+        {"johnson_cook", "strength:johnson_cook"},
+        {"swift", "strength:swift"},
+        {"voce", "strength:voce"},
+    };
+    int plastic = 0, rate = 0, softening = 0, heating = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
         add_module(m, strcmp(mat->eos->name, "linear") == 0 ? "eos:linear" : "eos:mie_gruneisen");
-        add_module(m, "strength:elastic");
+        for (size_t k = 0; k < sizeof strength_modules / sizeof *strength_modules; k++)
+            if (strcmp(mat->strength->name, strength_modules[k][0]) == 0)
+                add_module(m, strength_modules[k][1]);
+        plastic |= tlsph_material_is_plastic(mat);
+        rate |= (mat->strength_terms & TLSPH_FLOW_RATE) != 0;
+        softening |= (mat->strength_terms & TLSPH_FLOW_THERMAL) != 0;
+        heating |= mat->thermal.enabled;
     }
     add_module(m, "stress_rate:green_naghdi_hencky");
+    if (plastic)
+        add_module(m, "plasticity:j2_radial_return");
+    if (rate)
+        add_module(m, "plasticity:strain_rate_hardening");
+    if (heating)
+        add_module(m, "thermal:adiabatic_heating");
+    if (softening)
+        add_module(m, "thermal:softening");
     add_module(m, "force:pk1_pair");
     if (s->hourglass)
         add_module(m, "hourglass:ganzenmuller");
@@ -122,6 +147,17 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     if (m->scene.hourglass && !(p->f_hourglass = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
     if (m->scene.viscosity && !(p->f_viscous = tlsph_alloc(m, 3 * n, sizeof(double))))
+        return -1;
+    int plastic = 0, thermal = 0;
+    for (size_t k = 0; k < m->scene.nmaterials; k++) {
+        plastic |= tlsph_material_is_plastic(&m->scene.materials[k]);
+        thermal |= m->scene.materials[k].thermal.enabled;
+    }
+    if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
+                    !(p->plastic_strain = tlsph_alloc(m, 6 * n, sizeof(double))) ||
+                    !(p->eps_p_rate = tlsph_alloc(m, n, sizeof(double)))))
+        return -1;
+    if (thermal && !(p->T = tlsph_alloc(m, n, sizeof(double))))
         return -1;
     return p->id && p->body && p->X && p->x && p->v && p->f && p->vol0 && p->mass && p->h &&
                    p->Linv && p->F && p->Fdot && p->P_tilde && p->sigma && p->e
@@ -202,6 +238,8 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
         }
         for (int c = 0; c < 9; c++)
             p->F[9 * k + c] = (c % 4 == 0);
+        if (p->T)
+            p->T[k] = mat->thermal.enabled ? mat->thermal.initial_temperature : NAN;
     }
     rc = 0;
 done:

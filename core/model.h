@@ -36,6 +36,15 @@ struct tlsph_particles {
     double *e;        /* specific internal energy, J/kg */
     double *f_hourglass;  /* hourglass-control force of the last evaluation, N [3n]; only with hourglass */
     double *f_viscous;    /* artificial-viscosity force of the last evaluation, N [3n]; only with viscosity */
+
+    /* Plastic history (core/material_point.h); allocated only when some material
+     * of the scene is plastic (NULL otherwise).  Zero for particles of elastic bodies. */
+    double *eps_p;          /* equivalent plastic strain, 1 */
+    double *plastic_strain; /* plastic logarithmic strain in the unrotated frame, 1 [6n] */
+    double *eps_p_rate;     /* equivalent plastic strain rate of the last step, 1/s */
+    /* Temperature, K; allocated only when some material has thermal coupling.
+     * NaN for particles whose material has no temperature. */
+    double *T;
 };
 
 /* Reference neighbour pairs in CSR form, built once: the pairs of i are
@@ -64,6 +73,7 @@ struct tlsph_energy {
     double external_work;     /* work done on the body by boundary conditions and body forces, J */
     double hourglass;         /* work done against hourglass-control forces, J */
     double viscous;           /* work done against artificial-viscosity forces, J */
+    double plastic_work;      /* plastic dissipation (part of internal), J */
     double initial;           /* kinetic + internal at t = 0, J */
     double scale;             /* largest |term| seen so far, J: the drift reference */
 };
@@ -98,6 +108,8 @@ struct tlsph_model {
     size_t inverted;              /* particles with det F <= 0 or non-finite in the last evaluation */
     int64_t first_inverted_id;    /* id of one of them */
     double min_detF;              /* smallest det F of the last evaluation */
+    size_t return_failures;       /* points whose return mapping did not converge (last evaluation) */
+    int64_t first_return_failure_id;
     struct tlsph_energy energy;
 
     /* setup statistics */

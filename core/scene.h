@@ -21,6 +21,20 @@ struct tlsph_strength_model; /* core/strength/strength.h */
 
 enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
 
+/* Optional terms of a flow-stress law, each active only when the scene gives
+ * its parameters (core/strength/johnson_cook.c). */
+#define TLSPH_FLOW_RATE 1u    /* strain-rate hardening */
+#define TLSPH_FLOW_THERMAL 2u /* thermal softening: needs the material's temperature */
+
+/* Adiabatic heating by plastic work (paper 003 eq. 58): rho C_p dT = chi sigma : d^p.
+ * A material has a temperature only when its scene entry has a "thermal" block. */
+struct tlsph_thermal {
+    int enabled;
+    double specific_heat;       /* C_p, J/(kg K) */
+    double taylor_quinney;      /* chi, fraction of plastic work turned into heat, 1 */
+    double initial_temperature; /* K */
+};
+
 struct tlsph_material {
     char name[TLSPH_NAME_MAX];
     double density;       /* rho0, kg/m^3 */
@@ -32,7 +46,9 @@ struct tlsph_material {
     const struct tlsph_eos_model *eos;
     double eos_params[8];  /* meaning fixed by the EOS model */
     const struct tlsph_strength_model *strength;
-    double strength_params[8];
+    double strength_params[8];  /* meaning fixed by the strength model */
+    unsigned strength_terms;    /* TLSPH_FLOW_* terms the scene switched on */
+    struct tlsph_thermal thermal;
 };
 
 enum tlsph_geometry_type {

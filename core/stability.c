@@ -1,7 +1,8 @@
 /* The stability contract (cheap checks, run every scene.check_every steps and
  * before every output frame, so no frame ever holds garbage):
- *   - non-finite position, velocity or stress;
+ *   - non-finite position, velocity, stress, plastic strain or temperature;
  *   - det F <= 0 (an inverted particle), recorded by the constitutive update;
+ *   - a plastic return mapping that did not converge (value: how many points);
  *   - a particle faster than speed_limit_factor times the largest wave speed;
  *   - an energy balance (kinetic + internal + hourglass + viscous - external work
  *     - initial) larger than energy_tolerance times the largest energy seen.
@@ -50,6 +51,10 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
             ok &= isfinite(p->x[3 * i + c]) && isfinite(p->v[3 * i + c]);
         for (int c = 0; c < 6; c++)
             ok &= isfinite(p->sigma[6 * i + c]);
+        if (p->eps_p)
+            ok &= isfinite(p->eps_p[i]);
+        if (p->T && m->scene.materials[m->scene.bodies[p->body[i]].material].thermal.enabled)
+            ok &= isfinite(p->T[i]);
         if (!ok)
             add_id(d, p->id[i]);
     }
@@ -63,6 +68,11 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
                 add_id(d, p->id[i]);
         }
         return fail(m, d, "det_F", m->min_detF, 0.0);
+    }
+
+    if (m->return_failures) {
+        add_id(d, m->first_return_failure_id);
+        return fail(m, d, "return_mapping", (double)m->return_failures, 0.0);
     }
 
     const double vmax = m->scene.speed_limit_factor * m->max_wave_speed;

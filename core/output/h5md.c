@@ -667,6 +667,8 @@ static int create_observables(struct tlsph_output *o, const struct tlsph_model *
     if ((obs = make_group(o->file, "observables")) < 0)
         goto done;
     for (size_t c = 0; c < tlsph_nglobal_series; c++) {
+        if (!tlsph_series_present(&tlsph_global_series[c], m))
+            continue;
         if (create_series(o, obs, "/observables", &tlsph_global_series[c], offset) < 0)
             goto done;
         offset += (size_t)tlsph_global_series[c].ncomp;
@@ -811,7 +813,7 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
         ngroups += tlsph_group_has_series(m, k) ? 1 : 0;
     size_t maxseries = tlsph_nglobal_series + ngroups * tlsph_ngroup_series;
     o->series = calloc(maxseries ? maxseries : 1, sizeof *o->series);
-    o->width = tlsph_global_series_width() + ngroups * tlsph_group_series_width();
+    o->width = tlsph_global_series_width(m) + ngroups * tlsph_group_series_width();
     o->rows = malloc(SERIES_CHUNK * (o->width ? o->width : 1) * sizeof *o->rows);
     o->row_step = malloc(SERIES_CHUNK * sizeof *o->row_step);
     o->row_time = malloc(SERIES_CHUNK * sizeof *o->row_time);
@@ -963,7 +965,7 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
     else if (o->nrows == 0 && o->nsamples > 0 && o->last_step_written == m->step)
         return 0;
     double *row = o->rows + slot * o->width;
-    size_t gw = tlsph_global_series_width(), grw = tlsph_group_series_width(), off = gw;
+    size_t gw = tlsph_global_series_width(m), grw = tlsph_group_series_width(), off = gw;
     tlsph_global_series_values(m, row);
     for (size_t k = 0; k < m->scene.nbcs; k++) {
         if (!tlsph_group_has_series(m, k))

@@ -278,11 +278,38 @@ static int parse_model_ref(const json_t *mat, const char *key, const char *point
     return jc_string(*obj, "type", 1, p, type, size, err) == 0 ? 0 : -1;
 }
 
+/* "thermal": {"specific_heat", "initial_temperature", "taylor_quinney"}: the
+ * material gets a temperature, raised by plastic work (adiabatic heating). */
+static int parse_thermal(const json_t *mat, struct tlsph_material *m, const char *pointer,
+                         struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"specific_heat", "initial_temperature", "taylor_quinney",
+                                       NULL};
+    const json_t *th = jc_object(mat, "thermal", 0, pointer, err);
+    if (!th)
+        return json_object_get(mat, "thermal") ? -1 : 0;
+    char P[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(P, sizeof P, pointer, "thermal");
+    struct tlsph_thermal *t = &m->thermal;
+    t->taylor_quinney = 0.9;
+    int bad = jc_unknown_keys(th, keys, P, err) != 0;
+    bad |= jc_number(th, "specific_heat", 1, ((struct jc_range){0.0, 1e6, JC_OPEN, JC_CLOSED}),
+                     "J/(kg K)", P, &t->specific_heat, err) < 0;
+    bad |= jc_number(th, "initial_temperature", 1,
+                     ((struct jc_range){0.0, 1e5, JC_OPEN, JC_CLOSED}), "K", P,
+                     &t->initial_temperature, err) < 0;
+    bad |= jc_number(th, "taylor_quinney", 0, JC_BETWEEN(0.0, 1.0),
+                     "(fraction of plastic work turned into heat)", P, &t->taylor_quinney,
+                     err) < 0;
+    t->enabled = 1; /* even when invalid: the strength model must not ask for it again */
+    return bad ? -1 : 0;
+}
+
 static int parse_material(const char *name, const json_t *mat, struct tlsph_material *m,
                           struct tlsph_errors *err)
 {
     static const char *const keys[] = {"density", "youngs_modulus", "poisson_ratio", "eos",
-                                       "strength", NULL};
+                                       "strength", "thermal", NULL};
     char P[TLSPH_POINTER_MAX];
     tlsph_pointer_join(P, sizeof P, "/materials", name);
     if (!json_is_object(mat)) {
@@ -349,6 +376,7 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
             bad = 1;
         }
     }
+    bad |= parse_thermal(mat, m, P, err) != 0;
     m->strength = &tlsph_strength_elastic;
     r = parse_model_ref(mat, "strength", P, type, sizeof type, &obj, err);
     tlsph_pointer_join(p, sizeof p, P, "strength");
@@ -365,6 +393,15 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
         } else if (m->strength->parse(obj, m, p, err) != 0) {
             bad = 1;
         }
+    }
+    if (m->thermal.enabled && m->strength && !tlsph_material_is_plastic(m)) {
+        tlsph_pointer_join(p, sizeof p, P, "thermal");
+        tlsph_errors_add(err, p,
+                         "material '%s' has a thermal block but strength '%s' is not plastic: "
+                         "adiabatic heating comes from plastic work (use a plastic strength "
+                         "model: %s)",
+                         m->name, m->strength->name, tlsph_strength_plastic_names());
+        bad = 1;
     }
     return bad ? -1 : 0;
 }

@@ -11,7 +11,6 @@
 
 #define TLSPH_GEOMETRY_MAX_DEPTH 16
 #define TLSPH_MAX_PARAMS 40
-#define TLSPH_POINTER_MAX 512
 
 /* parse.c: shared helpers */
 /* Compiles a number (as its %.17g text) or an expression string at pointer;

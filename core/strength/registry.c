@@ -3,7 +3,8 @@
 #include "strength.h"
 
 static const struct tlsph_strength_model *const models[] = {
-    &tlsph_strength_elastic,
+    &tlsph_strength_elastic,     &tlsph_strength_linear_hardening, &tlsph_strength_johnson_cook,
+    &tlsph_strength_swift,       &tlsph_strength_voce,
 };
 
 const struct tlsph_strength_model *tlsph_strength_find(const char *name)
@@ -16,5 +17,10 @@ const struct tlsph_strength_model *tlsph_strength_find(const char *name)
 
 const char *tlsph_strength_names(void)
 {
-    return "elastic";
+    return "elastic, linear_hardening, johnson_cook, swift, voce";
+}
+
+const char *tlsph_strength_plastic_names(void)
+{
+    return "linear_hardening, johnson_cook, swift, voce";
 }

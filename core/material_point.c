@@ -1,0 +1,121 @@
+#include "material_point.h"
+
+#include <math.h>
+
+#include "eos/eos.h"
+#include "mat3.h"
+#include "strength/j2_return.h"
+#include "strength/strength.h"
+
+/* (ln a - ln b)/(a - b) for a, b > 0, accurate when a ~ b (then it tends to 1/b). */
+static inline double log_divided_difference(double a, double b)
+{
+    const double x = a / b - 1.0;
+    if (fabs(x) < 1e-5)
+        return (1.0 - x * (0.5 - x / 3.0)) / b;
+    return log1p(x) / (x * b);
+}
+
+/* Returns the plastic work per unit reference volume; tau (eigenbasis of C,
+ * deviatoric trial on entry) is returned to the yield surface in place. */
+static double plastic_correction(const struct tlsph_material *mat, const double *Q, double J,
+                                 double dt, struct tlsph_point_state *s, double tau[9],
+                                 const double Ep_basis[9], struct tlsph_point_result *r)
+{
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau[k] * tau[k];
+    const double G = mat->shear_modulus;
+    const struct tlsph_j2_input in = {
+        .q_trial = sqrt(1.5 * t2),
+        .J = J,
+        .G = G,
+        .eps_p = s->eps_p,
+        .T = s->T,
+        .dt = dt,
+        .heating = mat->thermal.enabled
+                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
+                       : 0.0,
+    };
+    struct tlsph_j2_result out;
+    if (!tlsph_j2_return(mat, &in, &out)) {
+        s->rate = 0.0;
+        return 0.0;
+    }
+    r->iterations = out.iterations;
+    r->converged = out.converged;
+    /* normal n = 3/2 tau_trial / q; dEp = dgamma n; tau = (1 - 3G dgamma / q) tau_trial */
+    const double flow = 1.5 * out.dgamma / in.q_trial;
+    const double shrink = 1.0 - 3.0 * G * out.dgamma / in.q_trial;
+    double Epb[9], Ep[9];
+    for (int k = 0; k < 9; k++) {
+        Epb[k] = Ep_basis[k] + flow * tau[k];
+        tau[k] *= shrink;
+    }
+    mat3_from_basis(Q, Epb, Ep);
+    mat3_to_sym6(Ep, s->plastic_strain);
+    s->eps_p += out.dgamma;
+    s->rate = dt > 0.0 ? out.dgamma / dt : 0.0;
+    if (mat->thermal.enabled)
+        s->T = out.T;
+    return out.dgamma * (in.q_trial - 3.0 * G * out.dgamma);
+}
+
+void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
+                        struct tlsph_point_state *s, struct tlsph_point_result *r)
+{
+    double C[9], lam[3], Q[9];
+    mat3_mul_at(F, F, C);
+    sym3_eigen(C, lam, Q);
+    double lns[3], smin = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        const double st = sqrt(lam[a]);
+        lns[a] = log(st);
+        smin = fmin(smin, st);
+    }
+    const double J = mat3_det(F);
+    const double lnJ = lns[0] + lns[1] + lns[2];
+    const double G2 = 2.0 * mat->shear_modulus;
+
+    /* tau: the stress conjugate to H, in the eigenbasis of C (row-major 3x3). */
+    double tau[9] = {0};
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] = G2 * (lns[a] - lnJ / 3.0);
+    r->plastic_work = 0.0;
+    r->iterations = 0;
+    r->converged = 1;
+    if (s) {
+        double Ep[9], Epb[9];
+        sym6_to_mat3(s->plastic_strain, Ep);
+        mat3_to_basis(Q, Ep, Epb);
+        for (int k = 0; k < 9; k++)
+            tau[k] -= G2 * Epb[k];
+        r->plastic_work = plastic_correction(mat, Q, J, dt, s, tau, Epb, r);
+    }
+
+    double p, K_t;
+    mat->eos->pressure(mat, J, e, &p, &K_t);
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] -= J * p;
+
+    double Sb[9], S[9];
+    for (int a = 0; a < 3; a++)
+        for (int b = 0; b < 3; b++)
+            Sb[3 * a + b] = tau[3 * a + b] * (a == b ? 1.0 / lam[a]
+                                                     : log_divided_difference(lam[a], lam[b]));
+    mat3_from_basis(Q, Sb, S);
+    mat3_mul(F, S, r->P);
+
+    double sig[9];
+    mat3_mul_bt(r->P, F, sig);
+    const double rJ = 1.0 / J;
+    r->sigma[0] = sig[0] * rJ;
+    r->sigma[1] = 0.5 * (sig[1] + sig[3]) * rJ;
+    r->sigma[2] = 0.5 * (sig[2] + sig[6]) * rJ;
+    r->sigma[3] = sig[4] * rJ;
+    r->sigma[4] = 0.5 * (sig[5] + sig[7]) * rJ;
+    r->sigma[5] = sig[8] * rJ;
+    r->J = J;
+    r->min_stretch = smin;
+    r->K_t = K_t;
+}

@@ -1,0 +1,62 @@
+/* The stress update of one material point (one particle): deformation gradient
+ * in, Piola and Cauchy stress out, history updated.  The engine's constitutive
+ * loop (core/constitutive.c) calls this for every particle, and the single-point
+ * tests drive it directly, so the tests exercise exactly the engine's code.
+ *
+ * Kinematics and frame.  With C = F^T F = Q diag(lambda) Q^T, the strain measure
+ * is the Hencky strain H = ln U = Q diag(ln sqrt(lambda)) Q^T in the unrotated
+ * frame of F = R U (R never needs to be formed).  A rigid rotation leaves U, and
+ * so every stress and history variable, unchanged to round-off.
+ *
+ * Elasticity.  Stored energy psi(H - Ep) with the plastic strain Ep additive in
+ * the logarithmic strain (Miehe, Apel & Lambrecht, CMAME 191, 2002):
+ *   T = 2G dev(H - Ep) - J p(J, e) I        (Kirchhoff-type stress conjugate to H)
+ * For the elastic strength model Ep = 0 and this is Hencky hyperelasticity.
+ *
+ * Plasticity (J2, every flow law): the trial T is returned radially onto
+ * J sigma_y(eps_p, epsdot_p, T) by strength/j2_return.c; the plastic strain
+ * grows along the normal, dEp = dgamma 3/2 dev(T_trial)/q_trial, so it stays
+ * traceless (plastic incompressibility: J is carried by the elastic volumetric
+ * strain alone, ln J = tr(H)).  Plastic work dgamma J sigma_y per unit reference
+ * volume; with thermal coupling chi of it heats the point (rho0 C_p dT).
+ *
+ * Stress.  The second Piola-Kirchhoff stress is the exact derivative of psi:
+ * in the eigenbasis of C, S_ab = T_ab theta_ab with theta_aa = 1/lambda_a and
+ * theta_ab = (ln lambda_a - ln lambda_b)/(lambda_a - lambda_b) (the derivative of
+ * the matrix logarithm).  Hence P : Fdot = T : dH/dt exactly, and the work of
+ * the stress forces equals the stored energy plus the plastic work booked here,
+ * even when the plastic strain is not coaxial with U.  P = F S, sigma = P F^T/J.
+ *
+ * Units: SI (Pa, K, J/kg, s). */
+#ifndef TLSPH_MATERIAL_POINT_H
+#define TLSPH_MATERIAL_POINT_H
+
+#include "scene.h"
+
+/* History of a plastic material point. */
+struct tlsph_point_state {
+    double eps_p;             /* equivalent plastic strain, 1 */
+    double plastic_strain[6]; /* plastic logarithmic strain Ep (unrotated frame), 1 */
+    double rate;              /* equivalent plastic strain rate of the last step, 1/s */
+    double T;                 /* temperature, K (read and written only with thermal coupling) */
+};
+
+struct tlsph_point_result {
+    double P[9];         /* first Piola-Kirchhoff stress, Pa (row-major) */
+    double sigma[6];     /* Cauchy stress, Pa */
+    double J;            /* det F, 1 */
+    double min_stretch;  /* smallest principal stretch, 1 */
+    double K_t;          /* tangent bulk modulus of the EOS, Pa */
+    double plastic_work; /* plastic work of this step per unit reference volume, J/m^3 */
+    int iterations;      /* return-mapping iterations (0: elastic step) */
+    int converged;       /* 0 when the return mapping did not converge */
+};
+
+/* F: deformation gradient (1); e: specific internal energy for the EOS (J/kg);
+ * dt: the step that led to F (s; 0 at setup).  s: the point's history, updated
+ * in place; NULL for a material without plasticity (the elastic path: no return
+ * mapping).  Requires det F > 0 for meaningful output (the caller checks). */
+void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
+                        struct tlsph_point_state *s, struct tlsph_point_result *r);
+
+#endif

@@ -1,0 +1,77 @@
+#include "j2_return.h"
+
+#include <math.h>
+
+#include "strength.h"
+
+struct eval {
+    double r, dr;   /* residual and its slope d r / d dgamma */
+    double sigma_y; /* flow stress */
+    double T;       /* temperature at this dgamma */
+};
+
+static void residual(const struct tlsph_material *m, const struct tlsph_j2_input *in,
+                     double dgamma, struct eval *e)
+{
+    const double G3 = 3.0 * in->G;
+    const double rate = in->dt > 0.0 ? dgamma / in->dt : 0.0;
+    const double tau_eq = in->q_trial - G3 * dgamma; /* end-of-step Kirchhoff von Mises */
+    e->T = in->T + in->heating * tau_eq * dgamma;
+    struct tlsph_flow f;
+    m->strength->flow(m, in->eps_p + dgamma, rate, e->T, &f);
+    e->sigma_y = f.stress;
+    e->r = tau_eq - in->J * f.stress;
+    double slope = f.d_strain;
+    if (in->dt > 0.0 && f.d_rate != 0.0)
+        slope += f.d_rate / in->dt;
+    if (in->heating > 0.0 && f.d_temperature != 0.0)
+        slope += f.d_temperature * in->heating * (in->q_trial - 2.0 * G3 * dgamma);
+    e->dr = -G3 - in->J * slope;
+}
+
+int tlsph_j2_return(const struct tlsph_material *m, const struct tlsph_j2_input *in,
+                    struct tlsph_j2_result *out)
+{
+    struct eval e;
+    residual(m, in, 0.0, &e);
+    out->dgamma = 0.0;
+    out->sigma_y = e.sigma_y;
+    out->T = in->T;
+    out->iterations = 0;
+    out->converged = 1;
+    if (!(e.r > 0.0))
+        return 0; /* inside or on the yield surface: elastic step */
+
+    const double G3 = 3.0 * in->G;
+    const double tol = 1e-12 * in->q_trial;
+    double lo = 0.0, hi = in->q_trial / G3;
+    /* First guess: the Newton step from dgamma = 0 when its slope is usable,
+     * else the perfectly plastic estimate (never beyond the root's bracket). */
+    double x = (isfinite(e.dr) && e.dr < 0.0) ? -e.r / e.dr : e.r / G3;
+    if (!(x > lo && x < hi))
+        x = 0.5 * (lo + hi);
+    out->converged = 0;
+    for (int it = 1; it <= TLSPH_J2_MAX_ITERATIONS; it++) {
+        residual(m, in, x, &e);
+        out->iterations = it;
+        if (fabs(e.r) <= tol) {
+            out->converged = 1;
+            break;
+        }
+        if (e.r > 0.0)
+            lo = x;
+        else
+            hi = x;
+        if (hi - lo <= 1e-14 * hi) {
+            out->converged = 1;
+            break;
+        }
+        const double newton = x - e.r / e.dr;
+        x = (isfinite(newton) && e.dr < 0.0 && newton > lo && newton < hi) ? newton
+                                                                           : 0.5 * (lo + hi);
+    }
+    out->dgamma = x;
+    out->sigma_y = e.sigma_y;
+    out->T = e.T;
+    return 1;
+}
