@@ -74,6 +74,42 @@ static inline void impose(struct tlsph_model *m, struct tlsph_group *g, size_t i
     v[c] = value;
 }
 
+/* Distance below which a particle is on a wall: round-off of the drift that
+ * ended on it, relative to the body's spacing. */
+#define WALL_CONTACT 1e-9
+
+static double wall_gap(const struct tlsph_bc *bc, const double *x)
+{
+    const double *nn = bc->normal, *q = bc->point;
+    return (x[0] - q[0]) * nn[0] + (x[1] - q[1]) * nn[1] + (x[2] - q[2]) * nn[2];
+}
+
+/* Particles on the wall lose their velocity into it; the fixed wall does no work. */
+static void hold_on_wall(struct tlsph_model *m, const struct tlsph_bc *bc, struct tlsph_group *g)
+{
+    const double *nn = bc->normal;
+    double imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
+#pragma omp parallel for schedule(static) reduction(+ : imp0, imp1, imp2)
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double tol = WALL_CONTACT * m->scene.bodies[m->p.body[i]].spacing;
+        if (wall_gap(bc, m->p.x + 3 * i) > tol)
+            continue;
+        double *v = m->p.v + 3 * i;
+        const double vn = v[0] * nn[0] + v[1] * nn[1] + v[2] * nn[2];
+        if (vn >= 0.0)
+            continue;
+        const double mi = m->p.mass[i];
+        for (int c = 0; c < 3; c++)
+            v[c] -= vn * nn[c];
+        imp0 -= mi * vn * nn[0];
+        imp1 -= mi * vn * nn[1];
+        imp2 -= mi * vn * nn[2];
+    }
+    g->impulse[0] += imp0;
+    g->impulse[1] += imp1;
+    g->impulse[2] += imp2;
+}
+
 void tlsph_boundary_constrain(struct tlsph_model *m, double t, double t_mid)
 {
     double work = 0.0;
@@ -114,6 +150,8 @@ void tlsph_boundary_constrain(struct tlsph_model *m, double t, double t_mid)
             break;
         }
         case TLSPH_BC_WALL:
+            hold_on_wall(m, bc, &m->groups[k]);
+            break;
         case TLSPH_BC_BODY_FORCE:
             break;
         }
@@ -127,24 +165,26 @@ void tlsph_boundary_walls(struct tlsph_model *m, double dt)
         const struct tlsph_bc *bc = &m->scene.bcs[k];
         if (bc->type != TLSPH_BC_WALL)
             continue;
-        const double *nn = bc->normal, *q = bc->point;
+        const double *nn = bc->normal;
         struct tlsph_group *g = &m->groups[k];
         double work = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
 #pragma omp parallel for schedule(static) reduction(+ : work, imp0, imp1, imp2)
         for (size_t i = 0; i < m->p.n; i++) {
-            const double *x = m->p.x + 3 * i;
             double *v = m->p.v + 3 * i;
-            const double gap = (x[0] - q[0]) * nn[0] + (x[1] - q[1]) * nn[1] + (x[2] - q[2]) * nn[2];
+            const double gap = wall_gap(bc, m->p.x + 3 * i);
             const double vn = v[0] * nn[0] + v[1] * nn[1] + v[2] * nn[2];
             /* the drift x += dt v must not end behind the wall */
             const double vmin = -gap / dt;
             if (vn < vmin) {
-                const double dv = vmin - vn, mi = m->p.mass[i];
-                const double before = v[0] * v[0] + v[1] * v[1] + v[2] * v[2];
+                const double mi = m->p.mass[i], dv = vmin - vn;
+                const double *f = m->p.f + 3 * i;
+                /* normal velocity before this step's kick: what really hit the wall */
+                const double vn0 = vn - 0.5 * dt * (f[0] * nn[0] + f[1] * nn[1] + f[2] * nn[2]) / mi;
+                if (vn0 < vmin)
+                    work += 0.5 * mi * (vmin * vmin - vn0 * vn0);
                 v[0] += dv * nn[0];
                 v[1] += dv * nn[1];
                 v[2] += dv * nn[2];
-                work += 0.5 * mi * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2] - before);
                 imp0 += mi * dv * nn[0];
                 imp1 += mi * dv * nn[1];
                 imp2 += mi * dv * nn[2];
