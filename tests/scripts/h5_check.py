@@ -59,7 +59,10 @@ def table(doc, name):
 def load_docs(path):
     with open(path) as fp:
         doc = fp.read()
-    return table(doc, "fields"), table(doc, "series"), table(doc, "group-series")
+    optional = table(doc, "optional-series")  # present only with their module
+    for row in optional:
+        row["optional"] = True
+    return table(doc, "fields"), table(doc, "series") + optional, table(doc, "group-series")
 
 
 def shape_of(spec, F, N, T):
@@ -134,6 +137,8 @@ def check_series_group(g, rows, where, live):
     lengths = []
     for row in rows:
         name = row["name"]
+        if row.get("optional") and name not in g:
+            continue
         check(name in g, "%s/%s exists" % (where, name))
         c = g[name]
         ds, st, tm = c["value"], c["step"], c["time"]

@@ -72,6 +72,41 @@ EOF
 echo "== final checks"
 "$PY" "$CHECK" final "$DOCS" "$TMP/out" "$SCENE" || fail "final checks"
 
+# Module-dependent output: a plastic scene with thermal coupling writes the
+# plastic and thermal fields and series (documented in docs/output.md); the
+# elastic scene above writes none of them.
+PSCENE=$top_srcdir/tests/scenes/good/plastic_thermal.json
+echo "== plastic + thermal scene $PSCENE"
+"$RUN" "$PSCENE" -o "$TMP/plastic" --quiet || fail "tlsph-run on the plastic scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/plastic" "$PSCENE" || fail "final checks (plastic scene)"
+"$PY" - "$TMP/out/result.h5" "$TMP/plastic/result.h5" <<'EOF' || fail "module-dependent output"
+import sys
+import h5py
+import numpy as np
+optional_fields = ("plastic_strain", "plastic_strain_rate", "temperature")
+optional_series = ("plastic_work", "max_temperature")
+with h5py.File(sys.argv[1], "r") as f:
+    for name in optional_fields:
+        assert name not in f["particles/solid"], "elastic run wrote %s" % name
+    for name in optional_series:
+        assert name not in f["observables"], "elastic run wrote %s" % name
+with h5py.File(sys.argv[2], "r") as f:
+    ps, obs = f["particles/solid"], f["observables"]
+    for name in optional_fields:
+        assert name in ps, "plastic run lacks %s" % name
+    for name in optional_series:
+        assert name in obs, "plastic run lacks %s" % name
+    eps = ps["plastic_strain/value"][-1]
+    T = ps["temperature/value"][-1]
+    work = obs["plastic_work/value"][:]
+    tmax = obs["max_temperature/value"][:]
+    assert eps.max() > 0.01, "no plastic flow (max eps_p %g)" % eps.max()
+    assert np.all(np.diff(work) >= 0) and work[-1] > 0, "plastic work not growing"
+    assert np.isclose(tmax[-1], np.nanmax(T), rtol=1e-6), "max_temperature %g vs field %g" % (tmax[-1], np.nanmax(T))
+    assert tmax[-1] > tmax[0], "no heating"
+    print("plastic output: max eps_p %.3f, plastic work %.4g J, max T %.2f K" % (eps.max(), work[-1], tmax[-1]))
+EOF
+
 factor=8
 while [ "$live_rc" = 3 ]; do
     [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"

@@ -38,6 +38,13 @@ SEMANTIC_ONLY = {
     # depend on "dimension"
     "cylinder_in_2d",
     "z_velocity_in_2d",
+    # strength parameters compared with each other or with the material's
+    # youngs_modulus (a JSON Schema cannot compare two numbers of the instance)
+    "yield_stress_above_youngs",          # yield_stress < E
+    "swift_initial_yield_above_youngs",   # K eps_0^n < E
+    "voce_saturation_below_yield",        # saturation_stress >= yield_stress
+    "jc_melting_below_reference",         # melting_temperature > reference_temperature
+    "jc_starts_molten",                   # thermal.initial_temperature < melting_temperature
 }
 
 
