@@ -30,6 +30,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "mat3.h"
 #include "scene_builder.h"
 
 static struct tlsph_model *taylor_bar(double spacing)
@@ -68,8 +69,7 @@ START_TEST(taylor_bar_comes_to_rest_and_balances_energy)
         zmax = fmax(zmax, x[2]);
         if (x[2] < 0.5 * h)
             foot = fmax(foot, hypot(x[0], x[1]));
-        const double J = F[0] * (F[4] * F[8] - F[5] * F[7]) - F[1] * (F[3] * F[8] - F[5] * F[6]) +
-                         F[2] * (F[3] * F[7] - F[4] * F[6]);
+        const double J = mat3_det(F);
         const double p = -(s[0] + s[3] + s[5]) / 3.0;
         worst_vol = fmax(worst_vol, fabs(log(J) + J * p / K));
         eps_max = fmax(eps_max, m->p.eps_p[i]);
