@@ -11,6 +11,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
 {
     struct tlsph_particles *p = &m->p;
     size_t inverted = 0, failures = 0;
+    long long flowing = 0, iterations = 0;
     int64_t first_bad = INT64_MAX, first_failure = INT64_MAX;
     double min_detF = INFINITY, dt_min = INFINITY, cmax = 0.0, plastic_work = 0.0;
 
@@ -22,7 +23,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
         const double G43 = 4.0 / 3.0 * mat->shear_modulus, rho0 = mat->density;
         const double spacing = body->spacing;
 
-#pragma omp parallel for schedule(static) reduction(+ : inverted, failures, plastic_work)       \
+#pragma omp parallel for schedule(static)                                                         \
+    reduction(+ : inverted, failures, plastic_work, flowing, iterations)                           \
     reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
             struct tlsph_point_state st, *sp = NULL;
@@ -31,6 +33,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                 for (int c = 0; c < 6; c++)
                     st.plastic_strain[c] = p->plastic_strain[6 * i + c];
                 st.rate = p->eps_p_rate[i];
+                st.yield = p->yield_stress[i];
                 st.T = thermal ? p->T[i] : 0.0;
                 sp = &st;
             }
@@ -41,9 +44,12 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                 for (int c = 0; c < 6; c++)
                     p->plastic_strain[6 * i + c] = st.plastic_strain[c];
                 p->eps_p_rate[i] = st.rate;
+                p->yield_stress[i] = st.yield;
                 if (thermal)
                     p->T[i] = st.T;
                 plastic_work += r.plastic_work * p->vol0[i];
+                flowing += r.iterations > 0;
+                iterations += r.iterations;
                 if (!r.converged) {
                     failures++;
                     if (p->id[i] < first_failure)
@@ -88,6 +94,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
     m->return_failures = failures;
     m->first_return_failure_id = failures ? first_failure : -1;
     m->energy.plastic_work += plastic_work;
+    m->plastic_point_steps += flowing;
+    m->return_iterations += iterations;
     m->dt_cfl = dt_min;
     m->max_wave_speed = cmax;
 }

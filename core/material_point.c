@@ -7,13 +7,15 @@
 #include "strength/j2_return.h"
 #include "strength/strength.h"
 
-/* (ln a - ln b)/(a - b) for a, b > 0, accurate when a ~ b (then it tends to 1/b). */
-static inline double log_divided_difference(double a, double b)
+/* (ln a - ln b)/(a - b) for eigenvalues a, b > 0 of C whose logarithms are
+ * already known (ln a = 2 lns_a): the difference of the logs loses no more
+ * than 1e-13 when a/b - 1 > 1e-3; closer, the series of log1p(x)/x. */
+static inline double log_divided_difference(double a, double b, double lna, double lnb)
 {
     const double x = a / b - 1.0;
-    if (fabs(x) < 1e-5)
-        return (1.0 - x * (0.5 - x / 3.0)) / b;
-    return log1p(x) / (x * b);
+    if (fabs(x) < 1e-3)
+        return (1.0 - x * (0.5 - x * (1.0 / 3.0 - x * (0.25 - 0.2 * x)))) / b;
+    return (lna - lnb) / (a - b);
 }
 
 /* Returns the plastic work per unit reference volume; tau (eigenbasis of C,
@@ -36,9 +38,13 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
         .heating = mat->thermal.enabled
                        ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
                        : 0.0,
+        .yield = s->yield,
+        .guess = s->rate * dt,
     };
     struct tlsph_j2_result out;
-    if (!tlsph_j2_return(mat, &in, &out)) {
+    const int plastic = tlsph_j2_return(mat, &in, &out);
+    s->yield = out.yield;
+    if (!plastic) {
         s->rate = 0.0;
         return 0.0;
     }
@@ -98,12 +104,23 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     for (int a = 0; a < 3; a++)
         tau[4 * a] -= J * p;
 
-    double Sb[9], S[9];
-    for (int a = 0; a < 3; a++)
-        for (int b = 0; b < 3; b++)
-            Sb[3 * a + b] = tau[3 * a + b] * (a == b ? 1.0 / lam[a]
-                                                     : log_divided_difference(lam[a], lam[b]));
-    mat3_from_basis(Q, Sb, S);
+    double S[9];
+    if (s) {
+        double Sb[9];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++)
+                Sb[3 * a + b] =
+                    tau[3 * a + b] * (a == b ? 1.0 / lam[a]
+                                             : log_divided_difference(lam[a], lam[b], 2.0 * lns[a],
+                                                                      2.0 * lns[b]));
+        mat3_from_basis(Q, Sb, S);
+    } else {
+        /* elastic: tau is diagonal in the eigenbasis (coaxial with C), S = U^-1 tau U^-1 */
+        const double d[3] = {tau[0] / lam[0], tau[4] / lam[1], tau[8] / lam[2]};
+        double S6[6];
+        sym3_compose(Q, d, S6);
+        sym6_to_mat3(S6, S);
+    }
     mat3_mul(F, S, r->P);
 
     double sig[9];

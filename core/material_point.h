@@ -39,6 +39,8 @@ struct tlsph_point_state {
     double plastic_strain[6]; /* plastic logarithmic strain Ep (unrotated frame), 1 */
     double rate;              /* equivalent plastic strain rate of the last step, 1/s */
     double T;                 /* temperature, K (read and written only with thermal coupling) */
+    double yield;             /* cached sigma_y(eps_p, 0, T), Pa; 0 = not known (zero-initialised
+                                 states are valid) */
 };
 
 struct tlsph_point_result {

@@ -49,7 +49,8 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->vol0); free(p->mass); free(p->h); free(p->Linv); free(p->F); free(p->Fdot);
     free(p->P_tilde); free(p->sigma); free(p->e);
     free(p->f_hourglass); free(p->f_viscous);
-    free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->T);
+    free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
+    free(p->T);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -155,7 +156,8 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     }
     if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
                     !(p->plastic_strain = tlsph_alloc(m, 6 * n, sizeof(double))) ||
-                    !(p->eps_p_rate = tlsph_alloc(m, n, sizeof(double)))))
+                    !(p->eps_p_rate = tlsph_alloc(m, n, sizeof(double))) ||
+                    !(p->yield_stress = tlsph_alloc(m, n, sizeof(double)))))
         return -1;
     if (thermal && !(p->T = tlsph_alloc(m, n, sizeof(double))))
         return -1;

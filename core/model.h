@@ -42,6 +42,7 @@ struct tlsph_particles {
     double *eps_p;          /* equivalent plastic strain, 1 */
     double *plastic_strain; /* plastic logarithmic strain in the unrotated frame, 1 [6n] */
     double *eps_p_rate;     /* equivalent plastic strain rate of the last step, 1/s */
+    double *yield_stress;   /* cached static flow stress at the current state, Pa (0 = unknown) */
     /* Temperature, K; allocated only when some material has thermal coupling.
      * NaN for particles whose material has no temperature. */
     double *T;
@@ -109,6 +110,8 @@ struct tlsph_model {
     int64_t first_inverted_id;    /* id of one of them */
     double min_detF;              /* smallest det F of the last evaluation */
     size_t return_failures;       /* points whose return mapping did not converge (last evaluation) */
+    long long plastic_point_steps; /* return mappings that found plastic flow, whole run */
+    long long return_iterations;  /* their residual evaluations, whole run (cost of plasticity) */
     int64_t first_return_failure_id;
     struct tlsph_energy energy;
 

@@ -185,6 +185,16 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
         return TLSPH_EXIT_IO;
     }
     emit_finished(m, o->progress_fd, status, &cost, have_diag ? d : NULL);
+    if (o->log && m->p.eps_p)
+        fprintf(o->log,
+                "tlsph: plasticity: %lld plastic point-steps (%.1f %% of all), %.2f return-mapping "
+                "iterations each\n",
+                m->plastic_point_steps,
+                m->step ? 100.0 * (double)m->plastic_point_steps / ((double)m->step * (double)m->p.n)
+                        : 0.0,
+                m->plastic_point_steps
+                    ? (double)m->return_iterations / (double)m->plastic_point_steps
+                    : 0.0);
     if (o->log)
         fprintf(o->log,
                 "tlsph: %s after %ld steps, t = %.6g s, %.2f s wall, %.3g particle-steps/s, "

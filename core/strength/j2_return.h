@@ -15,7 +15,9 @@
  *
  * Method: Newton on r with a bracket [0, q/(3G)] (r > 0 at 0 because the trial
  * state is outside the yield surface; r <= 0 at q/(3G), where the deviator
- * vanishes).  A Newton step that leaves the bracket, or a non-finite or
+ * vanishes), started from the caller's guess (a point that flowed in the last
+ * step flows at nearly the same rate: 1-2 iterations) or from the Newton step
+ * at 0.  A Newton step that leaves the bracket, or a non-finite or
  * non-negative slope (the rate term's kink at epsdot_0, an infinite hardening
  * slope at eps_p = 0, thermal softening), is replaced by bisection, so the
  * iteration converges for every law; typical cost is 2-4 Newton steps.
@@ -37,6 +39,9 @@ struct tlsph_j2_input {
     double T;       /* temperature at the start of the step, K (ignored without heating) */
     double dt;      /* time step, s (> 0 for rate-dependent laws; 0 treats the rate as 0) */
     double heating; /* chi/(rho0 C_p), K per (J/m^3 of reference volume); 0 = no heating */
+    double yield;   /* sigma_y(eps_p, 0, T) when known (> 0), else 0: saves the flow-law
+                       evaluation of the yield check for points that stay elastic */
+    double guess;   /* expected dgamma (e.g. last step's plastic rate x dt), 0 = none */
 };
 
 struct tlsph_j2_result {
@@ -45,6 +50,7 @@ struct tlsph_j2_result {
     double T;       /* temperature at the end of the step, K */
     int iterations; /* residual evaluations after the yield check */
     int converged;  /* 1, or 0 when TLSPH_J2_MAX_ITERATIONS were not enough */
+    double yield;   /* after an elastic step: sigma_y(eps_p, 0, T) to cache; else 0 */
 };
 
 /* Returns 1 when the step is plastic (out->dgamma > 0), 0 when elastic. */

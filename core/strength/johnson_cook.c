@@ -108,9 +108,10 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 {
     const double *q = m->strength_params;
     const double n = q[N];
-    const double g = q[A] + q[B] * pow(eps_p, n);
-    /* dg/deps = B n eps^(n-1): unbounded at eps = 0 when n < 1 */
-    const double dg = eps_p > 0.0 ? q[B] * n * pow(eps_p, n - 1.0)
+    const double hard = eps_p > 0.0 ? q[B] * pow(eps_p, n) : 0.0; /* one pow: the hot call */
+    const double g = q[A] + hard;
+    /* dg/deps = B n eps^(n-1) = n hard / eps: unbounded at eps = 0 when n < 1 */
+    const double dg = eps_p > 0.0 ? n * hard / eps_p
                                   : (n < 1.0 ? INFINITY : (n == 1.0 ? q[B] : 0.0));
 
     double fr = 1.0, dfr = 0.0;
