@@ -77,22 +77,11 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, s->kernel == TLSPH_KERNEL_CUBIC_SPLINE ? "kernel:cubic_spline"
                                                          : "kernel:wendland_c2");
     add_module(m, "kinematics:corrected_gradient");
-    /* Module names are "family:name" literals built from the registries' static
-     * names; the table below keeps them static strings. */
-    static const char *const strength_modules[][2] = {
-        {"elastic", "strength:elastic"},
-        {"linear_hardening", "strength:linear_hardening"},
-        {"johnson_cook", "strength:johnson_cook"},
-        {"swift", "strength:swift"},
-        {"voce", "strength:voce"},
-    };
     int plastic = 0, rate = 0, softening = 0, heating = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
         add_module(m, strcmp(mat->eos->name, "linear") == 0 ? "eos:linear" : "eos:mie_gruneisen");
-        for (size_t k = 0; k < sizeof strength_modules / sizeof *strength_modules; k++)
-            if (strcmp(mat->strength->name, strength_modules[k][0]) == 0)
-                add_module(m, strength_modules[k][1]);
+        add_module(m, mat->strength->module);
         plastic |= tlsph_material_is_plastic(mat);
         rate |= (mat->strength_terms & TLSPH_FLOW_RATE) != 0;
         softening |= (mat->strength_terms & TLSPH_FLOW_THERMAL) != 0;

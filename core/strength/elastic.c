@@ -13,6 +13,7 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
 
 const struct tlsph_strength_model tlsph_strength_elastic = {
     .name = "elastic",
+    .module = "strength:elastic",
     .parse = parse,
     .flow = 0,
 };

@@ -141,6 +141,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 
 const struct tlsph_strength_model tlsph_strength_johnson_cook = {
     .name = "johnson_cook",
+    .module = "strength:johnson_cook",
     .parse = parse,
     .flow = flow,
 };

@@ -32,6 +32,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 
 const struct tlsph_strength_model tlsph_strength_linear_hardening = {
     .name = "linear_hardening",
+    .module = "strength:linear_hardening",
     .parse = parse,
     .flow = flow,
 };

@@ -27,7 +27,8 @@ struct tlsph_flow {
 };
 
 struct tlsph_strength_model {
-    const char *name;
+    const char *name;   /* as written in the scene: "strength": {"type": name, ...} */
+    const char *module; /* "strength:<name>", for the run's list of active modules */
     /* Reads the model's parameters from obj (its "type" key is already checked)
      * into m->strength_params / m->strength_terms, reporting unknown keys and bad
      * values.  m's elastic constants and its thermal block are already parsed.

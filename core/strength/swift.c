@@ -53,6 +53,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 
 const struct tlsph_strength_model tlsph_strength_swift = {
     .name = "swift",
+    .module = "strength:swift",
     .parse = parse,
     .flow = flow,
 };

@@ -50,6 +50,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 
 const struct tlsph_strength_model tlsph_strength_voce = {
     .name = "voce",
+    .module = "strength:voce",
     .parse = parse,
     .flow = flow,
 };
