@@ -1,4 +1,5 @@
 #include "boundary.h"
+#include "parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -89,7 +90,7 @@ static void hold_on_wall(struct tlsph_model *m, const struct tlsph_bc *bc, struc
 {
     const double *nn = bc->normal;
     double imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : imp0, imp1, imp2)
+#pragma omp parallel for schedule(static) reduction(+ : imp0, imp1, imp2) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++) {
         const double tol = WALL_CONTACT * m->scene.bodies[m->p.body[i]].spacing;
         if (wall_gap(bc, m->p.x + 3 * i) > tol)
@@ -168,7 +169,8 @@ void tlsph_boundary_walls(struct tlsph_model *m, double dt)
         const double *nn = bc->normal;
         struct tlsph_group *g = &m->groups[k];
         double work = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : work, imp0, imp1, imp2)
+#pragma omp parallel for schedule(static) reduction(+ : work, imp0, imp1, imp2) \
+    if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
         for (size_t i = 0; i < m->p.n; i++) {
             double *v = m->p.v + 3 * i;
             const double gap = wall_gap(bc, m->p.x + 3 * i);

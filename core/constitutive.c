@@ -6,6 +6,7 @@
 #include "mat3.h"
 #include "material_point.h"
 #include "strength/strength.h"
+#include "parallel.h"
 
 void tlsph_constitutive(struct tlsph_model *m, double dt)
 {
@@ -25,7 +26,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
 
 #pragma omp parallel for schedule(static)                                                         \
     reduction(+ : inverted, failures, plastic_work, flowing, iterations)                           \
-    reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)
+    reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)              \
+    if (m->body_end[b] - m->body_begin[b] >= TLSPH_PARALLEL_MIN_ITEMS)
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
             struct tlsph_point_state st, *sp = NULL;
             if (plastic) {

@@ -4,6 +4,7 @@
 
 #include "kernel.h"
 #include "mat3.h"
+#include "parallel.h"
 
 void tlsph_correction_build(struct tlsph_model *m)
 {
@@ -14,7 +15,8 @@ void tlsph_correction_build(struct tlsph_model *m)
     size_t deficient = 0, isolated = 0;
     double worst = 1.0;
 
-#pragma omp parallel for schedule(static) reduction(+ : deficient, isolated) reduction(max : worst)
+#pragma omp parallel for schedule(static) reduction(+ : deficient, isolated) reduction(max : worst) \
+    if (p->n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < p->n; i++) {
         double L[9] = {0};
         const double *Xi = p->X + 3 * i;

@@ -2,6 +2,7 @@
 
 #include "hourglass.h"
 #include "viscosity.h"
+#include "parallel.h"
 
 struct body_constants {
     double hg_coeff;  /* alpha/2 E */
@@ -26,7 +27,8 @@ static inline void force_range(struct tlsph_model *m, size_t begin, size_t end,
     double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
     double power_hg = 0.0, power_visc = 0.0;
 
-#pragma omp parallel for schedule(static) reduction(+ : power_hg, power_visc)
+#pragma omp parallel for schedule(static) reduction(+ : power_hg, power_visc) \
+    if (end - begin >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = begin; i < end; i++) {
         const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
         const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];

@@ -6,6 +6,7 @@
 #include "constitutive.h"
 #include "forces.h"
 #include "kinematics.h"
+#include "parallel.h"
 
 void tlsph_evaluate(struct tlsph_model *m, double dt)
 {
@@ -34,7 +35,7 @@ static void kick(struct tlsph_model *m, double half)
     const size_t n = m->p.n;
     double *restrict v = m->p.v;
     const double *restrict f = m->p.f, *restrict mass = m->p.mass;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++) {
         const double s = half / mass[i];
         v[3 * i] += s * f[3 * i];
@@ -48,7 +49,7 @@ static void drift(struct tlsph_model *m, double dt)
     const size_t n3 = 3 * m->p.n;
     double *restrict x = m->p.x;
     const double *restrict v = m->p.v;
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n3 >= 3 * TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t k = 0; k < n3; k++)
         x[k] += dt * v[k];
 }
@@ -57,7 +58,7 @@ double tlsph_kinetic_energy(const struct tlsph_model *m)
 {
     double ke = 0.0;
     const double *v = m->p.v;
-#pragma omp parallel for schedule(static) reduction(+ : ke)
+#pragma omp parallel for schedule(static) reduction(+ : ke) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++)
         ke += 0.5 * m->p.mass[i] *
               (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
@@ -67,7 +68,7 @@ double tlsph_kinetic_energy(const struct tlsph_model *m)
 double tlsph_internal_energy(const struct tlsph_model *m)
 {
     double ei = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : ei)
+#pragma omp parallel for schedule(static) reduction(+ : ei) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++)
         ei += m->p.mass[i] * m->p.e[i];
     return ei;

@@ -1,4 +1,5 @@
 #include "kinematics.h"
+#include "parallel.h"
 
 void tlsph_kinematics(struct tlsph_model *m, double dt)
 {
@@ -12,7 +13,7 @@ void tlsph_kinematics(struct tlsph_model *m, double dt)
     const double *restrict dw = m->pairs.dw;
     double *restrict F = m->p.F, *restrict Fdot = m->p.Fdot, *restrict e = m->p.e;
 
-#pragma omp parallel for schedule(static)
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++) {
         const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
         const double ui0 = x[3 * i] - Xi0, ui1 = x[3 * i + 1] - Xi1, ui2 = x[3 * i + 2] - Xi2;

@@ -14,6 +14,7 @@
 #include "kernel.h"
 #include "neighbors.h"
 #include "strength/strength.h"
+#include "parallel.h"
 
 void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size)
 {
@@ -29,7 +30,7 @@ void tlsph_model_momentum(const struct tlsph_model *m, double out[3])
 {
     double p0 = 0, p1 = 0, p2 = 0;
     const double *v = m->p.v, *mass = m->p.mass;
-#pragma omp parallel for schedule(static) reduction(+ : p0, p1, p2)
+#pragma omp parallel for schedule(static) reduction(+ : p0, p1, p2) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++) {
         p0 += mass[i] * v[3 * i];
         p1 += mass[i] * v[3 * i + 1];

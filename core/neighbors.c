@@ -1,4 +1,5 @@
 #include "neighbors.h"
+#include "parallel.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -143,7 +144,7 @@ int tlsph_build_pairs(const double *X, const double *h, const int32_t *body, siz
         }
         qsort(e, n, sizeof *e, cmp_entry);
     }
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++)
         start[i + 1] = (int64_t)scan(&g, e, n, X, h, body, i, NULL);
     for (size_t i = 0; i < n; i++)
@@ -154,7 +155,7 @@ int tlsph_build_pairs(const double *X, const double *h, const int32_t *body, siz
         free(e);
         return -1;
     }
-#pragma omp parallel for schedule(dynamic, 256)
+#pragma omp parallel for schedule(dynamic, 256) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++)
         scan(&g, e, n, X, h, body, i, nbr + start[i]);
     free(e);
