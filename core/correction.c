@@ -6,6 +6,40 @@
 #include "mat3.h"
 #include "parallel.h"
 
+int tlsph_correction_invert(double L[9], int dim, double Linv[9], double *condition)
+{
+    /* L is symmetric for a radial kernel; in 2-D it has no z row, and plane
+     * strain means no gradient along z, so the z direction is the identity. */
+    if (dim == 2) {
+        L[2] = L[5] = L[6] = L[7] = 0.0;
+        L[8] = 1.0;
+    }
+    /* With grad W = dw (X_j - X_i) and dw < 0, L as summed is -sum V |dw| d d^T;
+     * it is negative definite, and its inverse is what eq. 16 needs. */
+    double lam[3], Q[9];
+    sym3_eigen(L, lam, Q);
+    double amax = 0.0;
+    for (int a = 0; a < 3; a++)
+        amax = fmax(amax, fabs(lam[a]));
+    double inv[3];
+    int bad = 0;
+    double amin = amax;
+    for (int a = 0; a < 3; a++) {
+        amin = fmin(amin, fabs(lam[a]));
+        if (amax > 0.0 && fabs(lam[a]) > TLSPH_L_RCOND * amax) {
+            inv[a] = 1.0 / lam[a];
+        } else {
+            inv[a] = 0.0;
+            bad = 1;
+        }
+    }
+    *condition = !bad && amin > 0.0 ? amax / amin : 1.0;
+    double s6[6];
+    sym3_compose(Q, inv, s6);
+    sym6_to_mat3(s6, Linv);
+    return bad;
+}
+
 void tlsph_correction_build(struct tlsph_model *m)
 {
     struct tlsph_particles *p = &m->p;
@@ -37,40 +71,11 @@ void tlsph_correction_build(struct tlsph_model *m)
         }
         if (pr->start[i + 1] == pr->start[i])
             isolated++;
-        /* L is symmetric for a radial kernel; in 2-D it has no z row, and plane
-         * strain means no gradient along z, so the z direction is the identity. */
-        if (dim == 2) {
-            L[2] = L[5] = L[6] = L[7] = 0.0;
-            L[8] = 1.0;
-        }
-        /* With grad W = dw (X_j - X_i) and dw < 0, L as summed is -sum V |dw| d d^T;
-         * it is negative definite, and its inverse is what eq. 16 needs. */
-        double lam[3], Q[9];
-        sym3_eigen(L, lam, Q);
-        double amax = 0.0;
-        for (int a = 0; a < 3; a++)
-            amax = fmax(amax, fabs(lam[a]));
-        double inv[3];
-        int bad = 0;
-        double amin = amax;
-        for (int a = 0; a < 3; a++) {
-            amin = fmin(amin, fabs(lam[a]));
-            if (amax > 0.0 && fabs(lam[a]) > TLSPH_L_RCOND * amax) {
-                inv[a] = 1.0 / lam[a];
-            } else {
-                inv[a] = 0.0;
-                bad = 1;
-            }
-        }
-        if (bad)
+        double cond;
+        if (tlsph_correction_invert(L, dim, p->Linv + 9 * i, &cond))
             deficient++;
-        else if (amin > 0.0)
-            worst = fmax(worst, amax / amin);
-        double s6[6], M[9];
-        sym3_compose(Q, inv, s6);
-        sym6_to_mat3(s6, M);
-        for (int a = 0; a < 9; a++)
-            p->Linv[9 * i + a] = M[a];
+        else
+            worst = fmax(worst, cond);
     }
     m->deficient_supports = deficient;
     m->isolated = isolated;

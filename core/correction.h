@@ -13,6 +13,12 @@
  * particles with no neighbour at all in m->isolated. */
 void tlsph_correction_build(struct tlsph_model *m);
 
+/* The safe inverse of one correction matrix L (symmetric; in 2-D its z row and
+ * column are replaced by the identity, in place).  Returns 1 when L was
+ * rank-deficient (the pseudo-inverse was used), else 0 with *condition =
+ * largest/smallest |eigenvalue|. */
+int tlsph_correction_invert(double L[9], int dim, double Linv[9], double *condition);
+
 #define TLSPH_L_RCOND 1e-6
 
 #endif

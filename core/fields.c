@@ -114,6 +114,33 @@ static void ex_T(const struct tlsph_model *m, void *out)
     memcpy(out, m->p.T, m->p.n * sizeof(double));
 }
 
+static int has_damage(const struct tlsph_model *m)
+{
+    return m->p.damage != NULL;
+}
+
+static void ex_damage(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.damage, m->p.n * sizeof(double));
+}
+
+static void ex_damage_init(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.damage_init, m->p.n * sizeof(double));
+}
+
+static void ex_triaxiality(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *s = m->p.sigma + 6 * i;
+        const double a = s[0] - s[3], b = s[3] - s[5], c = s[5] - s[0];
+        const double q =
+            sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
+        o[i] = q > 0.0 ? (s[0] + s[3] + s[5]) / (3.0 * q) : NAN;
+    }
+}
+
 const struct tlsph_field tlsph_fields[] = {
     {"id", TLSPH_FIELD_REFERENCE, TLSPH_INT64, 1, "1", NULL,
      "stable particle id (generation order, body by body)", NULL, ex_id},
@@ -147,6 +174,15 @@ const struct tlsph_field tlsph_fields[] = {
      "temperature (adiabatic heating by plastic work); NaN where the material has no "
      "thermal block",
      has_temperature, ex_T},
+    {"damage", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "damage D (0 intact, 1 failed: no stress); 0 in bodies without a damage model", has_damage,
+     ex_damage},
+    {"damage_initiation", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "damage-initiation variable D_init (damage starts at 1)", has_damage, ex_damage_init},
+    {"triaxiality", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "stress triaxiality sigma_m / sigma_eq of the Cauchy stress; NaN where sigma_eq = 0 "
+     "(e.g. failed particles)",
+     has_damage, ex_triaxiality},
 };
 const size_t tlsph_nfields = sizeof tlsph_fields / sizeof *tlsph_fields;
 
@@ -156,6 +192,8 @@ static void sv_external(const struct tlsph_model *m, double *o) { o[0] = m->ener
 static void sv_hourglass(const struct tlsph_model *m, double *o) { o[0] = m->energy.hourglass; }
 static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energy.viscous; }
 static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
+static void sv_damage_work(const struct tlsph_model *m, double *o) { o[0] = m->energy.damage_work; }
+static void sv_failed(const struct tlsph_model *m, double *o) { o[0] = (double)m->failed; }
 static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
 static void sv_balance(const struct tlsph_model *m, double *o)
@@ -180,7 +218,8 @@ static void sv_max_temperature(const struct tlsph_model *m, double *o)
 const struct tlsph_series_column tlsph_global_series[] = {
     {"kinetic_energy", 1, "J", "sum of m v^2 / 2", NULL, sv_kinetic},
     {"internal_energy", 1, "J",
-     "internal energy, sum of m e: stored (strain) energy plus plastic work", NULL, sv_internal},
+     "internal energy, sum of m e: stored (strain) energy plus plastic work and damage "
+     "dissipation", NULL, sv_internal},
     {"external_work", 1, "J", "work done on the bodies by boundary conditions and body forces",
      NULL, sv_external},
     {"hourglass_energy", 1, "J", "work done against hourglass-control forces", NULL, sv_hourglass},
@@ -197,6 +236,11 @@ const struct tlsph_series_column tlsph_global_series[] = {
      has_plasticity, sv_plastic},
     {"max_temperature", 1, "K", "highest particle temperature", has_temperature,
      sv_max_temperature},
+    {"failed_particles", 1, "1", "number of failed particles (D = 1)", has_damage, sv_failed},
+    {"damage_energy", 1, "J",
+     "energy dissipated by damage: stored energy released as D grows, sum over particles of "
+     "psi_eff dD V0 (part of internal_energy)",
+     has_damage, sv_damage_work},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 

@@ -15,8 +15,10 @@ struct body_constants {
  * per-pair loop carries no branch on the scene's choices. */
 static inline void force_range(struct tlsph_model *m, size_t begin, size_t end,
                                const struct body_constants *bc, const int with_hg,
-                               const int with_visc, double *p_hg, double *p_visc)
+                               const int with_visc, const int with_damage, double *p_hg,
+                               double *p_visc)
 {
+    const double *restrict D = m->p.damage;
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
     const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
@@ -36,26 +38,49 @@ static inline void force_range(struct tlsph_model *m, size_t begin, size_t end,
         const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
         double f0 = 0, f1 = 0, f2 = 0;
         double h0 = 0, h1 = 0, h2 = 0, q0 = 0, q1 = 0, q2 = 0;
-        for (int64_t k = start[i]; k < start[i + 1]; k++) {
+        const double Di = with_damage ? D[i] : 0.0;
+        /* a failed particle (D = 1) neither exerts nor receives any pair force */
+        const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
+        for (int64_t k = start[i]; k < k_end; k++) {
             const size_t j = (size_t)nbr[k];
             const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
             const double s = vol0[j] * dw[k];
             const double *Pj = Pt + 9 * j;
-            f0 += s * ((Pi[0] + Pj[0]) * d0 + (Pi[1] + Pj[1]) * d1 + (Pi[2] + Pj[2]) * d2);
-            f1 += s * ((Pi[3] + Pj[3]) * d0 + (Pi[4] + Pj[4]) * d1 + (Pi[5] + Pj[5]) * d2);
-            f2 += s * ((Pi[6] + Pj[6]) * d0 + (Pi[7] + Pj[7]) * d1 + (Pi[8] + Pj[8]) * d2);
-            if (with_hg || with_visc) {
+            if (with_damage == 2) {
+                /* pseudo-spring: the pair's kernel scaled by (1 - D_i)(1 - D_j) */
+                const double sp = s * (1.0 - Di) * (1.0 - D[j]);
+                f0 += sp * ((Pi[0] + Pj[0]) * d0 + (Pi[1] + Pj[1]) * d1 + (Pi[2] + Pj[2]) * d2);
+                f1 += sp * ((Pi[3] + Pj[3]) * d0 + (Pi[4] + Pj[4]) * d1 + (Pi[5] + Pj[5]) * d2);
+                f2 += sp * ((Pi[6] + Pj[6]) * d0 + (Pi[7] + Pj[7]) * d1 + (Pi[8] + Pj[8]) * d2);
+            } else if (with_damage) {
+                /* eq. 35: the force conjugate to the damage-aware Fdot of eq. 33;
+                 * antisymmetric in i, j, so momentum stays exact */
+                const double wi = 1.0 - D[j], wj = 1.0 - Di;
+                f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
+                           (wi * Pi[2] + wj * Pj[2]) * d2);
+                f1 += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
+                           (wi * Pi[5] + wj * Pj[5]) * d2);
+                f2 += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
+                           (wi * Pi[8] + wj * Pj[8]) * d2);
+            } else {
+                f0 += s * ((Pi[0] + Pj[0]) * d0 + (Pi[1] + Pj[1]) * d1 + (Pi[2] + Pj[2]) * d2);
+                f1 += s * ((Pi[3] + Pj[3]) * d0 + (Pi[4] + Pj[4]) * d1 + (Pi[5] + Pj[5]) * d2);
+                f2 += s * ((Pi[6] + Pj[6]) * d0 + (Pi[7] + Pj[7]) * d1 + (Pi[8] + Pj[8]) * d2);
+            }
+            /* stabilisation across a crack: scaled by the intact fractions of both */
+            const double pair = with_damage ? (1.0 - Di) * (1.0 - D[j]) : 1.0;
+            if ((with_hg || with_visc) && pair > 0.0) {
                 const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
                 if (with_hg) {
-                    const double c = hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j,
-                                                    d0, d1, d2, x0, x1, x2);
+                    const double c = pair * hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi,
+                                                           F + 9 * j, d0, d1, d2, x0, x1, x2);
                     h0 += c * x0;
                     h1 += c * x1;
                     h2 += c * x2;
                 }
                 if (with_visc) {
                     const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-                    const double c = viscosity_pair(mass[j], bc->h, bc->c, bc->rho0, bc->beta1,
+                    const double c = pair * viscosity_pair(mass[j], bc->h, bc->c, bc->rho0, bc->beta1,
                                                     bc->beta2, dw[k], R, x0, x1, x2,
                                                     v[3 * j] - vi0, v[3 * j + 1] - vi1,
                                                     v[3 * j + 2] - vi2);
@@ -108,14 +133,17 @@ struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
             .beta2 = s->viscosity_quadratic,
         };
         const size_t lo = m->body_begin[b], hi = m->body_end[b];
+        /* 0: no damage; 1: damage-aware (eq. 35); 2: pseudo-spring */
+        const int dmg = !m->p.damage ? 0 : s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? 2 : 1;
+        double *ph = &pw.hourglass, *pv = &pw.viscous;
         if (s->hourglass && s->viscosity)
-            force_range(m, lo, hi, &bc, 1, 1, &pw.hourglass, &pw.viscous);
+            dmg ? force_range(m, lo, hi, &bc, 1, 1, dmg, ph, pv) : force_range(m, lo, hi, &bc, 1, 1, 0, ph, pv);
         else if (s->hourglass)
-            force_range(m, lo, hi, &bc, 1, 0, &pw.hourglass, &pw.viscous);
+            dmg ? force_range(m, lo, hi, &bc, 1, 0, dmg, ph, pv) : force_range(m, lo, hi, &bc, 1, 0, 0, ph, pv);
         else if (s->viscosity)
-            force_range(m, lo, hi, &bc, 0, 1, &pw.hourglass, &pw.viscous);
+            dmg ? force_range(m, lo, hi, &bc, 0, 1, dmg, ph, pv) : force_range(m, lo, hi, &bc, 0, 1, 0, ph, pv);
         else
-            force_range(m, lo, hi, &bc, 0, 0, &pw.hourglass, &pw.viscous);
+            dmg ? force_range(m, lo, hi, &bc, 0, 0, dmg, ph, pv) : force_range(m, lo, hi, &bc, 0, 0, 0, ph, pv);
     }
     return pw;
 }

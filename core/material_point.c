@@ -4,6 +4,7 @@
 
 #include "eos/eos.h"
 #include "mat3.h"
+#include "damage/damage.h"
 #include "strength/j2_return.h"
 #include "strength/strength.h"
 
@@ -19,10 +20,13 @@ static inline double log_divided_difference(double a, double b, double lna, doub
 }
 
 /* Returns the plastic work per unit reference volume; tau (eigenbasis of C,
- * deviatoric trial on entry) is returned to the yield surface in place. */
+ * deviatoric trial on entry) is returned to the yield surface in place.  tau is
+ * the effective (undamaged) stress: the damaged return is the same one scaled
+ * by (1 - D), so only the heat, (1 - D) of the effective work, sees D. */
 static double plastic_correction(const struct tlsph_material *mat, const double *Q, double J,
-                                 double dt, struct tlsph_point_state *s, double tau[9],
-                                 const double Ep_basis[9], struct tlsph_point_result *r)
+                                 double dt, double intact, struct tlsph_point_state *s,
+                                 double tau[9], const double Ep_basis[9],
+                                 struct tlsph_point_result *r, double *dgamma)
 {
     double t2 = 0.0;
     for (int k = 0; k < 9; k++)
@@ -35,15 +39,16 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
         .eps_p = s->eps_p,
         .T = s->T,
         .dt = dt,
-        .heating = mat->thermal.enabled
-                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
-                       : 0.0,
+        .heating = mat->thermal.enabled ? intact * mat->thermal.taylor_quinney /
+                                              (mat->density * mat->thermal.specific_heat)
+                                        : 0.0,
         .yield = s->yield,
         .guess = s->rate * dt,
     };
     struct tlsph_j2_result out;
     const int plastic = tlsph_j2_return(mat, &in, &out);
     s->yield = out.yield;
+    *dgamma = 0.0;
     if (!plastic) {
         s->rate = 0.0;
         return 0.0;
@@ -64,12 +69,69 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
     s->rate = dt > 0.0 ? out.dgamma / dt : 0.0;
     if (mat->thermal.enabled)
         s->T = out.T;
-    return out.dgamma * (in.q_trial - 3.0 * G * out.dgamma);
+    *dgamma = out.dgamma;
+    return intact * out.dgamma * (in.q_trial - 3.0 * G * out.dgamma);
+}
+
+/* Largest eigenvalue of the symmetric 3x3 matrix A (row-major). */
+static double largest_eigenvalue(const double A[9])
+{
+    double lam[3], Q[9];
+    sym3_eigen(A, lam, Q);
+    return fmax(lam[0], fmax(lam[1], lam[2]));
+}
+
+/* Grows the damage of a point that flowed plastically by dgamma this step and
+ * returns the energy released (J/m^3).  tau_dev: effective deviatoric Kirchhoff
+ * stress after the return (any basis); p: effective pressure (Pa). */
+static double damage_growth(const struct tlsph_material *mat, double dgamma, double J, double p,
+                            const double tau_dev[9], double triax, struct tlsph_point_state *s)
+{
+    const struct tlsph_damage_model *model = mat->damage.model;
+    struct tlsph_damage_step step = {
+        .deps_p = dgamma, .rate = s->rate, .T = s->T, .triaxiality = triax, .sigma1 = 0.0};
+    if (model->needs_sigma1)
+        step.sigma1 = largest_eigenvalue(tau_dev) / J - p;
+    s->damage_init += model->initiation(mat, &step);
+    const double D0 = s->damage, D1 = fmax(D0, tlsph_damage_evolution(&mat->damage, s->damage_init));
+    if (D1 == D0)
+        return 0.0;
+    s->damage = D1;
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau_dev[k] * tau_dev[k];
+    /* effective stored energy: deviatoric G|He|^2 = |tau|^2/(4G); volumetric by the
+     * secant -p (J - 1)/2 (exact for a linear EOS), split into its tensile part,
+     * which damage degrades, and its compressive part, which only failure removes */
+    const double psi_dev = t2 / (4.0 * mat->shear_modulus);
+    const double psi_vol = 0.5 * fmax(-p * (J - 1.0), 0.0);
+    const double tensile = p < 0.0 ? psi_vol : 0.0;
+    double released = (psi_dev + tensile) * (D1 - D0);
+    if (D1 >= 1.0 && p >= 0.0)
+        released += psi_vol;
+    return released;
 }
 
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r)
 {
+    const int damaging = s && mat->damage.model;
+    r->plastic_work = 0.0;
+    r->damage_work = 0.0;
+    r->iterations = 0;
+    r->converged = 1;
+    r->triaxiality = NAN;
+    if (damaging && s->damage >= 1.0) {
+        /* failed: no stress; its F is no longer a strain of material (see kinematics.c) */
+        for (int k = 0; k < 9; k++)
+            r->P[k] = 0.0;
+        for (int k = 0; k < 6; k++)
+            r->sigma[k] = 0.0;
+        r->J = 1.0;
+        r->min_stretch = 1.0;
+        r->K_t = 0.0;
+        return;
+    }
     double C[9], lam[3], Q[9];
     mat3_mul_at(F, F, C);
     sym3_eigen(C, lam, Q);
@@ -82,28 +144,55 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     const double J = mat3_det(F);
     const double lnJ = lns[0] + lns[1] + lns[2];
     const double G2 = 2.0 * mat->shear_modulus;
+    const double intact = damaging ? 1.0 - s->damage : 1.0;
 
-    /* tau: the stress conjugate to H, in the eigenbasis of C (row-major 3x3). */
+    /* tau: the effective stress conjugate to H, in the eigenbasis of C (row-major 3x3). */
     double tau[9] = {0};
     for (int a = 0; a < 3; a++)
         tau[4 * a] = G2 * (lns[a] - lnJ / 3.0);
-    r->plastic_work = 0.0;
-    r->iterations = 0;
-    r->converged = 1;
+    double dgamma = 0.0;
     if (s) {
         double Ep[9], Epb[9];
         sym6_to_mat3(s->plastic_strain, Ep);
         mat3_to_basis(Q, Ep, Epb);
         for (int k = 0; k < 9; k++)
             tau[k] -= G2 * Epb[k];
-        r->plastic_work = plastic_correction(mat, Q, J, dt, s, tau, Epb, r);
+        r->plastic_work = plastic_correction(mat, Q, J, dt, intact, s, tau, Epb, r, &dgamma);
     }
 
     double p, K_t;
     mat->eos->pressure(mat, J, e, &p, &K_t);
+    if (s) {
+        double t2 = 0.0;
+        for (int k = 0; k < 9; k++)
+            t2 += tau[k] * tau[k];
+        const double q = sqrt(1.5 * t2) / J; /* Cauchy von Mises */
+        if (q > 0.0)
+            r->triaxiality = -p / q;
+    }
+    double scale = 1.0, p_carried = p;
+    if (damaging) {
+        if (dgamma > 0.0)
+            r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality, s);
+        if (s->damage >= 1.0) {
+            for (int k = 0; k < 9; k++)
+                r->P[k] = 0.0;
+            for (int k = 0; k < 6; k++)
+                r->sigma[k] = 0.0;
+            r->J = J;
+            r->min_stretch = smin;
+            r->K_t = K_t;
+            return;
+        }
+        scale = 1.0 - s->damage;
+        if (p < 0.0)
+            p_carried = scale * p;
+        if (scale < 1.0)
+            for (int k = 0; k < 9; k++)
+                tau[k] *= scale;
+    }
     for (int a = 0; a < 3; a++)
-        tau[4 * a] -= J * p;
-
+        tau[4 * a] -= J * p_carried;
     double S[9];
     if (s) {
         double Sb[9];

@@ -27,6 +27,17 @@
  * the stress forces equals the stored energy plus the plastic work booked here,
  * even when the plastic strain is not coaxial with U.  P = F S, sigma = P F^T/J.
  *
+ * Damage (paper 000 §4-5; only for materials with a damage model).  The
+ * update above runs on the effective stress of the undamaged matrix; the stress
+ * the point carries is T = (1 - D) 2G dev(H - Ep) - J p_D I with p_D = p in
+ * compression and (1 - D) p in tension (eqs. 37-38: 2G(1 - D) and a flow stress
+ * (1 - D) sigma_y, whose return is the effective one scaled by (1 - D)).  After
+ * the return, the criterion grows D_init from the step's plastic strain and the
+ * effective stress, eq. 45 gives the new D, and the stress is assembled with it.
+ * The energy the drop of D releases at fixed strain, psi_eff dD with psi_eff =
+ * G |dev(H - Ep)|^2 + the tensile volumetric energy, is the damage dissipation.
+ * At D = 1 the point has failed: it carries no stress at all.
+ *
  * Units: SI (Pa, K, J/kg, s). */
 #ifndef TLSPH_MATERIAL_POINT_H
 #define TLSPH_MATERIAL_POINT_H
@@ -41,6 +52,8 @@ struct tlsph_point_state {
     double T;                 /* temperature, K (read and written only with thermal coupling) */
     double yield;             /* cached sigma_y(eps_p, 0, T), Pa; 0 = not known (zero-initialised
                                  states are valid) */
+    double damage;            /* D in [0, 1], 1 (read and written only with a damage model) */
+    double damage_init;       /* damage-initiation variable D_init >= 0, 1 (idem) */
 };
 
 struct tlsph_point_result {
@@ -50,6 +63,8 @@ struct tlsph_point_result {
     double min_stretch;  /* smallest principal stretch, 1 */
     double K_t;          /* tangent bulk modulus of the EOS, Pa */
     double plastic_work; /* plastic work of this step per unit reference volume, J/m^3 */
+    double damage_work;  /* energy released by damage growth this step, J/m^3 (reference) */
+    double triaxiality;  /* sigma_m / sigma_eq of the effective stress (NaN when sigma_eq = 0) */
     int iterations;      /* return-mapping iterations (0: elastic step) */
     int converged;       /* 0 when the return mapping did not converge */
 };

@@ -15,6 +15,7 @@
 #include "neighbors.h"
 #include "strength/strength.h"
 #include "parallel.h"
+#include "damage/damage.h"
 
 void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size)
 {
@@ -52,6 +53,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->f_hourglass); free(p->f_viscous);
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
     free(p->T);
+    free(p->damage); free(p->damage_init); free(p->crack_gradient);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -78,7 +80,7 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, s->kernel == TLSPH_KERNEL_CUBIC_SPLINE ? "kernel:cubic_spline"
                                                          : "kernel:wendland_c2");
     add_module(m, "kinematics:corrected_gradient");
-    int plastic = 0, rate = 0, softening = 0, heating = 0;
+    int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
         add_module(m, strcmp(mat->eos->name, "linear") == 0 ? "eos:linear" : "eos:mie_gruneisen");
@@ -87,6 +89,10 @@ static void select_modules(struct tlsph_model *m)
         rate |= (mat->strength_terms & TLSPH_FLOW_RATE) != 0;
         softening |= (mat->strength_terms & TLSPH_FLOW_THERMAL) != 0;
         heating |= mat->thermal.enabled;
+        if (mat->damage.model) {
+            add_module(m, mat->damage.model->module);
+            damage = 1;
+        }
     }
     add_module(m, "stress_rate:green_naghdi_hencky");
     if (plastic)
@@ -97,6 +103,12 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "thermal:adiabatic_heating");
     if (softening)
         add_module(m, "thermal:softening");
+    if (damage) {
+        add_module(m, "damage:evolution_linear");
+        add_module(m, s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? "approximation:pseudo_spring"
+                                                                       : "approximation:damage_aware");
+        add_module(m, s->failed_motion == TLSPH_FAILED_ARREST ? "failure:arrest" : "failure:free");
+    }
     add_module(m, "force:pk1_pair");
     if (s->hourglass)
         add_module(m, "hourglass:ganzenmuller");
@@ -139,11 +151,18 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
         return -1;
     if (m->scene.viscosity && !(p->f_viscous = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
-    int plastic = 0, thermal = 0;
+    int plastic = 0, thermal = 0, damage = 0;
     for (size_t k = 0; k < m->scene.nmaterials; k++) {
         plastic |= tlsph_material_is_plastic(&m->scene.materials[k]);
         thermal |= m->scene.materials[k].thermal.enabled;
+        damage |= m->scene.materials[k].damage.model != NULL;
     }
+    if (damage && (!(p->damage = tlsph_alloc(m, n, sizeof(double))) ||
+                   !(p->damage_init = tlsph_alloc(m, n, sizeof(double)))))
+        return -1;
+    if (damage && m->scene.crack_treatment == TLSPH_CRACK_DAMAGE_AWARE &&
+        !(p->crack_gradient = tlsph_alloc(m, 9 * n, sizeof(double))))
+        return -1;
     if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
                     !(p->plastic_strain = tlsph_alloc(m, 6 * n, sizeof(double))) ||
                     !(p->eps_p_rate = tlsph_alloc(m, n, sizeof(double))) ||

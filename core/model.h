@@ -46,6 +46,15 @@ struct tlsph_particles {
     /* Temperature, K; allocated only when some material has thermal coupling.
      * NaN for particles whose material has no temperature. */
     double *T;
+
+    /* Damage (core/damage/damage.h); allocated only when some material of the
+     * scene has a damage model (NULL otherwise), zero for the others. */
+    double *damage;         /* D in [0, 1]; 1 = failed, 1 */
+    double *damage_init;    /* damage-initiation variable D_init, 1 */
+    /* Damage-aware treatment only: sum_j V_j sum_steps D_j (du_j - du_i) (x) grad W_i,
+     * the part of the displacement gradient (before L_i^-1) that damaged
+     * neighbours did not transmit, so that F follows eq. 34 [9n]. */
+    double *crack_gradient;
 };
 
 /* Reference neighbour pairs in CSR form, built once: the pairs of i are
@@ -75,6 +84,7 @@ struct tlsph_energy {
     double hourglass;         /* work done against hourglass-control forces, J */
     double viscous;           /* work done against artificial-viscosity forces, J */
     double plastic_work;      /* plastic dissipation (part of internal), J */
+    double damage_work;       /* energy released by damage growth (part of internal), J */
     double initial;           /* kinetic + internal at t = 0, J */
     double scale;             /* largest |term| seen so far, J: the drift reference */
 };
@@ -113,6 +123,7 @@ struct tlsph_model {
     long long plastic_point_steps; /* return mappings that found plastic flow, whole run */
     long long return_iterations;  /* their residual evaluations, whole run (cost of plasticity) */
     int64_t first_return_failure_id;
+    size_t failed;                /* particles with D = 1 (after the last evaluation) */
     struct tlsph_energy energy;
 
     /* setup statistics */

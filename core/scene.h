@@ -18,8 +18,22 @@
 
 struct tlsph_eos_model;      /* core/eos/eos.h */
 struct tlsph_strength_model; /* core/strength/strength.h */
+struct tlsph_damage_model;   /* core/damage/damage.h */
 
 enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
+
+/* How damage enters the particle approximation (paper 000 §3.1). */
+enum tlsph_crack_treatment {
+    TLSPH_CRACK_DAMAGE_AWARE, /* eqs. 33-35: velocity differences scaled by (1 - D_j) */
+    TLSPH_CRACK_PSEUDO_SPRING /* kernel scaled per pair by (1 - D_i)(1 - D_j); comparison only */
+};
+
+/* What a failed particle (D = 1: no stress, no interaction) does next. */
+enum tlsph_failed_motion {
+    TLSPH_FAILED_FREE,  /* keeps its momentum and flies on: total momentum is conserved */
+    TLSPH_FAILED_ARREST /* the paper's choice: velocity set to 0 when it fails (the
+                           lost kinetic energy is booked as external work) */
+};
 
 /* Optional terms of a flow-stress law, each active only when the scene gives
  * its parameters (core/strength/johnson_cook.c). */
@@ -33,6 +47,15 @@ struct tlsph_thermal {
     double specific_heat;       /* C_p, J/(kg K) */
     double taylor_quinney;      /* chi, fraction of plastic work turned into heat, 1 */
     double initial_temperature; /* K */
+};
+
+/* Ductile damage and failure (paper 000 §5): present when the material's scene
+ * entry has a "damage" block (model != NULL).  Needs a plastic strength model. */
+struct tlsph_damage {
+    const struct tlsph_damage_model *model; /* NULL: the material does not damage */
+    double params[8];         /* meaning fixed by the model */
+    unsigned terms;           /* TLSPH_FLOW_RATE / TLSPH_FLOW_THERMAL terms of the criterion */
+    double evolution_factor;  /* eq. 45: D = factor (D_init - 1) once D_init >= 1, 1 */
 };
 
 struct tlsph_material {
@@ -49,6 +72,7 @@ struct tlsph_material {
     double strength_params[8];  /* meaning fixed by the strength model */
     unsigned strength_terms;    /* TLSPH_FLOW_* terms the scene switched on */
     struct tlsph_thermal thermal;
+    struct tlsph_damage damage;
 };
 
 enum tlsph_geometry_type {
@@ -130,6 +154,8 @@ struct tlsph_scene {
     int viscosity;                /* enabled */
     double viscosity_linear;      /* beta1 (paper 001 eq. 18), 1 */
     double viscosity_quadratic;   /* beta2, 1 */
+    enum tlsph_crack_treatment crack_treatment; /* only read when some material damages */
+    enum tlsph_failed_motion failed_motion;
 
     /* stability contract */
     long check_every;             /* steps between stability checks, >= 1 */

@@ -53,6 +53,8 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
             ok &= isfinite(p->sigma[6 * i + c]);
         if (p->eps_p)
             ok &= isfinite(p->eps_p[i]);
+        if (p->damage)
+            ok &= isfinite(p->damage[i]) && isfinite(p->damage_init[i]);
         if (p->T && m->scene.materials[m->scene.bodies[p->body[i]].material].thermal.enabled)
             ok &= isfinite(p->T[i]);
         if (!ok)
@@ -64,6 +66,8 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
     if (m->inverted) {
         for (size_t i = 0; i < p->n && d->nids < 16; i++) {
             const double *F = p->F + 9 * i;
+            if (p->damage && p->damage[i] >= 1.0)
+                continue; /* failed particles are not checked (constitutive.c) */
             if (!(mat3_det(F) > 0.0))
                 add_id(d, p->id[i]);
         }

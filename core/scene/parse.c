@@ -174,7 +174,7 @@ static int parse_discretization(const json_t *root, struct tlsph_scene *s,
                                 struct tlsph_errors *err)
 {
     static const char *const keys[] = {"kernel", "support_factor", "hourglass", "viscosity",
-                                       NULL};
+                                       "damage", NULL};
     static const char *const hg_keys[] = {"enabled", "coefficient", NULL};
     static const char *const visc_keys[] = {"enabled", "linear", "quadratic", NULL};
     const char *P = "/discretization";
@@ -221,6 +221,7 @@ static int parse_discretization(const json_t *root, struct tlsph_scene *s,
     } else if (json_object_get(d, "viscosity")) {
         bad = 1;
     }
+    bad |= tlsph_parse_damage_treatment(d, s, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -309,7 +310,7 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
                           struct tlsph_errors *err)
 {
     static const char *const keys[] = {"density", "youngs_modulus", "poisson_ratio", "eos",
-                                       "strength", "thermal", NULL};
+                                       "strength", "thermal", "damage", NULL};
     char P[TLSPH_POINTER_MAX];
     tlsph_pointer_join(P, sizeof P, "/materials", name);
     if (!json_is_object(mat)) {
@@ -403,6 +404,7 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
                          m->name, m->strength->name, tlsph_strength_plastic_names());
         bad = 1;
     }
+    bad |= tlsph_parse_material_damage(mat, m, P, err) != 0;
     return bad ? -1 : 0;
 }
 

@@ -41,6 +41,12 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
 /* Number of lattice points of body b inside its geometry (no allocation). */
 size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
 
+/* parse_damage.c: a material's "damage" block (after its strength and thermal
+ * blocks), and "/discretization/damage" (the treatment in the approximation). */
+int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, const char *pointer,
+                                struct tlsph_errors *err);
+int tlsph_parse_damage_treatment(const json_t *d, struct tlsph_scene *s, struct tlsph_errors *err);
+
 /* condition.c: rewrites comparisons (<, <=, >, >=) and logical &&, || into
  * libmatheval arithmetic with step(); returns a malloc'ed string, NULL on
  * allocation failure or when the text is not a well-formed condition (msg
