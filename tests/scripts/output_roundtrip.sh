@@ -107,6 +107,37 @@ with h5py.File(sys.argv[2], "r") as f:
     print("plastic output: max eps_p %.3f, plastic work %.4g J, max T %.2f K" % (eps.max(), work[-1], tmax[-1]))
 EOF
 
+# damage fields and series (docs/output.md): present only with a damage model,
+# and consistent with each other.
+DSCENE=$top_srcdir/tests/scenes/good/damage_jc_thermal.json
+echo "== damage scene $DSCENE"
+"$RUN" "$DSCENE" -o "$TMP/damage" --quiet || fail "tlsph-run on the damage scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/damage" "$DSCENE" || fail "final checks (damage scene)"
+"$PY" - "$TMP/plastic/result.h5" "$TMP/damage/result.h5" <<'EOF' || fail "damage output"
+import sys
+import h5py
+import numpy as np
+fields = ("damage", "damage_initiation", "triaxiality")
+series = ("failed_particles", "damage_energy")
+with h5py.File(sys.argv[1], "r") as f:
+    for name in fields:
+        assert name not in f["particles/solid"], "undamaged run wrote %s" % name
+    for name in series:
+        assert name not in f["observables"], "undamaged run wrote %s" % name
+with h5py.File(sys.argv[2], "r") as f:
+    ps, obs = f["particles/solid"], f["observables"]
+    D = ps["damage/value"][-1]
+    Di = ps["damage_initiation/value"][-1]
+    nf = obs["failed_particles/value"][:]
+    ed = obs["damage_energy/value"][:]
+    assert D.min() >= 0 and D.max() <= 1, "damage outside [0, 1]"
+    assert not np.any((Di < 1) & (D > 0)), "damage without initiation"
+    assert np.all(np.diff(ed) >= 0) and ed[-1] > 0, "damage energy not growing"
+    assert nf[-1] == np.count_nonzero(D >= 1), "failed_particles %g vs field %d" % (nf[-1], np.count_nonzero(D >= 1))
+    assert nf[-1] > 0, "nothing failed"
+    print("damage output: %d failed, damage energy %.4g J" % (nf[-1], ed[-1]))
+EOF
+
 factor=8
 while [ "$live_rc" = 3 ]; do
     [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"

@@ -45,6 +45,7 @@ SEMANTIC_ONLY = {
     "voce_saturation_below_yield",        # saturation_stress >= yield_stress
     "jc_melting_below_reference",         # melting_temperature > reference_temperature
     "jc_starts_molten",                   # thermal.initial_temperature < melting_temperature
+    "damage_jc_melting_below_reference",  # damage melting_temperature > reference_temperature
 }
 
 
