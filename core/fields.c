@@ -65,14 +65,18 @@ static void ex_pressure(const struct tlsph_model *m, void *out)
     }
 }
 
+/* Von Mises equivalent of a symmetric tensor (xx xy xz yy yz zz). */
+static double von_mises(const double *s)
+{
+    const double a = s[0] - s[3], b = s[3] - s[5], c = s[5] - s[0];
+    return sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
+}
+
 static void ex_von_mises(const struct tlsph_model *m, void *out)
 {
     double *o = out;
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *s = m->p.sigma + 6 * i;
-        const double a = s[0] - s[3], b = s[3] - s[5], c = s[5] - s[0];
-        o[i] = sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
-    }
+    for (size_t i = 0; i < m->p.n; i++)
+        o[i] = von_mises(m->p.sigma + 6 * i);
 }
 
 static void ex_detF(const struct tlsph_model *m, void *out)
@@ -134,9 +138,7 @@ static void ex_triaxiality(const struct tlsph_model *m, void *out)
     double *o = out;
     for (size_t i = 0; i < m->p.n; i++) {
         const double *s = m->p.sigma + 6 * i;
-        const double a = s[0] - s[3], b = s[3] - s[5], c = s[5] - s[0];
-        const double q =
-            sqrt(0.5 * (a * a + b * b + c * c) + 3.0 * (s[1] * s[1] + s[2] * s[2] + s[4] * s[4]));
+        const double q = von_mises(s);
         o[i] = q > 0.0 ? (s[0] + s[3] + s[5]) / (3.0 * q) : NAN;
     }
 }

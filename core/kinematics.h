@@ -18,4 +18,27 @@
  * (D = 1) gets Fdot = 0 and no update. */
 void tlsph_kinematics(struct tlsph_model *m, double dt);
 
+/* The end of particle i's gather, shared by every treatment: G and Gd are the
+ * uncorrected sums of V_j (u_j - u_i) (x) grad W and V_j (v_j - v_i) (x) grad W.
+ * Books the first half of the trapezoidal energy update with the old P_tilde,
+ * then sets F_i = I + G L_i^-1 and Fdot_i = Gd L_i^-1 (with the current p.Linv). */
+static inline void tlsph_kinematics_finish(struct tlsph_particles *p, size_t i, double dt,
+                                           const double G[9], const double Gd[9])
+{
+    double power = 0.0;
+    for (int a = 0; a < 9; a++)
+        power += p->P_tilde[9 * i + a] * Gd[a];
+    p->e[i] += 0.5 * dt * power * p->vol0[i] / p->mass[i];
+
+    const double *Li = p->Linv + 9 * i;
+    double *Fi = p->F + 9 * i, *Fdi = p->Fdot + 9 * i;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            Fi[3 * r + c] = (r == c) + G[3 * r] * Li[c] + G[3 * r + 1] * Li[3 + c] +
+                            G[3 * r + 2] * Li[6 + c];
+            Fdi[3 * r + c] =
+                Gd[3 * r] * Li[c] + Gd[3 * r + 1] * Li[3 + c] + Gd[3 * r + 2] * Li[6 + c];
+        }
+}
+
 #endif

@@ -112,6 +112,18 @@ static double damage_growth(const struct tlsph_material *mat, double dgamma, dou
     return released;
 }
 
+/* The result of a failed point: no stress at all. */
+static void no_stress(struct tlsph_point_result *r, double J, double min_stretch, double K_t)
+{
+    for (int k = 0; k < 9; k++)
+        r->P[k] = 0.0;
+    for (int k = 0; k < 6; k++)
+        r->sigma[k] = 0.0;
+    r->J = J;
+    r->min_stretch = min_stretch;
+    r->K_t = K_t;
+}
+
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r)
 {
@@ -123,13 +135,7 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     r->triaxiality = NAN;
     if (damaging && s->damage >= 1.0) {
         /* failed: no stress; its F is no longer a strain of material (see kinematics.c) */
-        for (int k = 0; k < 9; k++)
-            r->P[k] = 0.0;
-        for (int k = 0; k < 6; k++)
-            r->sigma[k] = 0.0;
-        r->J = 1.0;
-        r->min_stretch = 1.0;
-        r->K_t = 0.0;
+        no_stress(r, 1.0, 1.0, 0.0);
         return;
     }
     double C[9], lam[3], Q[9];
@@ -162,26 +168,18 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
 
     double p, K_t;
     mat->eos->pressure(mat, J, e, &p, &K_t);
-    if (s) {
+    double scale = 1.0, p_carried = p;
+    if (damaging) {
         double t2 = 0.0;
         for (int k = 0; k < 9; k++)
             t2 += tau[k] * tau[k];
         const double q = sqrt(1.5 * t2) / J; /* Cauchy von Mises */
         if (q > 0.0)
             r->triaxiality = -p / q;
-    }
-    double scale = 1.0, p_carried = p;
-    if (damaging) {
         if (dgamma > 0.0)
             r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality, s);
         if (s->damage >= 1.0) {
-            for (int k = 0; k < 9; k++)
-                r->P[k] = 0.0;
-            for (int k = 0; k < 6; k++)
-                r->sigma[k] = 0.0;
-            r->J = J;
-            r->min_stretch = smin;
-            r->K_t = K_t;
+            no_stress(r, J, smin, K_t);
             return;
         }
         scale = 1.0 - s->damage;

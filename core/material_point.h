@@ -64,7 +64,8 @@ struct tlsph_point_result {
     double K_t;          /* tangent bulk modulus of the EOS, Pa */
     double plastic_work; /* plastic work of this step per unit reference volume, J/m^3 */
     double damage_work;  /* energy released by damage growth this step, J/m^3 (reference) */
-    double triaxiality;  /* sigma_m / sigma_eq of the effective stress (NaN when sigma_eq = 0) */
+    double triaxiality;  /* sigma_m / sigma_eq of the effective stress (NaN when sigma_eq = 0,
+                            and for materials without damage: only damage reads it) */
     int iterations;      /* return-mapping iterations (0: elastic step) */
     int converged;       /* 0 when the return mapping did not converge */
 };

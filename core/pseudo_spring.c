@@ -12,20 +12,20 @@
 #include "pseudo_spring.h"
 
 #include "correction.h"
+#include "kinematics.h"
 #include "parallel.h"
 
 void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
 {
     const size_t n = m->p.n;
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
-    const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
-    const double *restrict Pt = m->p.P_tilde;
+    const double *restrict vol0 = m->p.vol0;
     const double *restrict D = m->p.damage;
     const int64_t *restrict start = m->pairs.start;
     const int32_t *restrict nbr = m->pairs.j;
     const double *restrict dw = m->pairs.dw;
     double *restrict Linv = m->p.Linv;
-    double *restrict F = m->p.F, *restrict Fdot = m->p.Fdot, *restrict e = m->p.e;
+    double *Fdot = m->p.Fdot; /* written here and in tlsph_kinematics_finish */
     const int dim = m->dim;
 
 #pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
@@ -56,21 +56,10 @@ void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
                     L[3 * a + b] += s * d[a] * d[b];
                 }
         }
-        /* Old stress power with the old P_tilde (it carries the old L^-1) */
-        double power = 0.0;
-        for (int a = 0; a < 9; a++)
-            power += Pt[9 * i + a] * Gd[a];
-        e[i] += 0.5 * dt * power * vol0[i] / mass[i];
-
-        double *Li = Linv + 9 * i, cond;
-        tlsph_correction_invert(L, dim, Li, &cond);
-        double *Fi = F + 9 * i, *Fdi = Fdot + 9 * i;
-        for (int r = 0; r < 3; r++)
-            for (int c = 0; c < 3; c++) {
-                Fi[3 * r + c] = (r == c) + G[3 * r] * Li[c] + G[3 * r + 1] * Li[3 + c] +
-                                G[3 * r + 2] * Li[6 + c];
-                Fdi[3 * r + c] =
-                    Gd[3 * r] * Li[c] + Gd[3 * r + 1] * Li[3 + c] + Gd[3 * r + 2] * Li[6 + c];
-            }
+        /* the new L^-1 is for F and Fdot; the energy half-step still uses the old
+         * P_tilde (and so the old L^-1), as the power of the last stress */
+        double cond;
+        tlsph_correction_invert(L, dim, Linv + 9 * i, &cond);
+        tlsph_kinematics_finish(&m->p, i, dt, G, Gd);
     }
 }

@@ -20,28 +20,6 @@
 
 enum { D1, D2, D3, D4, EPSDOT0, D5, TREF, TMELT };
 
-static int requires(const json_t *obj, const char *key, const char *needs, const char *pointer,
-                    struct tlsph_errors *err)
-{
-    if (json_object_get(obj, key))
-        return 0;
-    char p[TLSPH_POINTER_MAX];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    tlsph_errors_add(err, p, "'%s' is required with '%s'", key, needs);
-    return 1;
-}
-
-static int misplaced(const json_t *obj, const char *key, const char *needs, const char *pointer,
-                     struct tlsph_errors *err)
-{
-    if (!json_object_get(obj, key))
-        return 0;
-    char p[TLSPH_POINTER_MAX];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    tlsph_errors_add(err, p, "'%s' has no effect without '%s'", key, needs);
-    return 1;
-}
-
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
@@ -68,21 +46,18 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
     if (json_object_get(obj, "d4")) {
         bad |= jc_number(obj, "d4", 1, ((struct jc_range){-10.0, 10.0, JC_CLOSED, JC_CLOSED}),
                          "(dimensionless)", pointer, &q[D4], err) < 0;
-        bad |= requires(obj, "reference_strain_rate", "d4", pointer, err);
-        bad |= jc_number(obj, "reference_strain_rate", 0, JC_POSITIVE, "1/s", pointer,
+        bad |= jc_number(obj, "reference_strain_rate", 1, JC_POSITIVE, "1/s", pointer,
                          &q[EPSDOT0], err) < 0;
         m->damage.terms |= TLSPH_FLOW_RATE;
     } else {
-        bad |= misplaced(obj, "reference_strain_rate", "d4", pointer, err);
+        bad |= jc_misplaced(obj, "reference_strain_rate", "d4", pointer, err);
     }
     if (json_object_get(obj, "d5")) {
         bad |= jc_number(obj, "d5", 1, ((struct jc_range){-1.0, 1e3, JC_OPEN, JC_CLOSED}),
                          "(dimensionless)", pointer, &q[D5], err) < 0;
-        bad |= requires(obj, "reference_temperature", "d5", pointer, err);
-        bad |= requires(obj, "melting_temperature", "d5", pointer, err);
-        bad |= jc_number(obj, "reference_temperature", 0, JC_POSITIVE, "K", pointer, &q[TREF],
+        bad |= jc_number(obj, "reference_temperature", 1, JC_POSITIVE, "K", pointer, &q[TREF],
                          err) < 0;
-        bad |= jc_number(obj, "melting_temperature", 0, JC_POSITIVE, "K", pointer, &q[TMELT],
+        bad |= jc_number(obj, "melting_temperature", 1, JC_POSITIVE, "K", pointer, &q[TMELT],
                          err) < 0;
         if (q[TREF] > 0.0 && q[TMELT] > 0.0 && q[TMELT] <= q[TREF]) {
             char p[TLSPH_POINTER_MAX];
@@ -100,8 +75,8 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
         }
         m->damage.terms |= TLSPH_FLOW_THERMAL;
     } else {
-        bad |= misplaced(obj, "reference_temperature", "d5", pointer, err);
-        bad |= misplaced(obj, "melting_temperature", "d5", pointer, err);
+        bad |= jc_misplaced(obj, "reference_temperature", "d5", pointer, err);
+        bad |= jc_misplaced(obj, "melting_temperature", "d5", pointer, err);
     }
     return bad ? -1 : 0;
 }

@@ -225,3 +225,14 @@ const json_t *jc_object(const json_t *obj, const char *key, int required, const 
     }
     return v;
 }
+
+int jc_misplaced(const json_t *obj, const char *key, const char *needs, const char *pointer,
+                 struct tlsph_errors *err)
+{
+    if (!json_object_get(obj, key))
+        return 0;
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, pointer, key);
+    tlsph_errors_add(err, p, "'%s' has no effect without '%s'", key, needs);
+    return 1;
+}

@@ -33,6 +33,11 @@ int jc_string(const json_t *obj, const char *key, int required, const char *poin
 /* A JSON array of exactly n numbers. */
 int jc_vector(const json_t *obj, const char *key, int required, int n, const char *units,
               const char *pointer, double *out, struct tlsph_errors *err);
+/* Reports key (when present in obj) as having no effect without the key
+ * `needs` (an optional term's parameter given without the term).  Returns 1
+ * when reported, 0 otherwise. */
+int jc_misplaced(const json_t *obj, const char *key, const char *needs, const char *pointer,
+                 struct tlsph_errors *err);
 /* Object member that must itself be an object; returns it or NULL (error added when required
  * or when present with the wrong type). */
 const json_t *jc_object(const json_t *obj, const char *key, int required, const char *pointer,

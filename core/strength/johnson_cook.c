@@ -18,17 +18,6 @@
 
 enum { A, B, N, C, EPSDOT0, M, TREF, TMELT };
 
-static int misplaced(const json_t *obj, const char *key, const char *needs, const char *pointer,
-                     struct tlsph_errors *err)
-{
-    if (!json_object_get(obj, key))
-        return 0;
-    char p[TLSPH_POINTER_MAX];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    tlsph_errors_add(err, p, "'%s' has no effect without '%s'", key, needs);
-    return 1;
-}
-
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
@@ -60,7 +49,7 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
                          ((struct jc_range){0.0, 1e12, JC_OPEN, JC_CLOSED}), "1/s", pointer,
                          &q[EPSDOT0], err) < 0;
     } else if (r == 1) {
-        bad |= misplaced(obj, "reference_strain_rate", "rate_coefficient", pointer, err);
+        bad |= jc_misplaced(obj, "reference_strain_rate", "rate_coefficient", pointer, err);
     }
 
     r = jc_number(obj, "thermal_exponent", 0, ((struct jc_range){0.0, 10.0, JC_OPEN, JC_CLOSED}),
@@ -97,8 +86,8 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
         }
         bad |= tb;
     } else if (r == 1) {
-        bad |= misplaced(obj, "reference_temperature", "thermal_exponent", pointer, err);
-        bad |= misplaced(obj, "melting_temperature", "thermal_exponent", pointer, err);
+        bad |= jc_misplaced(obj, "reference_temperature", "thermal_exponent", pointer, err);
+        bad |= jc_misplaced(obj, "melting_temperature", "thermal_exponent", pointer, err);
     }
     return bad ? -1 : 0;
 }

@@ -1,7 +1,9 @@
 #include "scene_builder.h"
 
 #include <check.h>
+#include <jansson.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 struct tlsph_model *build_model(const char *json)
@@ -16,6 +18,25 @@ struct tlsph_model *build_model(const char *json)
         fprintf(stderr, "scene error: %s: %s\n", err.items[k].pointer, err.items[k].message);
     tlsph_errors_free(&err);
     ck_assert_msg(m != NULL, "test scene rejected");
+    return m;
+}
+
+struct tlsph_model *build_example(const char *name, double spacing)
+{
+    const char *top = getenv("top_srcdir");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/examples/%s.json", top ? top : ".", name);
+    json_error_t jerr;
+    json_t *root = json_load_file(path, 0, &jerr);
+    ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
+    if (spacing > 0.0)
+        json_object_set_new(json_array_get(json_object_get(root, "bodies"), 0), "spacing",
+                            json_real(spacing));
+    char *text = json_dumps(root, JSON_COMPACT);
+    json_decref(root);
+    ck_assert(text != NULL);
+    struct tlsph_model *m = build_model(text);
+    free(text);
     return m;
 }
 

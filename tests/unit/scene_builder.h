@@ -6,6 +6,9 @@
 #include "model.h"
 
 struct tlsph_model *build_model(const char *json);
+/* The model of examples/<name>.json (under $top_srcdir, else "."), with the
+ * first body's spacing (m) replaced when spacing > 0. */
+struct tlsph_model *build_example(const char *name, double spacing);
 /* Runs steps until m->t >= t_end, calling the stability check every step;
  * fails the test if the model goes unstable. */
 void run_until(struct tlsph_model *m, double t_end);

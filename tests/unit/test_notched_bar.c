@@ -21,7 +21,6 @@
  *     5 %), with damage energy > 0 and below 1 % of the plastic work (the
  *     damage dissipation of eq. 45 with factor 10 is a small fraction). */
 #include <check.h>
-#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -29,21 +28,6 @@
 
 #include "scene_builder.h"
 
-static struct tlsph_model *notched_bar(void)
-{
-    const char *top = getenv("top_srcdir");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/examples/weldox-notched-r2.json", top ? top : ".");
-    json_error_t jerr;
-    json_t *root = json_load_file(path, 0, &jerr);
-    ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
-    char *text = json_dumps(root, JSON_COMPACT);
-    json_decref(root);
-    ck_assert(text != NULL);
-    struct tlsph_model *m = build_model(text);
-    free(text);
-    return m;
-}
 
 static int group_named(const struct tlsph_model *m, const char *name)
 {
@@ -55,7 +39,7 @@ static int group_named(const struct tlsph_model *m, const char *name)
 
 START_TEST(notched_bar_separates_with_a_steady_load_drop)
 {
-    struct tlsph_model *m = notched_bar();
+    struct tlsph_model *m = build_example("weldox-notched-r2", 0.0);
     ck_assert_ptr_nonnull(m->p.damage);
     ck_assert_ptr_nonnull(m->p.crack_gradient);
     const int top = group_named(m, "top");

@@ -24,7 +24,6 @@
  * converges from below (10.1, 11.5, 12.0 mm at 0.8, 0.6, 0.4 mm against the FE
  * 14.2-14.5 mm); see docs/performance.md. */
 #include <check.h>
-#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,20 +34,7 @@
 
 static struct tlsph_model *taylor_bar(double spacing)
 {
-    const char *top = getenv("top_srcdir");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/examples/taylor-bar-linear-hardening.json", top ? top : ".");
-    json_error_t jerr;
-    json_t *root = json_load_file(path, 0, &jerr);
-    ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
-    json_t *body = json_array_get(json_object_get(root, "bodies"), 0);
-    json_object_set_new(body, "spacing", json_real(spacing));
-    char *text = json_dumps(root, JSON_COMPACT);
-    json_decref(root);
-    ck_assert(text != NULL);
-    struct tlsph_model *m = build_model(text);
-    free(text);
-    return m;
+    return build_example("taylor-bar-linear-hardening", spacing);
 }
 
 START_TEST(taylor_bar_comes_to_rest_and_balances_energy)
