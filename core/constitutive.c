@@ -3,6 +3,7 @@
 #include <math.h>
 #include <stdint.h>
 
+#include "damage/damage.h"
 #include "mat3.h"
 #include "material_point.h"
 #include "strength/strength.h"
@@ -24,6 +25,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
         const int plastic = tlsph_material_is_plastic(mat);
         const int thermal = mat->thermal.enabled;
         const int damaging = mat->damage.model != NULL;
+        const int porous = damaging && mat->damage.model->porous;
         const double G43 = 4.0 / 3.0 * mat->shear_modulus, rho0 = mat->density;
         const double spacing = body->spacing;
 
@@ -43,6 +45,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                 st.T = thermal ? p->T[i] : 0.0;
                 st.damage = damaging ? p->damage[i] : 0.0;
                 st.damage_init = damaging ? p->damage_init[i] : 0.0;
+                st.void_fraction = porous ? p->void_fraction[i] : 0.0;
                 sp = &st;
             }
             const int was_failed = damaging && st.damage >= 1.0;
@@ -59,6 +62,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                 if (damaging) {
                     p->damage[i] = st.damage;
                     p->damage_init[i] = st.damage_init;
+                    if (porous)
+                        p->void_fraction[i] = st.void_fraction;
                     damage_work += r.damage_work * p->vol0[i];
                 }
                 plastic_work += r.plastic_work * p->vol0[i];

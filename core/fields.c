@@ -133,6 +133,16 @@ static void ex_damage_init(const struct tlsph_model *m, void *out)
     memcpy(out, m->p.damage_init, m->p.n * sizeof(double));
 }
 
+static int has_voids(const struct tlsph_model *m)
+{
+    return m->p.void_fraction != NULL;
+}
+
+static void ex_void_fraction(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.void_fraction, m->p.n * sizeof(double));
+}
+
 static void ex_triaxiality(const struct tlsph_model *m, void *out)
 {
     double *o = out;
@@ -180,7 +190,12 @@ const struct tlsph_field tlsph_fields[] = {
      "damage D (0 intact, 1 failed: no stress); 0 in bodies without a damage model", has_damage,
      ex_damage},
     {"damage_initiation", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
-     "damage-initiation variable D_init (damage starts at 1)", has_damage, ex_damage_init},
+     "damage-initiation variable D_init (damage starts at 1; GTN: f / f_c, coalescence "
+     "starts at 1)",
+     has_damage, ex_damage_init},
+    {"void_fraction", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "GTN void volume fraction f (damage D = q1 f*); 0 in bodies of other materials",
+     has_voids, ex_void_fraction},
     {"triaxiality", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
      "stress triaxiality sigma_m / sigma_eq of the Cauchy stress; NaN where sigma_eq = 0 "
      "(e.g. failed particles)",

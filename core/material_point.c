@@ -5,6 +5,8 @@
 #include "eos/eos.h"
 #include "mat3.h"
 #include "damage/damage.h"
+#include "damage/gtn.h"
+#include "damage/gtn_return.h"
 #include "strength/j2_return.h"
 #include "strength/strength.h"
 
@@ -124,6 +126,137 @@ static void no_stress(struct tlsph_point_result *r, double J, double min_stretch
     r->K_t = K_t;
 }
 
+/* Stress output from the total Kirchhoff-type stress tau (conjugate to the
+ * Hencky strain, in the eigenbasis of C): S by the derivative of the matrix
+ * logarithm, P = F S, Cauchy sigma = P F^T / J. */
+static void assemble(const double F[9], const double tau[9], const double lam[3],
+                     const double lns[3], const double Q[9], int general, double J, double smin,
+                     double K_t, struct tlsph_point_result *r)
+{
+    double S[9];
+    if (general) {
+        double Sb[9];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++)
+                Sb[3 * a + b] =
+                    tau[3 * a + b] * (a == b ? 1.0 / lam[a]
+                                             : log_divided_difference(lam[a], lam[b], 2.0 * lns[a],
+                                                                      2.0 * lns[b]));
+        mat3_from_basis(Q, Sb, S);
+    } else {
+        /* elastic: tau is diagonal in the eigenbasis (coaxial with C), S = U^-1 tau U^-1 */
+        const double d[3] = {tau[0] / lam[0], tau[4] / lam[1], tau[8] / lam[2]};
+        double S6[6];
+        sym3_compose(Q, d, S6);
+        sym6_to_mat3(S6, S);
+    }
+    mat3_mul(F, S, r->P);
+
+    double sig[9];
+    mat3_mul_bt(r->P, F, sig);
+    const double rJ = 1.0 / J;
+    r->sigma[0] = sig[0] * rJ;
+    r->sigma[1] = 0.5 * (sig[1] + sig[3]) * rJ;
+    r->sigma[2] = 0.5 * (sig[2] + sig[6]) * rJ;
+    r->sigma[3] = sig[4] * rJ;
+    r->sigma[4] = 0.5 * (sig[5] + sig[7]) * rJ;
+    r->sigma[5] = sig[8] * rJ;
+    r->J = J;
+    r->min_stretch = smin;
+    r->K_t = K_t;
+}
+
+/* GTN (damage/gtn.h, damage/gtn_return.h): the point carries the macroscopic
+ * stress of the porous material, on or inside the GTN surface.  No (1 - D)
+ * factor on top: the voids act through the yield surface and D = q1 f* only
+ * enters the approximation (eqs. 33-35).  The elastic moduli are not degraded
+ * either (Algorithm 2's 2G(1 - D) would count the voids twice).  The plastic
+ * strain has a trace, the plastic volume change of void growth, so the EOS
+ * sees the elastic volume ratio J exp(-tr Ep). */
+static void gtn_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
+                       const double lam[3], const double lns[3], const double Q[9], double J,
+                       double smin, struct tlsph_point_state *s, struct tlsph_point_result *r)
+{
+    const double *g = mat->damage.params;
+    const double G = mat->shear_modulus, G2 = 2.0 * G;
+    double Ep[9], Epb[9];
+    sym6_to_mat3(s->plastic_strain, Ep);
+    mat3_to_basis(Q, Ep, Epb);
+    const double lnJp = Epb[0] + Epb[4] + Epb[8], lnJ = lns[0] + lns[1] + lns[2];
+    double tau[9]; /* trial deviator 2G dev(H - Ep) */
+    for (int k = 0; k < 9; k++)
+        tau[k] = -G2 * Epb[k];
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] += G2 * (lns[a] - lnJ / 3.0 + lnJp / 3.0);
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau[k] * tau[k];
+    const double q_tr = sqrt(1.5 * t2);
+    double omega = 0.0;
+    if (g[GTN_KW] > 0.0 && q_tr > 0.0) {
+        const double xi = 13.5 * mat3_det(tau) / (q_tr * q_tr * q_tr);
+        omega = fmin(fmax(1.0 - xi * xi, 0.0), 1.0); /* |xi| <= 1 up to round-off */
+    }
+    const struct tlsph_gtn_input in = {
+        .q_trial = q_tr,
+        .omega = omega,
+        .J = J,
+        .lnJp = lnJp,
+        .e = e,
+        .G = G,
+        .eps_M = s->eps_p,
+        .f = s->void_fraction,
+        .T = s->T,
+        .dt = dt,
+        .heating = mat->thermal.enabled
+                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
+                       : 0.0,
+        .yield = s->yield,
+    };
+    struct tlsph_gtn_result out;
+    const int plastic = tlsph_gtn_return(mat, &in, &out);
+    s->yield = out.yield;
+    s->rate = 0.0;
+    double tau_q = q_tr;
+    if (plastic) {
+        r->iterations = out.iterations;
+        r->converged = out.converged;
+        const double flow = q_tr > 0.0 ? 1.5 * out.dq / q_tr : 0.0;
+        const double shrink = q_tr > 0.0 ? 1.0 - 3.0 * G * out.dq / q_tr : 1.0;
+        for (int k = 0; k < 9; k++) {
+            Epb[k] += flow * tau[k];
+            tau[k] *= shrink;
+        }
+        for (int a = 0; a < 3; a++)
+            Epb[4 * a] += out.dv / 3.0;
+        mat3_from_basis(Q, Epb, Ep);
+        mat3_to_sym6(Ep, s->plastic_strain);
+        s->eps_p += out.dM;
+        s->rate = dt > 0.0 ? out.dM / dt : 0.0;
+        if (mat->thermal.enabled)
+            s->T = out.T;
+        s->void_fraction = out.f;
+        r->plastic_work = out.work;
+        tau_q = q_tr - 3.0 * G * out.dq;
+    }
+    s->damage = tlsph_gtn_damage(g, s->void_fraction);
+    s->damage_init = s->void_fraction / g[GTN_FC];
+    if (tau_q > 0.0)
+        r->triaxiality = -out.p * J / tau_q;
+    if (s->damage >= 1.0) {
+        /* the surface has shrunk to the origin: what elastic energy is left is
+         * released with the failure */
+        const double Je = J * exp(-(lnJp + out.dv));
+        r->damage_work = tau_q * tau_q / (6.0 * G) +
+                         0.5 * fmax(out.p * (1.0 - Je), 0.0) * exp(lnJp + out.dv);
+        no_stress(r, J, smin, out.K_t);
+        return;
+    }
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] -= J * out.p;
+    assemble(F, tau, lam, lns, Q, 1, J, smin, out.K_t, r);
+}
+
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r)
 {
@@ -150,6 +283,10 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     const double J = mat3_det(F);
     const double lnJ = lns[0] + lns[1] + lns[2];
     const double G2 = 2.0 * mat->shear_modulus;
+    if (damaging && mat->damage.model->porous) {
+        gtn_update(mat, F, e, dt, lam, lns, Q, J, smin, s, r);
+        return;
+    }
     const double intact = damaging ? 1.0 - s->damage : 1.0;
 
     /* tau: the effective stress conjugate to H, in the eigenbasis of C (row-major 3x3). */
@@ -191,35 +328,5 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     }
     for (int a = 0; a < 3; a++)
         tau[4 * a] -= J * p_carried;
-    double S[9];
-    if (s) {
-        double Sb[9];
-        for (int a = 0; a < 3; a++)
-            for (int b = 0; b < 3; b++)
-                Sb[3 * a + b] =
-                    tau[3 * a + b] * (a == b ? 1.0 / lam[a]
-                                             : log_divided_difference(lam[a], lam[b], 2.0 * lns[a],
-                                                                      2.0 * lns[b]));
-        mat3_from_basis(Q, Sb, S);
-    } else {
-        /* elastic: tau is diagonal in the eigenbasis (coaxial with C), S = U^-1 tau U^-1 */
-        const double d[3] = {tau[0] / lam[0], tau[4] / lam[1], tau[8] / lam[2]};
-        double S6[6];
-        sym3_compose(Q, d, S6);
-        sym6_to_mat3(S6, S);
-    }
-    mat3_mul(F, S, r->P);
-
-    double sig[9];
-    mat3_mul_bt(r->P, F, sig);
-    const double rJ = 1.0 / J;
-    r->sigma[0] = sig[0] * rJ;
-    r->sigma[1] = 0.5 * (sig[1] + sig[3]) * rJ;
-    r->sigma[2] = 0.5 * (sig[2] + sig[6]) * rJ;
-    r->sigma[3] = sig[4] * rJ;
-    r->sigma[4] = 0.5 * (sig[5] + sig[7]) * rJ;
-    r->sigma[5] = sig[8] * rJ;
-    r->J = J;
-    r->min_stretch = smin;
-    r->K_t = K_t;
+    assemble(F, tau, lam, lns, Q, s != NULL, J, smin, K_t, r);
 }

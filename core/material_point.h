@@ -38,6 +38,11 @@
  * G |dev(H - Ep)|^2 + the tensile volumetric energy, is the damage dissipation.
  * At D = 1 the point has failed: it carries no stress at all.
  *
+ * GTN (damage/gtn.h) replaces the J2 return and the (1 - D) scaling: the point
+ * carries the macroscopic stress of the porous material on the GTN surface
+ * (damage/gtn_return.h), its plastic strain has a trace (void growth), and
+ * the EOS sees the elastic volume ratio J exp(-tr Ep).
+ *
  * Units: SI (Pa, K, J/kg, s). */
 #ifndef TLSPH_MATERIAL_POINT_H
 #define TLSPH_MATERIAL_POINT_H
@@ -53,7 +58,8 @@ struct tlsph_point_state {
     double yield;             /* cached sigma_y(eps_p, 0, T), Pa; 0 = not known (zero-initialised
                                  states are valid) */
     double damage;            /* D in [0, 1], 1 (read and written only with a damage model) */
-    double damage_init;       /* damage-initiation variable D_init >= 0, 1 (idem) */
+    double damage_init;       /* damage-initiation variable D_init >= 0, 1 (idem; GTN: f/f_c) */
+    double void_fraction;     /* void volume fraction f, 1 (GTN only) */
 };
 
 struct tlsph_point_result {

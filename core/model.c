@@ -16,6 +16,7 @@
 #include "strength/strength.h"
 #include "parallel.h"
 #include "damage/damage.h"
+#include "damage/gtn.h"
 
 void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size)
 {
@@ -53,7 +54,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->f_hourglass); free(p->f_viscous);
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
     free(p->T);
-    free(p->damage); free(p->damage_init); free(p->crack_gradient);
+    free(p->damage); free(p->damage_init); free(p->crack_gradient); free(p->void_fraction);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -80,7 +81,7 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, s->kernel == TLSPH_KERNEL_CUBIC_SPLINE ? "kernel:cubic_spline"
                                                          : "kernel:wendland_c2");
     add_module(m, "kinematics:corrected_gradient");
-    int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0;
+    int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0, evolution = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
         add_module(m, strcmp(mat->eos->name, "linear") == 0 ? "eos:linear" : "eos:mie_gruneisen");
@@ -91,6 +92,15 @@ static void select_modules(struct tlsph_model *m)
         heating |= mat->thermal.enabled;
         if (mat->damage.model) {
             add_module(m, mat->damage.model->module);
+            if (mat->damage.model->porous) {
+                const double *g = mat->damage.params;
+                if (g[GTN_FN] > 0.0)
+                    add_module(m, "damage:gtn_nucleation");
+                if (g[GTN_KW] > 0.0)
+                    add_module(m, "damage:gtn_shear");
+            } else {
+                evolution = 1;
+            }
             damage = 1;
         }
     }
@@ -103,8 +113,9 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "thermal:adiabatic_heating");
     if (softening)
         add_module(m, "thermal:softening");
-    if (damage) {
+    if (evolution)
         add_module(m, "damage:evolution_linear");
+    if (damage) {
         add_module(m, s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? "approximation:pseudo_spring"
                                                                        : "approximation:damage_aware");
         add_module(m, s->failed_motion == TLSPH_FAILED_ARREST ? "failure:arrest" : "failure:free");
@@ -151,12 +162,16 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
         return -1;
     if (m->scene.viscosity && !(p->f_viscous = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
-    int plastic = 0, thermal = 0, damage = 0;
+    int plastic = 0, thermal = 0, damage = 0, porous = 0;
     for (size_t k = 0; k < m->scene.nmaterials; k++) {
-        plastic |= tlsph_material_is_plastic(&m->scene.materials[k]);
-        thermal |= m->scene.materials[k].thermal.enabled;
-        damage |= m->scene.materials[k].damage.model != NULL;
+        const struct tlsph_material *mat = &m->scene.materials[k];
+        plastic |= tlsph_material_is_plastic(mat);
+        thermal |= mat->thermal.enabled;
+        damage |= mat->damage.model != NULL;
+        porous |= mat->damage.model && mat->damage.model->porous;
     }
+    if (porous && !(p->void_fraction = tlsph_alloc(m, n, sizeof(double))))
+        return -1;
     if (damage && (!(p->damage = tlsph_alloc(m, n, sizeof(double))) ||
                    !(p->damage_init = tlsph_alloc(m, n, sizeof(double)))))
         return -1;
@@ -251,6 +266,13 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
             p->F[9 * k + c] = (c % 4 == 0);
         if (p->T)
             p->T[k] = mat->thermal.enabled ? mat->thermal.initial_temperature : NAN;
+        if (mat->damage.model && mat->damage.model->porous) {
+            /* GTN starts from its initial voids: D = q1 f0 > 0 already */
+            const double *g = mat->damage.params;
+            p->void_fraction[k] = g[GTN_F0];
+            p->damage[k] = tlsph_gtn_damage(g, g[GTN_F0]);
+            p->damage_init[k] = g[GTN_F0] / g[GTN_FC];
+        }
     }
     rc = 0;
 done:

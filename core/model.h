@@ -50,7 +50,10 @@ struct tlsph_particles {
     /* Damage (core/damage/damage.h); allocated only when some material of the
      * scene has a damage model (NULL otherwise), zero for the others. */
     double *damage;         /* D in [0, 1]; 1 = failed, 1 */
-    double *damage_init;    /* damage-initiation variable D_init, 1 */
+    double *damage_init;    /* damage-initiation variable D_init, 1 (GTN: f / f_c) */
+    /* GTN void volume fraction f, 1; allocated only when some material is GTN
+     * (damage/gtn.h), zero for the others. */
+    double *void_fraction;
     /* Damage-aware treatment only: sum_j V_j sum_steps D_j (du_j - du_i) (x) grad W_i,
      * the part of the displacement gradient (before L_i^-1) that damaged
      * neighbours did not transmit, so that F follows eq. 34 [9n]. */

@@ -37,12 +37,16 @@ struct tlsph_damage_model {
     const char *name;   /* as written in the scene */
     const char *module; /* "damage:<name>", for the run's list of active modules */
     int needs_sigma1;   /* the criterion reads the largest principal stress */
+    /* 1 for a porous-plasticity model (GTN, damage/gtn.h): it replaces the J2
+     * return by its own yield surface and sets D itself, so it has no
+     * initiation criterion and no eq. 45 evolution. */
+    int porous;
     /* Reads the model's parameters (its "type" and "evolution" keys are handled
      * by the caller) into m->damage.params / m->damage.terms.  m's elastic
      * constants, thermal block and strength are already parsed.  Returns 0 or -1. */
     int (*parse)(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err);
-    /* Increment of D_init over one step of plastic flow, >= 0. */
+    /* Increment of D_init over one step of plastic flow, >= 0 (NULL when porous). */
     double (*initiation)(const struct tlsph_material *m, const struct tlsph_damage_step *step);
 };
 
@@ -67,5 +71,6 @@ int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, co
 
 extern const struct tlsph_damage_model tlsph_damage_cockcroft_latham;
 extern const struct tlsph_damage_model tlsph_damage_johnson_cook;
+extern const struct tlsph_damage_model tlsph_damage_gtn;
 
 #endif

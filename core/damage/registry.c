@@ -5,6 +5,7 @@
 static const struct tlsph_damage_model *const models[] = {
     &tlsph_damage_cockcroft_latham,
     &tlsph_damage_johnson_cook,
+    &tlsph_damage_gtn,
 };
 
 const struct tlsph_damage_model *tlsph_damage_find(const char *name)
@@ -15,4 +16,4 @@ const struct tlsph_damage_model *tlsph_damage_find(const char *name)
     return NULL;
 }
 
-const char *tlsph_damage_names(void) { return "cockcroft_latham, johnson_cook"; }
+const char *tlsph_damage_names(void) { return "cockcroft_latham, johnson_cook, gtn"; }

@@ -26,7 +26,8 @@ int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, con
         return -1;
     }
     int bad = model->parse(obj, m, P, err) != 0;
-    bad |= tlsph_damage_parse_evolution(obj, m, P, err) != 0;
+    if (!model->porous)
+        bad |= tlsph_damage_parse_evolution(obj, m, P, err) != 0;
     if (m->strength && !tlsph_material_is_plastic(m)) {
         tlsph_errors_add(err, P,
                          "material '%s' has a damage block but strength '%s' is not plastic: "

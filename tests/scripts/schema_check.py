@@ -46,6 +46,9 @@ SEMANTIC_ONLY = {
     "jc_melting_below_reference",         # melting_temperature > reference_temperature
     "jc_starts_molten",                   # thermal.initial_temperature < melting_temperature
     "damage_jc_melting_below_reference",  # damage melting_temperature > reference_temperature
+    "damage_gtn_f0_above_critical",          # initial_void_fraction < critical_void_fraction
+    "damage_gtn_critical_above_failure",     # critical_void_fraction < failure_void_fraction
+    "damage_gtn_critical_above_inverse_q1",  # critical_void_fraction < 1/q1
 }
 
 
