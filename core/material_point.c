@@ -83,6 +83,16 @@ static double largest_eigenvalue(const double A[9])
     return fmax(lam[0], fmax(lam[1], lam[2]));
 }
 
+/* Stored elastic energy per unit reference volume (J/m^3) of a stress state:
+ * deviatoric G |dev He|^2 = q^2/(6G) (q the Kirchhoff von Mises value);
+ * volumetric by the secant p (1 - J_e)/2 (exact for a linear EOS) per unit
+ * intermediate volume, times the plastic volume ratio J_p. */
+static double deviatoric_energy(double G, double q) { return q * q / (6.0 * G); }
+static double volumetric_energy(double p, double Je, double Jp)
+{
+    return 0.5 * fmax(p * (1.0 - Je), 0.0) * Jp;
+}
+
 /* Grows the damage of a point that flowed plastically by dgamma this step and
  * returns the energy released (J/m^3).  tau_dev: effective deviatoric Kirchhoff
  * stress after the return (any basis); p: effective pressure (Pa). */
@@ -102,11 +112,10 @@ static double damage_growth(const struct tlsph_material *mat, double dgamma, dou
     double t2 = 0.0;
     for (int k = 0; k < 9; k++)
         t2 += tau_dev[k] * tau_dev[k];
-    /* effective stored energy: deviatoric G|He|^2 = |tau|^2/(4G); volumetric by the
-     * secant -p (J - 1)/2 (exact for a linear EOS), split into its tensile part,
-     * which damage degrades, and its compressive part, which only failure removes */
-    const double psi_dev = t2 / (4.0 * mat->shear_modulus);
-    const double psi_vol = 0.5 * fmax(-p * (J - 1.0), 0.0);
+    /* effective stored energy; its volumetric part splits into the tensile part,
+     * which damage degrades, and the compressive part, which only failure removes */
+    const double psi_dev = deviatoric_energy(mat->shear_modulus, sqrt(1.5 * t2));
+    const double psi_vol = volumetric_energy(p, J, 1.0);
     const double tensile = p < 0.0 ? psi_vol : 0.0;
     double released = (psi_dev + tensile) * (D1 - D0);
     if (D1 >= 1.0 && p >= 0.0)
@@ -247,8 +256,8 @@ static void gtn_update(const struct tlsph_material *mat, const double F[9], doub
         /* the surface has shrunk to the origin: what elastic energy is left is
          * released with the failure */
         const double Je = J * exp(-(lnJp + out.dv));
-        r->damage_work = tau_q * tau_q / (6.0 * G) +
-                         0.5 * fmax(out.p * (1.0 - Je), 0.0) * exp(lnJp + out.dv);
+        r->damage_work =
+            deviatoric_energy(G, tau_q) + volumetric_energy(out.p, Je, exp(lnJp + out.dv));
         no_stress(r, J, smin, out.K_t);
         return;
     }

@@ -126,6 +126,7 @@ with h5py.File(sys.argv[1], "r") as f:
         assert name not in f["observables"], "undamaged run wrote %s" % name
 with h5py.File(sys.argv[2], "r") as f:
     ps, obs = f["particles/solid"], f["observables"]
+    assert "void_fraction" not in ps, "Johnson-Cook damage run wrote the GTN void_fraction"
     D = ps["damage/value"][-1]
     Di = ps["damage_initiation/value"][-1]
     nf = obs["failed_particles/value"][:]

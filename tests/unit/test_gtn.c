@@ -40,6 +40,7 @@
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 #include "point_driver.h"
@@ -174,7 +175,6 @@ static void path(double ratio, double f0, const char *extra, double *tmin, doubl
                  double *worst_phi, double *worst_normal, double *worst_work, int *most)
 {
     const struct tlsph_material m = gtn(f0, 0.25, 0.3, extra);
-    const double G = m.shear_modulus;
     struct tlsph_point_state s = start(f0);
     struct tlsph_point_result r;
     for (int k = 1; k <= 300; k++) {
@@ -210,7 +210,6 @@ static void path(double ratio, double f0, const char *extra, double *tmin, doubl
         const double J = exp(ev), dM = s.eps_p - old.eps_p;
         const double expect = (1.0 - s.void_fraction) * J * sM * dM;
         *worst_work = fmax(*worst_work, fabs(r.plastic_work - expect) / expect);
-        (void)G;
     }
 }
 
@@ -351,5 +350,5 @@ int main(void)
     srunner_run_all(sr, CK_NORMAL);
     const int failed = srunner_ntests_failed(sr);
     srunner_free(sr);
-    return failed ? 1 : 0;
+    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
 }
