@@ -1,47 +1,80 @@
 #!/usr/bin/env python3
 """Tensile-test metrics of a Weldox bar result (paper 000 §6 definitions).
 
-usage: weldox_metrics.py RESULT.h5 SECTION_RADIUS_M GAUGE_LENGTH_M [label]
+usage: weldox_metrics.py RESULT.h5 [label]
+       weldox_metrics.py --header
 
-Engineering stress = mean axial reaction of the two loaded end groups ("top",
-"bottom") / (pi R^2), R the radius of the smallest section (bar radius, or the
-notch root radius); engineering strain = change of the distance between the
-end groups / gauge length (the simulated length).  Prints one Markdown table
-row: peak stress, strain at the peak, at damage initiation (first step with
-failed_particles > 0 is "first failure"; the damage_energy series turning
-positive is initiation), at separation (load below 2 % of the peak), the
-particle count and wall time, and the run's final status.
+Reads only the run's own time series: the gauge "bar" (engineering stress and
+strain between the loaded end groups) and the section "middle" (means over the
+notch section: largest principal stress and equivalent plastic strain), as
+bench/weldox_scene.py writes them into every scene.  Prints one Markdown table
+row:
+  peak engineering stress and the engineering strain there;
+  engineering strain at damage initiation (first particle with D_init >= 1),
+  at first failure (first particle with D = 1) and at separation (after the
+  peak, the load first falls below 2 % of the peak);
+  peak of the section-mean principal stress and the section-mean plastic
+  strain at first failure (Fig. 5b-c of the paper plots one against the other);
+  whether the load rose again after first failure by more than 2 % of the peak
+  (it must not: "a steady decay in stress is observed");
+  particles, steps, wall time (whole run loop, 1 thread; the cost in steps does
+  not depend on what else the machine runs) and the run's final status.
 """
 import sys
 
 import h5py
 import numpy as np
 
+COLUMNS = ["case", "peak eng. stress (MPa)", "strain at peak", "strain at initiation",
+           "strain at first failure", "strain at separation", "peak section sigma_1 (MPa)",
+           "section eps_p at first failure", "load rise after failure", "particles",
+           "steps", "wall (s)", "status"]
 
-def main():
-    path, radius, gauge = sys.argv[1], float(sys.argv[2]), float(sys.argv[3])
-    label = sys.argv[4] if len(sys.argv) > 4 else path
+
+def first(mask, values):
+    idx = np.flatnonzero(mask)
+    return values[idx[0]] if len(idx) else float("nan")
+
+
+def row(path, label):
     f = h5py.File(path, "r")
     o = f["observables"]
-    top = o["groups/top/reaction_force/value"][:, 2]
-    bottom = o["groups/bottom/reaction_force/value"][:, 2]
-    ut = o["groups/top/displacement/value"][:, 2]
-    ub = o["groups/bottom/displacement/value"][:, 2]
-    stress = 0.5 * (np.abs(top) + np.abs(bottom)) / (np.pi * radius**2)
-    strain = (ut - ub) / gauge
+    stress = o["gauges/bar/engineering_stress/value"][:]
+    strain = o["gauges/bar/engineering_strain/value"][:]
+    s1 = o["sections/middle/max_principal_stress/value"][:]
+    eps = o["sections/middle/plastic_strain/value"][:]
+    initiated = o["initiated_particles/value"][:]
     failed = o["failed_particles/value"][:]
-    dmg = o["damage_energy/value"][:]
     k = int(np.argmax(stress))
-    init = strain[np.argmax(dmg > 0)] if (dmg > 0).any() else float("nan")
-    first = strain[np.argmax(failed > 0)] if (failed > 0).any() else float("nan")
+    peak = stress[k]
     after = np.arange(len(stress)) > k
-    sep_idx = np.where(after & (stress < 0.02 * stress[k]))[0]
-    sep = strain[sep_idx[0]] if len(sep_idx) else float("nan")
+    sep = first(after & (stress < 0.02 * peak), strain)
+    # largest rise of the load above its running minimum after the first failure
+    rise = float("nan")
+    fidx = np.flatnonzero(failed > 0)
+    if len(fidx):
+        tail = stress[fidx[0]:]
+        rise = float(np.max(tail - np.minimum.accumulate(tail))) / peak
     cost = f["cost"].attrs
     status = f["diagnostics"].attrs["status"]
     status = status.decode() if isinstance(status, bytes) else str(status)
-    print(f"| {label} | {stress[k] / 1e6:.0f} | {strain[k]:.3f} | {init:.3f} | {first:.3f} | "
-          f"{sep:.3f} | {int(cost['particles'])} | {cost['wall_seconds']:.0f} | {status} |")
+    cells = [label, f"{peak / 1e6:.0f}", f"{strain[k]:.3f}",
+             f"{first(initiated > 0, strain):.3f}", f"{first(failed > 0, strain):.3f}",
+             f"{sep:.3f}", f"{np.max(s1) / 1e6:.0f}", f"{first(failed > 0, eps):.3f}",
+             f"{100 * rise:.1f} %", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
+             f"{cost['wall_seconds']:.0f}",
+             status]
+    return "| " + " | ".join(cells) + " |"
+
+
+def main():
+    if sys.argv[1:] == ["--header"]:
+        print("| " + " | ".join(COLUMNS) + " |")
+        print("|---|" + "---:|" * (len(COLUMNS) - 2) + "---|")
+        return
+    if len(sys.argv) not in (2, 3):
+        sys.exit(__doc__)
+    print(row(sys.argv[1], sys.argv[2] if len(sys.argv) > 2 else sys.argv[1]))
 
 
 if __name__ == "__main__":

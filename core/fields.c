@@ -211,6 +211,14 @@ static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energ
 static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
 static void sv_damage_work(const struct tlsph_model *m, double *o) { o[0] = m->energy.damage_work; }
 static void sv_failed(const struct tlsph_model *m, double *o) { o[0] = (double)m->failed; }
+static void sv_initiated(const struct tlsph_model *m, double *o)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        n += m->p.damage_init[i] >= 1.0 ? 1 : 0;
+    o[0] = (double)n;
+}
+
 static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
 static void sv_balance(const struct tlsph_model *m, double *o)
@@ -253,6 +261,10 @@ const struct tlsph_series_column tlsph_global_series[] = {
      has_plasticity, sv_plastic},
     {"max_temperature", 1, "K", "highest particle temperature", has_temperature,
      sv_max_temperature},
+    {"initiated_particles", 1, "1",
+     "number of particles whose damage-initiation variable has reached 1 (JC/CL: damage "
+     "grows; GTN: f >= f_c, coalescence)",
+     has_damage, sv_initiated},
     {"failed_particles", 1, "1", "number of failed particles (D = 1)", has_damage, sv_failed},
     {"damage_energy", 1, "J",
      "energy dissipated by damage: stored energy released as D grows, sum over particles of "
@@ -267,6 +279,48 @@ const struct tlsph_series_column tlsph_group_series[] = {
     {"displacement", 3, "m", "mean displacement of the group's particles", NULL, NULL},
 };
 const size_t tlsph_ngroup_series = sizeof tlsph_group_series / sizeof *tlsph_group_series;
+
+const struct tlsph_series_column tlsph_gauge_series[] = {
+    {"engineering_stress", 1, "Pa",
+     "mean axial reaction of the two groups / area, positive in tension", NULL, NULL},
+    {"engineering_strain", 1, "1", "change of the distance between the groups' mean "
+     "positions along the gauge axis / gauge length", NULL, NULL},
+};
+const size_t tlsph_ngauge_series = sizeof tlsph_gauge_series / sizeof *tlsph_gauge_series;
+
+/* In enum tlsph_section_value order. */
+const struct tlsph_series_column tlsph_section_series[] = {
+    {"max_principal_stress", 1, "Pa",
+     "mean over the section's particles (reference-volume weighted) of the largest "
+     "principal Cauchy stress", NULL, NULL},
+    {"normal_stress", 1, "Pa", "mean of n.sigma.n over the section's particles", NULL, NULL},
+    {"plastic_strain", 1, "1", "mean equivalent plastic strain over the section's particles",
+     has_plasticity, NULL},
+    {"damage", 1, "1", "mean damage over the section's particles", has_damage, NULL},
+};
+const size_t tlsph_nsection_series = sizeof tlsph_section_series / sizeof *tlsph_section_series;
+
+size_t tlsph_section_series_width(const struct tlsph_model *m)
+{
+    size_t w = 0;
+    for (size_t c = 0; c < tlsph_nsection_series; c++)
+        w += tlsph_series_present(&tlsph_section_series[c], m) ? 1 : 0;
+    return w;
+}
+
+void tlsph_gauge_series_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    tlsph_gauge_values(m, k, out);
+}
+
+void tlsph_section_series_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    double v[TLSPH_SECTION_NVALUES];
+    tlsph_section_values(m, k, v);
+    for (size_t c = 0; c < tlsph_nsection_series; c++)
+        if (tlsph_series_present(&tlsph_section_series[c], m))
+            *out++ = v[c];
+}
 
 int tlsph_group_has_series(const struct tlsph_model *m, size_t k)
 {

@@ -61,4 +61,15 @@ void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *ou
 size_t tlsph_global_series_width(const struct tlsph_model *m);
 size_t tlsph_group_series_width(void);
 
+/* Gauge columns (both always present, 2 values) and section columns (those of
+ * present modules) repeat per scene gauge / section under
+ * "gauges/<name>/<column>" and "sections/<name>/<column>". */
+extern const struct tlsph_series_column tlsph_gauge_series[];
+extern const size_t tlsph_ngauge_series;
+extern const struct tlsph_series_column tlsph_section_series[];
+extern const size_t tlsph_nsection_series;
+size_t tlsph_section_series_width(const struct tlsph_model *m);
+void tlsph_gauge_series_values(const struct tlsph_model *m, size_t k, double *out);
+void tlsph_section_series_values(const struct tlsph_model *m, size_t k, double *out);
+
 #endif

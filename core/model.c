@@ -61,6 +61,7 @@ void tlsph_model_free(struct tlsph_model *m)
         for (size_t k = 0; k < m->scene.nbcs; k++)
             free(m->groups[k].index);
     free(m->groups);
+    tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
 }
@@ -324,7 +325,7 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
         tlsph_errors_add(err, "", "out of memory");
         goto fail;
     }
-    if (tlsph_boundary_select(m, err) != 0)
+    if (tlsph_boundary_select(m, err) != 0 || tlsph_measures_init(m, err) != 0)
         goto fail;
     select_modules(m);
 

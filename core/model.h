@@ -15,6 +15,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "measures.h"
 #include "scene.h"
 
 struct tlsph_particles {
@@ -113,6 +114,7 @@ struct tlsph_model {
     struct tlsph_pairs pairs;
     size_t *body_begin, *body_end; /* particle ranges per body */
     struct tlsph_group *groups;    /* one per scene->bcs entry (empty for walls/body forces) */
+    struct tlsph_measures measures; /* gauges and sections of scene.output */
 
     /* run state */
     long step;

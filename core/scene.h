@@ -85,7 +85,8 @@ enum tlsph_geometry_type {
     TLSPH_GEOM_NOTCHED_BAR, /* round bar with a circumferential notch of radius R:
                               a[0..2] base centre, a[3..5] unit axis, a[6] bar radius,
                               a[7] length, a[8] notch root radius (bar radius at the notch),
-                              a[9] notch radius R, a[10] notch position along the axis from base */
+                              a[9] notch radius R (a U-notch with flanks 2R apart when the
+                              notch is deeper than R), a[10] notch position along the axis */
     TLSPH_GEOM_UNION,      /* children[0..n-1] */
     TLSPH_GEOM_DIFFERENCE  /* children[0] minus children[1..n-1] */
 };
@@ -136,6 +137,30 @@ struct tlsph_bc {
     double acceleration[3];         /* body force, m/s^2 */
 };
 
+#define TLSPH_MAX_MEASURES 32
+
+/* An engineering stress-strain gauge between two load-carrying groups (fixed or
+ * velocity conditions): along the unit axis a from group[0]'s reference
+ * centroid to group[1]'s, engineering stress = (R_1 - R_0).a / (2 area) (the
+ * mean axial load, positive in tension) and engineering strain =
+ * (u_1 - u_0).a / length, with R the reaction and u the mean displacement of a
+ * group. */
+struct tlsph_gauge {
+    char name[TLSPH_NAME_MAX];
+    int group[2];                 /* indices into scene->bcs */
+    double area;                  /* initial load-carrying area, m^2 (m per metre of thickness in 2-D) */
+    double length;                /* gauge length, m; 0 = initial distance of the two centroids */
+};
+
+/* A Lagrangian cross-section: the particles whose reference position lies
+ * within thickness/2 of the plane through point with unit normal normal. */
+struct tlsph_section {
+    char name[TLSPH_NAME_MAX];
+    double point[3];              /* m */
+    double normal[3];             /* unit */
+    double thickness;             /* m */
+};
+
 struct tlsph_scene {
     int dimension;                /* 2 (plane strain, x-y, unit thickness) or 3 */
     char name[TLSPH_NAME_MAX];
@@ -166,6 +191,8 @@ struct tlsph_scene {
     /* output */
     long frames;                  /* number of field frames over [0, end_time], >= 1 */
     long series_every;            /* steps between time-series samples, >= 1 */
+    struct tlsph_gauge gauges[TLSPH_MAX_MEASURES];     size_t ngauges;
+    struct tlsph_section sections[TLSPH_MAX_MEASURES]; size_t nsections;
 
     struct tlsph_param *params;   size_t nparams;
     struct tlsph_material *materials; size_t nmaterials;

@@ -658,10 +658,68 @@ done:
     return rc;
 }
 
+/* Name of item k of a per-item series family, or NULL when k has no series. */
+static const char *family_item(const struct tlsph_model *m, const char *family, size_t k)
+{
+    if (strcmp(family, "groups") == 0)
+        return k < m->scene.nbcs && tlsph_group_has_series(m, k) ? m->scene.bcs[k].name : NULL;
+    if (strcmp(family, "gauges") == 0)
+        return k < m->scene.ngauges ? m->scene.gauges[k].name : NULL;
+    return k < m->scene.nsections ? m->scene.sections[k].name : NULL;
+}
+
+static size_t family_size(const struct tlsph_model *m, const char *family)
+{
+    if (strcmp(family, "groups") == 0)
+        return m->scene.nbcs;
+    return strcmp(family, "gauges") == 0 ? m->scene.ngauges : m->scene.nsections;
+}
+
+/* /observables/<family>/<item>/<column> for every item with series and every
+ * present column.  "groups" always exists (readers rely on it); the gauges and
+ * sections groups only when the scene asks for one. */
+static int create_family(struct tlsph_output *o, const struct tlsph_model *m, hid_t obs,
+                         const char *family, const struct tlsph_series_column *cols,
+                         size_t ncols, size_t *offset)
+{
+    int rc = -1;
+    hid_t fam = H5I_INVALID_HID, g = H5I_INVALID_HID;
+    if (strcmp(family, "groups") == 0 && (fam = make_group(obs, family)) < 0)
+        goto done;
+    for (size_t k = 0; k < family_size(m, family); k++) {
+        const char *item = family_item(m, family, k);
+        if (!item)
+            continue;
+        if (fam < 0 && (fam = make_group(obs, family)) < 0)
+            goto done;
+        char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 64];
+        link_name(name, sizeof name, item);
+        snprintf(path, sizeof path, "/observables/%s/%s", family, name);
+        if ((g = make_group(fam, name)) < 0)
+            goto done;
+        for (size_t c = 0; c < ncols; c++) {
+            if (!tlsph_series_present(&cols[c], m))
+                continue;
+            if (create_series(o, g, path, &cols[c], *offset) < 0)
+                goto done;
+            *offset += (size_t)cols[c].ncomp;
+        }
+        H5Gclose(g);
+        g = H5I_INVALID_HID;
+    }
+    rc = 0;
+done:
+    if (g >= 0)
+        H5Gclose(g);
+    if (fam >= 0)
+        H5Gclose(fam);
+    return rc;
+}
+
 static int create_observables(struct tlsph_output *o, const struct tlsph_model *m)
 {
     int rc = -1;
-    hid_t obs = H5I_INVALID_HID, groups = H5I_INVALID_HID, g = H5I_INVALID_HID;
+    hid_t obs = H5I_INVALID_HID;
     size_t offset = 0;
 
     if ((obs = make_group(o->file, "observables")) < 0)
@@ -673,30 +731,13 @@ static int create_observables(struct tlsph_output *o, const struct tlsph_model *
             goto done;
         offset += (size_t)tlsph_global_series[c].ncomp;
     }
-    if ((groups = make_group(obs, "groups")) < 0)
+    if (create_family(o, m, obs, "groups", tlsph_group_series, tlsph_ngroup_series, &offset) < 0 ||
+        create_family(o, m, obs, "gauges", tlsph_gauge_series, tlsph_ngauge_series, &offset) < 0 ||
+        create_family(o, m, obs, "sections", tlsph_section_series, tlsph_nsection_series,
+                      &offset) < 0)
         goto done;
-    for (size_t k = 0; k < m->scene.nbcs; k++) {
-        if (!tlsph_group_has_series(m, k))
-            continue;
-        char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 32];
-        link_name(name, sizeof name, m->scene.bcs[k].name);
-        snprintf(path, sizeof path, "/observables/groups/%s", name);
-        if ((g = make_group(groups, name)) < 0)
-            goto done;
-        for (size_t c = 0; c < tlsph_ngroup_series; c++) {
-            if (create_series(o, g, path, &tlsph_group_series[c], offset) < 0)
-                goto done;
-            offset += (size_t)tlsph_group_series[c].ncomp;
-        }
-        H5Gclose(g);
-        g = H5I_INVALID_HID;
-    }
     rc = 0;
 done:
-    if (g >= 0)
-        H5Gclose(g);
-    if (groups >= 0)
-        H5Gclose(groups);
     if (obs >= 0)
         H5Gclose(obs);
     return rc;
@@ -811,9 +852,13 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     size_t ngroups = 0;
     for (size_t k = 0; k < m->scene.nbcs; k++)
         ngroups += tlsph_group_has_series(m, k) ? 1 : 0;
-    size_t maxseries = tlsph_nglobal_series + ngroups * tlsph_ngroup_series;
+    size_t maxseries = tlsph_nglobal_series + ngroups * tlsph_ngroup_series +
+                       m->scene.ngauges * tlsph_ngauge_series +
+                       m->scene.nsections * tlsph_nsection_series;
     o->series = calloc(maxseries ? maxseries : 1, sizeof *o->series);
-    o->width = tlsph_global_series_width(m) + ngroups * tlsph_group_series_width();
+    o->width = tlsph_global_series_width(m) + ngroups * tlsph_group_series_width() +
+               m->scene.ngauges * tlsph_ngauge_series +
+               m->scene.nsections * tlsph_section_series_width(m);
     o->rows = malloc(SERIES_CHUNK * (o->width ? o->width : 1) * sizeof *o->rows);
     o->row_step = malloc(SERIES_CHUNK * sizeof *o->row_step);
     o->row_time = malloc(SERIES_CHUNK * sizeof *o->row_time);
@@ -973,6 +1018,11 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
         tlsph_group_series_values(m, k, row + off);
         off += grw;
     }
+    for (size_t k = 0; k < m->scene.ngauges; k++, off += tlsph_ngauge_series)
+        tlsph_gauge_series_values(m, k, row + off);
+    const size_t sw = tlsph_section_series_width(m);
+    for (size_t k = 0; k < m->scene.nsections; k++, off += sw)
+        tlsph_section_series_values(m, k, row + off);
     o->row_step[slot] = m->step;
     o->row_time[slot] = m->t;
     o->nrows = slot + 1;

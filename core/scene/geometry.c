@@ -65,7 +65,12 @@ int tlsph_geometry_contains(const struct tlsph_geometry *g, const double X[3])
         axial(a, X, &s, &rho2);
         if (s < 0.0 || s > a[7] || rho2 > a[6] * a[6])
             return 0;
+        /* Circular root of radius R centred at rho = r + R; when the notch is
+         * deeper than R (a U-notch) straight flanks 2R apart run out to the
+         * surface. */
         const double rc = a[8] + a[9], dr = sqrt(rho2) - rc, dz = s - a[10];
+        if (dr > 0.0 && fabs(dz) < a[9])
+            return 0;
         return dr * dr + dz * dz >= a[9] * a[9];
     }
     case TLSPH_GEOM_UNION:

@@ -230,7 +230,7 @@ static int parse_settings(const json_t *root, struct tlsph_scene *s, int *limits
 {
     static const char *const st_keys[] = {"check_every", "energy_tolerance", "speed_limit", NULL};
     static const char *const lim_keys[] = {"max_particles", NULL};
-    static const char *const out_keys[] = {"frames", "series_every", NULL};
+    static const char *const out_keys[] = {"frames", "series_every", "gauges", "sections", NULL};
     int bad = 0;
     const json_t *st = jc_object(root, "stability", 0, "", err);
     if (st) {
@@ -496,7 +496,10 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     bad |= parse_materials(root, s, err) != 0;
     const int bodies_bad = tlsph_parse_bodies(root, s, err) != 0;
     bad |= bodies_bad;
-    bad |= tlsph_parse_bcs(root, s, err) != 0;
+    const int bcs_bad = tlsph_parse_bcs(root, s, err) != 0;
+    bad |= bcs_bad;
+    if (!bcs_bad)
+        bad |= tlsph_parse_measures(root, s, err) != 0;
     /* Particle counts only when every body is well-formed and the limit is known. */
     if (!bodies_bad && !limits_bad)
         bad |= tlsph_check_particle_counts(s, err) != 0;

@@ -35,8 +35,8 @@ static int normalise(double v[3])
 }
 
 /* A unit direction at pointer/key; in 2-D its z component is dropped first. */
-static int direction(const json_t *obj, const char *key, int dimension, const char *pointer,
-                     double out[3], struct tlsph_errors *err)
+int tlsph_parse_direction(const json_t *obj, const char *key, int dimension, const char *pointer,
+                          double out[3], struct tlsph_errors *err)
 {
     if (jc_vector(obj, key, 1, 3, "direction, any length", pointer, out, err) != 0)
         return -1;
@@ -83,7 +83,7 @@ static int parse_cylinder(const json_t *o, int dim, const char *P, double *a,
     (void)dim;
     int bad = jc_unknown_keys(o, keys, P, err) != 0;
     bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
-    bad |= direction(o, "axis", 3, P, a + 3, err) != 0;
+    bad |= tlsph_parse_direction(o, "axis", 3, P, a + 3, err) != 0;
     bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
     bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
     return bad ? -1 : 0;
@@ -131,7 +131,7 @@ static int parse_plate(const json_t *o, int dim, const char *P, double *a,
     static const char *const keys[] = {"center", "normal", "size", "thickness", NULL};
     int bad = jc_unknown_keys(o, keys, P, err) != 0;
     bad |= jc_vector(o, "center", 1, 3, "m", P, a, err) != 0;
-    const int normal_bad = direction(o, "normal", dim, P, a + 3, err) != 0;
+    const int normal_bad = tlsph_parse_direction(o, "normal", dim, P, a + 3, err) != 0;
     bad |= normal_bad;
     bad |= jc_number(o, "thickness", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
     double size[2];
@@ -162,7 +162,7 @@ static int parse_notched_bar(const json_t *o, int dim, const char *P, double *a,
     (void)dim;
     int bad = jc_unknown_keys(o, keys, P, err) != 0;
     bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
-    bad |= direction(o, "axis", 3, P, a + 3, err) != 0;
+    bad |= tlsph_parse_direction(o, "axis", 3, P, a + 3, err) != 0;
     int dims_bad = 0;
     dims_bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
     dims_bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
@@ -180,16 +180,9 @@ static int parse_notched_bar(const json_t *o, int dim, const char *P, double *a,
                          r, R0);
         return -1;
     }
-    if (!(R >= R0 - r)) {
-        tlsph_pointer_join(p, sizeof p, P, "notch_radius");
-        tlsph_errors_add(err, p,
-                         "'notch_radius' = %g m must be >= the notch depth radius - "
-                         "notch_root_radius = %g m (otherwise the notch profile undercuts)",
-                         R, R0 - r);
-        return -1;
-    }
-    /* Half-width of the notch where its circle meets the bar surface. */
-    const double c = r + R - R0, w = sqrt(fmax(0.0, R * R - c * c));
+    /* Half-width of the notch where it meets the bar surface: the circle's
+     * chord, or R for a U-notch (deeper than R, straight flanks). */
+    const double c = r + R - R0, w = c < 0.0 ? R : sqrt(fmax(0.0, R * R - c * c));
     if (!(zc - w > 0.0) || !(zc + w < L)) {
         tlsph_pointer_join(p, sizeof p, P, "notch_position");
         tlsph_errors_add(err, p,

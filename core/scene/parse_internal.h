@@ -25,6 +25,10 @@ int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name);
 int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *pointer,
                          struct tlsph_geometry *g, struct tlsph_errors *err);
 void tlsph_geometry_free(struct tlsph_geometry *g);
+/* A 3-vector at obj[key], any non-zero length, normalised into out (z zeroed
+ * in 2-D); -1 with an error at pointer/key otherwise. */
+int tlsph_parse_direction(const json_t *obj, const char *key, int dimension, const char *pointer,
+                          double out[3], struct tlsph_errors *err);
 
 /* parse_bodies.c: fills s->bodies (s->materials and s->params already parsed). */
 int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
@@ -46,6 +50,10 @@ size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
 int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, const char *pointer,
                                 struct tlsph_errors *err);
 int tlsph_parse_damage_treatment(const json_t *d, struct tlsph_scene *s, struct tlsph_errors *err);
+
+/* parse_measures.c: "/output/gauges" and "/output/sections" (boundary
+ * conditions already parsed). */
+int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* condition.c: rewrites comparisons (<, <=, >, >=) and logical &&, || into
  * libmatheval arithmetic with step(); returns a malloc'ed string, NULL on

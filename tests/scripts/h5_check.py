@@ -62,7 +62,13 @@ def load_docs(path):
     optional = table(doc, "optional-series")  # present only with their module
     for row in optional:
         row["optional"] = True
-    return table(doc, "fields"), table(doc, "series") + optional, table(doc, "group-series")
+    # per-item families: boundary groups, gauges and sections (columns of
+    # sections are optional like the global ones: they follow the modules)
+    families = {"groups": table(doc, "group-series"), "gauges": table(doc, "gauge-series"),
+                "sections": table(doc, "section-series")}
+    for row in families["sections"]:
+        row["optional"] = row.get("present when", "always") != "always"
+    return table(doc, "fields"), table(doc, "series") + optional, families
 
 
 def shape_of(spec, F, N, T):
@@ -157,22 +163,32 @@ def check_series_group(g, rows, where, live):
         lengths.append(T)
     documented = {r["name"] for r in rows}
     for name in g:
-        if name != "groups":
+        if name not in ("groups", "gauges", "sections"):
             check(name in documented, "%s/%s is documented" % (where, name))
     return lengths
 
 
-def check_series(f, series, group_series, scene, live):
+def check_series(f, series, families, scene, live):
     obs = f["observables"]
     lengths = check_series_group(obs, series, "/observables", live)
-    loaded = [b for b in scene.get("boundary_conditions", []) if b.get("type") in ("fixed", "velocity")]
+    loaded = [b["name"] for b in scene.get("boundary_conditions", [])
+              if b.get("type") in ("fixed", "velocity")]
+    out = scene.get("output", {})
+    items = {"groups": loaded,
+             "gauges": [g["name"] for g in out.get("gauges", [])],
+             "sections": [c["name"] for c in out.get("sections", [])]}
     check("groups" in obs, "/observables/groups exists")
-    for b in loaded:
-        name = b["name"].replace("/", "_")
-        check(name in obs["groups"], "group series for boundary condition %s" % name)
-        lengths += check_series_group(obs["groups"][name], group_series,
-                                      "/observables/groups/" + name, live)
-    check(len(obs["groups"]) == len(loaded), "one series group per loaded boundary condition")
+    for family, names in items.items():
+        if not names:
+            check(family == "groups" or family not in obs, "no /observables/%s" % family)
+            continue
+        check(family in obs, "/observables/%s exists" % family)
+        for name in names:
+            name = name.replace("/", "_")
+            check(name in obs[family], "%s series for %s" % (family, name))
+            lengths += check_series_group(obs[family][name], families[family],
+                                          "/observables/%s/%s" % (family, name), live)
+        check(len(obs[family]) == len(names), "one %s series group per scene item" % family)
     return lengths
 
 
@@ -280,7 +296,7 @@ def alive(pid):
 
 
 def live(docs, h5, pid):
-    fields, series, group_series = load_docs(docs)
+    fields, series, families = load_docs(docs)
     deadline = time.time() + 600
     seen = []  # frame counts observed while the writer was running
     opened = False
@@ -298,7 +314,7 @@ def live(docs, h5, pid):
             scene = json.loads(text(f["parameters/scene"][()]))
             while alive(pid) and time.time() < deadline:
                 F, N, _ = check_fields(f, fields, live=True)
-                check_series(f, series, group_series, scene, live=True)
+                check_series(f, series, families, scene, live=True)
                 if alive(pid):  # the reads above happened while the writer ran
                     if not seen or seen[-1] != F:
                         print("live: %d frames of %d particles, status %s" %
@@ -315,7 +331,7 @@ def live(docs, h5, pid):
 
 
 def final(docs, outdir, scene_path):
-    fields, series, group_series = load_docs(docs)
+    fields, series, families = load_docs(docs)
     h5 = os.path.join(outdir, "result.h5")
     with h5py.File(h5, "r") as f:  # a plain (non-SWMR) open must work after the run
         scene = check_metadata(f, scene_path)
@@ -327,7 +343,7 @@ def final(docs, outdir, scene_path):
         check(np.all(np.diff(times) > 0), "frame times strictly increasing")
         check(np.all(np.diff(steps) > 0), "frame steps strictly increasing")
         check(times[-1] >= 0.9 * scene["time"]["end"], "last frame near time.end")
-        lengths = check_series(f, series, group_series, scene, live=False)
+        lengths = check_series(f, series, families, scene, live=False)
         T = lengths[0]
         check(T > 1 and all(x == T for x in lengths), "all series have %d samples" % T)
         st = f["observables/kinetic_energy/time"][:]

@@ -137,6 +137,30 @@ with h5py.File(sys.argv[2], "r") as f:
     assert nf[-1] == np.count_nonzero(D >= 1), "failed_particles %g vs field %d" % (nf[-1], np.count_nonzero(D >= 1))
     assert nf[-1] > 0, "nothing failed"
     print("damage output: %d failed, damage energy %.4g J" % (nf[-1], ed[-1]))
+    # gauge and section (docs/output.md), recomputed here from the group series
+    # and the fields of the last frame, which is also a series sample
+    gs, sec = obs["gauges/strip"], obs["sections/notch"]
+    rc = obs["groups/clamp/reaction_force/value"][:, 0]
+    rp = obs["groups/pull/reaction_force/value"][:, 0]
+    uc = obs["groups/clamp/displacement/value"][:, 0]
+    up = obs["groups/pull/displacement/value"][:, 0]
+    X = ps["reference_position"][:]
+    V = ps["volume"][:]
+    clamp, pull = X[:, 0] < 0.0006, X[:, 0] > 0.0094
+    L0 = X[pull, 0].mean() - X[clamp, 0].mean()
+    assert np.allclose(gs["engineering_stress/value"][:], 0.5 * (rp - rc) / 0.002, rtol=1e-12, atol=1e-3), "gauge stress"
+    assert np.allclose(gs["engineering_strain/value"][:], (up - uc) / L0, rtol=1e-9, atol=1e-15), "gauge strain"
+    inside = np.abs(X[:, 0] - 0.005) <= 0.5 * 0.000375
+    w = V[inside] / V[inside].sum()
+    k = list(sec["damage/step"][:]).index(ps["damage/step"][-1])
+    assert np.isclose(sec["damage/value"][k], (w * D[inside]).sum(), rtol=1e-6, atol=1e-7), "section damage"
+    s = ps["stress/value"][-1][inside]  # float32: xx xy xz yy yz zz
+    assert np.isclose(sec["normal_stress/value"][k], (w * s[:, 0]).sum(), rtol=1e-5, atol=1e3), "section normal stress"
+    A = np.stack([s[:, [0, 1, 2]], s[:, [1, 3, 4]], s[:, [2, 4, 5]]], axis=1).astype(float)
+    s1 = np.linalg.eigvalsh(A)[:, -1]
+    assert np.isclose(sec["max_principal_stress/value"][k], (w * s1).sum(), rtol=1e-5, atol=1e3), "section sigma_1"
+    print("gauge: peak %.4g MPa; notch section: %d particles, mean D %.3f at the end" % (
+        gs["engineering_stress/value"][:].max() / 1e6, inside.sum(), sec["damage/value"][k]))
 EOF
 
 factor=8

@@ -49,6 +49,13 @@ SEMANTIC_ONLY = {
     "damage_gtn_f0_above_critical",          # initial_void_fraction < critical_void_fraction
     "damage_gtn_critical_above_failure",     # critical_void_fraction < failure_void_fraction
     "damage_gtn_critical_above_inverse_q1",  # critical_void_fraction < 1/q1
+    # gauges and sections: cross references, uniqueness, the lattice
+    "measures_gauge_unknown_group",
+    "measures_gauge_same_group",
+    "measures_gauge_wall_group",
+    "measures_section_empty",
+    "measures_section_normal_zero",
+    "measures_section_duplicate_name",
 }
 
 

@@ -370,6 +370,47 @@ START_TEST(test_notched_bar)
 }
 END_TEST
 
+/* A notch deeper than its radius is a U-notch: round root of radius R, straight
+ * flanks 2R apart out to the surface.  Reference volume: bar minus the ring of
+ * the half disc plus the rectangle (exact, Pappus). */
+START_TEST(test_u_notch)
+{
+    const double R0 = 0.005, r = 0.003, R = 0.0004, zc = 0.005, L = 0.01;
+    char body[512], text[2048];
+    snprintf(body, sizeof body,
+             "{\"name\": \"n\", \"material\": \"m\", \"spacing\": 0.0001,"
+             "\"geometry\": {\"notched_bar\": {\"base\": [0,0,0], \"axis\": [0,0,1],"
+             "\"radius\": %g, \"length\": %g, \"notch_root_radius\": %g,"
+             "\"notch_radius\": %g, \"notch_position\": %g}}}",
+             R0, L, r, R, zc);
+    snprintf(text, sizeof text,
+             "{\"dimension\": 3, \"time\": {\"end\": 1e-4}, \"materials\": {\"m\": {\"density\": "
+             "1000, \"youngs_modulus\": 1e9, \"poisson_ratio\": 0.25}}, \"bodies\": [%s]}",
+             body);
+    struct tlsph_scene s;
+    struct tlsph_errors e;
+    ck_assert_int_eq(parse(text, &s, &e), 0);
+    const struct tlsph_geometry *g = &s.bodies[0].geometry;
+    const double root[3] = {r, 0, zc}, below_root[3] = {r - 1e-6, 0, zc},
+                 in_slot[3] = {0.0045, 0, zc + 0.00039}, flank[3] = {0.0045, 0, zc + 0.00041},
+                 corner[3] = {r + 0.5 * R, 0, zc + 0.95 * R};
+    ck_assert(tlsph_geometry_contains(g, root));
+    ck_assert(tlsph_geometry_contains(g, below_root));
+    ck_assert(!tlsph_geometry_contains(g, in_slot));
+    ck_assert(tlsph_geometry_contains(g, flank));
+    ck_assert(tlsph_geometry_contains(g, corner)); /* outside the root circle, below the slot */
+    tlsph_scene_free(&s);
+    tlsph_errors_free(&e);
+
+    /* half disc of radius R centred at rho = r + R: area pi R^2 / 2, centroid at
+     * r + R - 4R/(3 pi); slot rectangle 2R x (R0 - r - R) centred at (r + R + R0)/2 */
+    const double disc = M_PI * R * R / 2 * 2 * M_PI * (r + R - 4 * R / (3 * M_PI));
+    const double slot = 2 * R * (R0 - r - R) * 2 * M_PI * 0.5 * (r + R + R0);
+    const double volume = M_PI * R0 * R0 * L - disc - slot;
+    assert_near_count(body_count(3, body, NULL), volume / 1e-12, 0.01);
+}
+END_TEST
+
 START_TEST(test_lattice_limit)
 {
     const char *text = BASE_HEAD
@@ -543,6 +584,7 @@ static Suite *scene_suite(void)
     tcase_add_test(tc, test_curved_counts);
     tcase_add_test(tc, test_boolean);
     tcase_add_test(tc, test_notched_bar);
+    tcase_add_test(tc, test_u_notch);
     tcase_add_test(tc, test_lattice_limit);
     tcase_add_test(tc, test_error_pointers);
     tcase_add_test(tc, test_all_errors_collected);
