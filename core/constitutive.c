@@ -9,6 +9,27 @@
 #include "strength/strength.h"
 #include "parallel.h"
 
+/* The "tangent" hourglass stiffness: once a particle has flowed, its spring
+ * uses the uniaxial elasto-plastic tangent E_t = E H / (E + H) (H = d sigma_y /
+ * d eps_p at the current state, strain hardening only: the rate term's
+ * derivative scales with 1/dt and is no stiffness), as a fraction of E, so the
+ * hourglass modes meet the resistance the material itself offers instead of
+ * the elastic one that stops a neck from forming.  The fraction never rises
+ * again: a spring that stiffened on elastic unloading would push back the
+ * hourglass error it let grow during flow with E, releasing energy that was
+ * never stored (measured: a 2.4 % energy-balance error on a torn bar when the
+ * scale followed each step's flow state). */
+static double hourglass_scale(const struct tlsph_material *mat,
+                              const struct tlsph_point_state *st, double previous)
+{
+    if (!(st->eps_p > 0.0))
+        return previous;
+    struct tlsph_flow fl;
+    mat->strength->flow(mat, st->eps_p, st->rate, st->T, &fl);
+    const double H = fmax(fl.d_strain, 0.0), E = mat->youngs_modulus;
+    return isfinite(H) ? fmin(previous, H / (E + H)) : previous;
+}
+
 void tlsph_constitutive(struct tlsph_model *m, double dt)
 {
     struct tlsph_particles *p = &m->p;
@@ -67,6 +88,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                     damage_work += r.damage_work * p->vol0[i];
                 }
                 plastic_work += r.plastic_work * p->vol0[i];
+                if (p->hg_scale)
+                    p->hg_scale[i] = hourglass_scale(mat, &st, p->hg_scale[i]);
                 flowing += r.iterations > 0;
                 iterations += r.iterations;
                 if (!r.converged) {

@@ -29,6 +29,7 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
     double *restrict f = m->p.f;
     double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
+    const double *restrict hs = m->p.hg_scale;
     const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
@@ -60,8 +61,12 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
         if ((with_hg || with_visc) && pair > 0.0) {
             const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
             if (with_hg) {
-                const double c = pair * hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi,
-                                                       F + 9 * j, d0, d1, d2, x0, x1, x2);
+                /* the pair's modulus: the mean of both particles' (symmetric in
+                 * i, j, so the force stays antisymmetric) */
+                const double stiff = hs ? 0.5 * (hs[i] + hs[j]) : 1.0;
+                const double c = pair * stiff *
+                                 hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
+                                                d1, d2, x0, x1, x2);
                 h0 += c * x0;
                 h1 += c * x1;
                 h2 += c * x2;

@@ -53,7 +53,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->P_tilde); free(p->sigma); free(p->e);
     free(p->f_hourglass); free(p->f_viscous);
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
-    free(p->T);
+    free(p->T); free(p->hg_scale);
     free(p->damage); free(p->damage_init); free(p->crack_gradient); free(p->void_fraction);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
@@ -124,6 +124,8 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, "force:pk1_pair");
     if (s->hourglass)
         add_module(m, "hourglass:ganzenmuller");
+    if (m->p.hg_scale)
+        add_module(m, "hourglass:tangent_stiffness");
     if (s->viscosity)
         add_module(m, "viscosity:monaghan");
     for (size_t k = 0; k < s->nbcs; k++) {
@@ -186,6 +188,12 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
         return -1;
     if (thermal && !(p->T = tlsph_alloc(m, n, sizeof(double))))
         return -1;
+    if (plastic && m->scene.hourglass && m->scene.hourglass_tangent) {
+        if (!(p->hg_scale = tlsph_alloc(m, n, sizeof(double))))
+            return -1;
+        for (size_t i = 0; i < n; i++)
+            p->hg_scale[i] = 1.0; /* elastic until a step says otherwise */
+    }
     return p->id && p->body && p->X && p->x && p->v && p->f && p->vol0 && p->mass && p->h &&
                    p->Linv && p->F && p->Fdot && p->P_tilde && p->sigma && p->e
                ? 0

@@ -44,6 +44,8 @@ struct tlsph_particles {
     double *plastic_strain; /* plastic logarithmic strain in the unrotated frame, 1 [6n] */
     double *eps_p_rate;     /* equivalent plastic strain rate of the last step, 1/s */
     double *yield_stress;   /* cached static flow stress at the current state, Pa (0 = unknown) */
+    double *hg_scale;       /* hourglass spring modulus / E of the last step, 1 (only with the
+                               "tangent" hourglass stiffness and plasticity; NULL otherwise) */
     /* Temperature, K; allocated only when some material has thermal coupling.
      * NaN for particles whose material has no temperature. */
     double *T;

@@ -175,7 +175,7 @@ static int parse_discretization(const json_t *root, struct tlsph_scene *s,
 {
     static const char *const keys[] = {"kernel", "support_factor", "hourglass", "viscosity",
                                        "damage", NULL};
-    static const char *const hg_keys[] = {"enabled", "coefficient", NULL};
+    static const char *const hg_keys[] = {"enabled", "coefficient", "stiffness", NULL};
     static const char *const visc_keys[] = {"enabled", "linear", "quadratic", NULL};
     const char *P = "/discretization";
     const json_t *d = jc_object(root, "discretization", 0, "", err);
@@ -206,6 +206,17 @@ static int parse_discretization(const json_t *root, struct tlsph_scene *s,
         bad |= jc_boolean(hg, "enabled", 0, Q, &s->hourglass, err) < 0;
         bad |= jc_number(hg, "coefficient", 0, JC_BETWEEN(0.0, 100.0), "(dimensionless)", Q,
                          &s->hourglass_coefficient, err) < 0;
+        char stiffness[16] = "elastic";
+        const int got = jc_string(hg, "stiffness", 0, Q, stiffness, sizeof stiffness, err);
+        bad |= got < 0;
+        if (got == 0 && strcmp(stiffness, "tangent") == 0) {
+            s->hourglass_tangent = 1;
+        } else if (got == 0 && strcmp(stiffness, "elastic") != 0) {
+            tlsph_errors_add(err, "/discretization/hourglass/stiffness",
+                             "unknown hourglass stiffness '%s' (accepted: elastic, tangent)",
+                             stiffness);
+            bad = 1;
+        }
     } else if (json_object_get(d, "hourglass")) {
         bad = 1;
     }
