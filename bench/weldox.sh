@@ -10,11 +10,12 @@
 # JOBS of them at a time.  One Markdown table row per run from
 # bench/weldox_metrics.py: peak engineering stress and its strain, the strains
 # at damage initiation, first failure and separation, the notch-section
-# averages at first failure, particle count, wall time and the run's status.
+# averages, the load rise between failure and separation, particle count,
+# steps, wall time and the run's status.
 #
 # usage: bench/weldox.sh [OUTDIR]   (default bench/out/weldox; results are kept)
 #        JOBS=N (default 2)  CASES="460e:r2:jc ..." to run a subset
-# Takes about 40 min on the project's 2-core machine.
+# Takes about 45 min on the project's 2-core machine (86 CPU-minutes, JOBS=2).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
