@@ -54,7 +54,7 @@ GEOMETRIES = {
                    gtn=dict(vmax=40.0, tau=5e-5), length=0.03, middle=0.015,
                    geometry={"cylinder": {"base": [0, 0, 0], "axis": [0, 0, 1],
                                           "radius": 0.003, "length": 0.03}}),
-    "r2": dict(h=0.0005, end=1.6e-4, end_gtn=2.4e-4, vmax=20.0, tau=1e-5, length=0.007, middle=0.0035,
+    "r2": dict(h=0.00035, end=1.6e-4, end_gtn=2.4e-4, vmax=20.0, tau=1e-5, length=0.007, middle=0.0035,
                geometry={"notched_bar": {"base": [0, 0, 0], "axis": [0, 0, 1], "radius": 0.005,
                                          "length": 0.007, "notch_root_radius": 0.003,
                                          "notch_radius": 0.002, "notch_position": 0.0035}}),
