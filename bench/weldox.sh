@@ -15,7 +15,8 @@
 #
 # usage: bench/weldox.sh [OUTDIR]   (default bench/out/weldox; results are kept)
 #        JOBS=N (default 2)  CASES="460e:r2:jc ..." to run a subset
-# Takes about 45 min on the project's 2-core machine (86 CPU-minutes, JOBS=2).
+# Takes about an hour on the project's 2-core machine (about 115 CPU-minutes,
+# JOBS=2).
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
