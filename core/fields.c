@@ -223,8 +223,7 @@ static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
 static void sv_balance(const struct tlsph_model *m, double *o)
 {
-    const struct tlsph_energy *e = &m->energy;
-    o[0] = e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    o[0] = tlsph_energy_balance(&m->energy);
 }
 
 static void sv_momentum(const struct tlsph_model *m, double *o)
@@ -273,23 +272,21 @@ const struct tlsph_series_column tlsph_global_series[] = {
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
-const struct tlsph_series_column tlsph_group_series[] = {
+static const struct tlsph_series_column group_columns[] = {
     {"reaction_force", 3, "N", "force exerted by the constraint on the group's particles", NULL,
      NULL},
     {"displacement", 3, "m", "mean displacement of the group's particles", NULL, NULL},
 };
-const size_t tlsph_ngroup_series = sizeof tlsph_group_series / sizeof *tlsph_group_series;
 
-const struct tlsph_series_column tlsph_gauge_series[] = {
+static const struct tlsph_series_column gauge_columns[] = {
     {"engineering_stress", 1, "Pa",
      "mean axial reaction of the two groups / area, positive in tension", NULL, NULL},
     {"engineering_strain", 1, "1", "change of the distance between the groups' mean "
      "positions along the gauge axis / gauge length", NULL, NULL},
 };
-const size_t tlsph_ngauge_series = sizeof tlsph_gauge_series / sizeof *tlsph_gauge_series;
 
 /* In enum tlsph_section_value order. */
-const struct tlsph_series_column tlsph_section_series[] = {
+static const struct tlsph_series_column section_columns[] = {
     {"max_principal_stress", 1, "Pa",
      "mean over the section's particles (reference-volume weighted) of the largest "
      "principal Cauchy stress", NULL, NULL},
@@ -298,35 +295,57 @@ const struct tlsph_series_column tlsph_section_series[] = {
      has_plasticity, NULL},
     {"damage", 1, "1", "mean damage over the section's particles", has_damage, NULL},
 };
-const size_t tlsph_nsection_series = sizeof tlsph_section_series / sizeof *tlsph_section_series;
 
-size_t tlsph_section_series_width(const struct tlsph_model *m)
+static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
+static size_t gauge_count(const struct tlsph_model *m) { return m->scene.ngauges; }
+static size_t section_count(const struct tlsph_model *m) { return m->scene.nsections; }
+
+/* Only conditions that carry load (fixed, velocity) have a reaction to report. */
+static const char *group_item(const struct tlsph_model *m, size_t k)
 {
-    size_t w = 0;
-    for (size_t c = 0; c < tlsph_nsection_series; c++)
-        w += tlsph_series_present(&tlsph_section_series[c], m) ? 1 : 0;
-    return w;
+    const enum tlsph_bc_type t = m->scene.bcs[k].type;
+    return t == TLSPH_BC_FIXED || t == TLSPH_BC_VELOCITY ? m->scene.bcs[k].name : NULL;
 }
 
-void tlsph_gauge_series_values(const struct tlsph_model *m, size_t k, double *out)
+static const char *gauge_item(const struct tlsph_model *m, size_t k)
 {
-    tlsph_gauge_values(m, k, out);
+    return m->scene.gauges[k].name;
 }
 
-void tlsph_section_series_values(const struct tlsph_model *m, size_t k, double *out)
+static const char *section_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.sections[k].name;
+}
+
+static void group_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_group *g = &m->groups[k];
+    for (int c = 0; c < 3; c++) {
+        out[c] = g->reaction[c];
+        out[3 + c] = g->displacement[c];
+    }
+}
+
+static void section_values(const struct tlsph_model *m, size_t k, double *out)
 {
     double v[TLSPH_SECTION_NVALUES];
     tlsph_section_values(m, k, v);
-    for (size_t c = 0; c < tlsph_nsection_series; c++)
-        if (tlsph_series_present(&tlsph_section_series[c], m))
+    for (size_t c = 0; c < TLSPH_SECTION_NVALUES; c++)
+        if (tlsph_series_present(&section_columns[c], m))
             *out++ = v[c];
 }
 
-int tlsph_group_has_series(const struct tlsph_model *m, size_t k)
-{
-    const enum tlsph_bc_type t = m->scene.bcs[k].type;
-    return t == TLSPH_BC_FIXED || t == TLSPH_BC_VELOCITY;
-}
+const struct tlsph_series_family tlsph_series_families[] = {
+    [TLSPH_FAMILY_GROUPS] = {"groups", 1, group_columns,
+                             sizeof group_columns / sizeof *group_columns, group_count,
+                             group_item, group_values},
+    [TLSPH_FAMILY_GAUGES] = {"gauges", 0, gauge_columns,
+                             sizeof gauge_columns / sizeof *gauge_columns, gauge_count,
+                             gauge_item, tlsph_gauge_values},
+    [TLSPH_FAMILY_SECTIONS] = {"sections", 0, section_columns,
+                               sizeof section_columns / sizeof *section_columns, section_count,
+                               section_item, section_values},
+};
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)
 {
@@ -342,11 +361,12 @@ size_t tlsph_global_series_width(const struct tlsph_model *m)
     return w;
 }
 
-size_t tlsph_group_series_width(void)
+size_t tlsph_family_width(const struct tlsph_series_family *f, const struct tlsph_model *m)
 {
     size_t w = 0;
-    for (size_t c = 0; c < tlsph_ngroup_series; c++)
-        w += (size_t)tlsph_group_series[c].ncomp;
+    for (size_t c = 0; c < f->ncolumns; c++)
+        if (tlsph_series_present(&f->columns[c], m))
+            w += (size_t)f->columns[c].ncomp;
     return w;
 }
 
@@ -358,14 +378,5 @@ void tlsph_global_series_values(const struct tlsph_model *m, double *out)
             continue;
         col->value(m, out);
         out += col->ncomp;
-    }
-}
-
-void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *out)
-{
-    const struct tlsph_group *g = &m->groups[k];
-    for (int c = 0; c < 3; c++) {
-        out[c] = g->reaction[c];
-        out[3 + c] = g->displacement[c];
     }
 }

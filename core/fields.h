@@ -33,9 +33,7 @@ extern const struct tlsph_field tlsph_fields[];
 extern const size_t tlsph_nfields;
 
 /* A time-series column: the run samples these every scene.series_every steps.
- * Global columns are present when their module is (present == NULL: always);
- * group columns repeat for each boundary group that carries load (fixed and
- * velocity conditions) under the name "<group>/<column>". */
+ * Columns are present when their module is (present == NULL: always). */
 struct tlsph_series_column {
     const char *name;
     int ncomp;               /* 1 or 3 */
@@ -47,29 +45,33 @@ struct tlsph_series_column {
 
 extern const struct tlsph_series_column tlsph_global_series[];
 extern const size_t tlsph_nglobal_series;
-extern const struct tlsph_series_column tlsph_group_series[];
-extern const size_t tlsph_ngroup_series;
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m);
-/* Does boundary condition k produce group series (reaction force, displacement)? */
-int tlsph_group_has_series(const struct tlsph_model *m, size_t k);
 /* Writes the current values of the present global columns (concatenated components). */
 void tlsph_global_series_values(const struct tlsph_model *m, double *out);
-/* Writes the current values of group k's columns. */
-void tlsph_group_series_values(const struct tlsph_model *m, size_t k, double *out);
 /* Number of doubles tlsph_global_series_values writes for this model. */
 size_t tlsph_global_series_width(const struct tlsph_model *m);
-size_t tlsph_group_series_width(void);
 
-/* Gauge columns (both always present, 2 values) and section columns (those of
- * present modules) repeat per scene gauge / section under
- * "gauges/<name>/<column>" and "sections/<name>/<column>". */
-extern const struct tlsph_series_column tlsph_gauge_series[];
-extern const size_t tlsph_ngauge_series;
-extern const struct tlsph_series_column tlsph_section_series[];
-extern const size_t tlsph_nsection_series;
-size_t tlsph_section_series_width(const struct tlsph_model *m);
-void tlsph_gauge_series_values(const struct tlsph_model *m, size_t k, double *out);
-void tlsph_section_series_values(const struct tlsph_model *m, size_t k, double *out);
+/* Columns that repeat per item of the scene, written as
+ * /observables/<family>/<item>/<column>: boundary groups that carry load
+ * (fixed and velocity conditions), gauges and sections. */
+enum tlsph_family_id { TLSPH_FAMILY_GROUPS, TLSPH_FAMILY_GAUGES, TLSPH_FAMILY_SECTIONS,
+                       TLSPH_NFAMILIES };
+
+struct tlsph_series_family {
+    const char *name;
+    int always;              /* its HDF5 group exists even when no item has series */
+    const struct tlsph_series_column *columns;
+    size_t ncolumns;
+    size_t (*count)(const struct tlsph_model *m);
+    /* name of item k (k < count), or NULL when item k has no series */
+    const char *(*item)(const struct tlsph_model *m, size_t k);
+    /* writes item k's present columns, concatenated (tlsph_family_width doubles) */
+    void (*values)(const struct tlsph_model *m, size_t k, double *out);
+};
+
+extern const struct tlsph_series_family tlsph_series_families[TLSPH_NFAMILIES];
+/* Doubles one item of family f writes in this model (its present columns). */
+size_t tlsph_family_width(const struct tlsph_series_family *f, const struct tlsph_model *m);
 
 #endif

@@ -37,6 +37,7 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     double f0 = 0, f1 = 0, f2 = 0;
     double h0 = 0, h1 = 0, h2 = 0, q0 = 0, q1 = 0, q2 = 0;
     const double Di = with_damage ? D[i] : 0.0;
+    const double hs_i = hs ? hs[i] : 1.0;
     /* a failed particle (D = 1) neither exerts nor receives any pair force */
     const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
     for (int64_t k = start[i]; k < k_end; k++) {
@@ -63,7 +64,7 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
             if (with_hg) {
                 /* the pair's modulus: the mean of both particles' (symmetric in
                  * i, j, so the force stays antisymmetric) */
-                const double stiff = hs ? 0.5 * (hs[i] + hs[j]) : 1.0;
+                const double stiff = hs ? 0.5 * (hs_i + hs[j]) : 1.0;
                 const double c = pair * stiff *
                                  hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
                                                 d1, d2, x0, x1, x2);

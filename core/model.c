@@ -43,6 +43,11 @@ void tlsph_model_momentum(const struct tlsph_model *m, double out[3])
     out[2] = p2;
 }
 
+double tlsph_energy_balance(const struct tlsph_energy *e)
+{
+    return e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+}
+
 void tlsph_model_free(struct tlsph_model *m)
 {
     if (!m)

@@ -159,6 +159,9 @@ void tlsph_model_step(struct tlsph_model *m);
 int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
 /* Total linear momentum, kg m/s. */
 void tlsph_model_momentum(const struct tlsph_model *m, double out[3]);
+/* kinetic + internal + hourglass + viscous - external work - initial energy, J:
+ * 0 when energy is conserved (the stability contract bounds it). */
+double tlsph_energy_balance(const struct tlsph_energy *e);
 
 /* Tracked allocation helpers (count bytes into m->bytes_allocated). */
 void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size);

@@ -93,8 +93,7 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
         return fail(m, d, "speed", worst, vmax);
 
     const struct tlsph_energy *e = &m->energy;
-    const double balance =
-        e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    const double balance = tlsph_energy_balance(e);
     if (e->scale > 0.0 && fabs(balance) > m->scene.energy_tolerance * e->scale)
         return fail(m, d, "energy_balance", fabs(balance) / e->scale, m->scene.energy_tolerance);
     return 0;

@@ -658,51 +658,32 @@ done:
     return rc;
 }
 
-/* Name of item k of a per-item series family, or NULL when k has no series. */
-static const char *family_item(const struct tlsph_model *m, const char *family, size_t k)
-{
-    if (strcmp(family, "groups") == 0)
-        return k < m->scene.nbcs && tlsph_group_has_series(m, k) ? m->scene.bcs[k].name : NULL;
-    if (strcmp(family, "gauges") == 0)
-        return k < m->scene.ngauges ? m->scene.gauges[k].name : NULL;
-    return k < m->scene.nsections ? m->scene.sections[k].name : NULL;
-}
-
-static size_t family_size(const struct tlsph_model *m, const char *family)
-{
-    if (strcmp(family, "groups") == 0)
-        return m->scene.nbcs;
-    return strcmp(family, "gauges") == 0 ? m->scene.ngauges : m->scene.nsections;
-}
-
 /* /observables/<family>/<item>/<column> for every item with series and every
- * present column.  "groups" always exists (readers rely on it); the gauges and
- * sections groups only when the scene asks for one. */
+ * present column; the family's group only when it has an item or is "always". */
 static int create_family(struct tlsph_output *o, const struct tlsph_model *m, hid_t obs,
-                         const char *family, const struct tlsph_series_column *cols,
-                         size_t ncols, size_t *offset)
+                         const struct tlsph_series_family *f, size_t *offset)
 {
     int rc = -1;
     hid_t fam = H5I_INVALID_HID, g = H5I_INVALID_HID;
-    if (strcmp(family, "groups") == 0 && (fam = make_group(obs, family)) < 0)
+    if (f->always && (fam = make_group(obs, f->name)) < 0)
         goto done;
-    for (size_t k = 0; k < family_size(m, family); k++) {
-        const char *item = family_item(m, family, k);
+    for (size_t k = 0; k < f->count(m); k++) {
+        const char *item = f->item(m, k);
         if (!item)
             continue;
-        if (fam < 0 && (fam = make_group(obs, family)) < 0)
+        if (fam < 0 && (fam = make_group(obs, f->name)) < 0)
             goto done;
         char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 64];
         link_name(name, sizeof name, item);
-        snprintf(path, sizeof path, "/observables/%s/%s", family, name);
+        snprintf(path, sizeof path, "/observables/%s/%s", f->name, name);
         if ((g = make_group(fam, name)) < 0)
             goto done;
-        for (size_t c = 0; c < ncols; c++) {
-            if (!tlsph_series_present(&cols[c], m))
+        for (size_t c = 0; c < f->ncolumns; c++) {
+            if (!tlsph_series_present(&f->columns[c], m))
                 continue;
-            if (create_series(o, g, path, &cols[c], *offset) < 0)
+            if (create_series(o, g, path, &f->columns[c], *offset) < 0)
                 goto done;
-            *offset += (size_t)cols[c].ncomp;
+            *offset += (size_t)f->columns[c].ncomp;
         }
         H5Gclose(g);
         g = H5I_INVALID_HID;
@@ -731,11 +712,9 @@ static int create_observables(struct tlsph_output *o, const struct tlsph_model *
             goto done;
         offset += (size_t)tlsph_global_series[c].ncomp;
     }
-    if (create_family(o, m, obs, "groups", tlsph_group_series, tlsph_ngroup_series, &offset) < 0 ||
-        create_family(o, m, obs, "gauges", tlsph_gauge_series, tlsph_ngauge_series, &offset) < 0 ||
-        create_family(o, m, obs, "sections", tlsph_section_series, tlsph_nsection_series,
-                      &offset) < 0)
-        goto done;
+    for (size_t f = 0; f < TLSPH_NFAMILIES; f++)
+        if (create_family(o, m, obs, &tlsph_series_families[f], &offset) < 0)
+            goto done;
     rc = 0;
 done:
     if (obs >= 0)
@@ -849,16 +828,18 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     int maxcomp = 1;
     o->present = malloc(tlsph_nfields * sizeof *o->present);
     o->frames = malloc((tlsph_nfields ? tlsph_nfields : 1) * sizeof *o->frames);
-    size_t ngroups = 0;
-    for (size_t k = 0; k < m->scene.nbcs; k++)
-        ngroups += tlsph_group_has_series(m, k) ? 1 : 0;
-    size_t maxseries = tlsph_nglobal_series + ngroups * tlsph_ngroup_series +
-                       m->scene.ngauges * tlsph_ngauge_series +
-                       m->scene.nsections * tlsph_nsection_series;
+    size_t maxseries = tlsph_nglobal_series;
+    o->width = tlsph_global_series_width(m);
+    for (size_t fi = 0; fi < TLSPH_NFAMILIES; fi++) {
+        const struct tlsph_series_family *f = &tlsph_series_families[fi];
+        const size_t w = tlsph_family_width(f, m);
+        for (size_t k = 0; k < f->count(m); k++)
+            if (f->item(m, k)) {
+                maxseries += f->ncolumns;
+                o->width += w;
+            }
+    }
     o->series = calloc(maxseries ? maxseries : 1, sizeof *o->series);
-    o->width = tlsph_global_series_width(m) + ngroups * tlsph_group_series_width() +
-               m->scene.ngauges * tlsph_ngauge_series +
-               m->scene.nsections * tlsph_section_series_width(m);
     o->rows = malloc(SERIES_CHUNK * (o->width ? o->width : 1) * sizeof *o->rows);
     o->row_step = malloc(SERIES_CHUNK * sizeof *o->row_step);
     o->row_time = malloc(SERIES_CHUNK * sizeof *o->row_time);
@@ -1010,19 +991,17 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
     else if (o->nrows == 0 && o->nsamples > 0 && o->last_step_written == m->step)
         return 0;
     double *row = o->rows + slot * o->width;
-    size_t gw = tlsph_global_series_width(m), grw = tlsph_group_series_width(), off = gw;
+    size_t off = tlsph_global_series_width(m);
     tlsph_global_series_values(m, row);
-    for (size_t k = 0; k < m->scene.nbcs; k++) {
-        if (!tlsph_group_has_series(m, k))
-            continue;
-        tlsph_group_series_values(m, k, row + off);
-        off += grw;
+    for (size_t fi = 0; fi < TLSPH_NFAMILIES; fi++) {
+        const struct tlsph_series_family *f = &tlsph_series_families[fi];
+        const size_t w = tlsph_family_width(f, m);
+        for (size_t k = 0; k < f->count(m); k++)
+            if (f->item(m, k)) {
+                f->values(m, k, row + off);
+                off += w;
+            }
     }
-    for (size_t k = 0; k < m->scene.ngauges; k++, off += tlsph_ngauge_series)
-        tlsph_gauge_series_values(m, k, row + off);
-    const size_t sw = tlsph_section_series_width(m);
-    for (size_t k = 0; k < m->scene.nsections; k++, off += sw)
-        tlsph_section_series_values(m, k, row + off);
     o->row_step[slot] = m->step;
     o->row_time[slot] = m->t;
     o->nrows = slot + 1;

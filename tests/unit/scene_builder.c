@@ -2,6 +2,7 @@
 
 #include <check.h>
 #include <jansson.h>
+#include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -47,4 +48,14 @@ void run_until(struct tlsph_model *m, double t_end)
         tlsph_model_step(m);
         ck_assert_msg(tlsph_model_check(m, &d) == 0, "unstable: %s", d.message);
     }
+}
+
+double momentum_scale(const struct tlsph_model *m)
+{
+    double s = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *v = m->p.v + 3 * i;
+        s += m->p.mass[i] * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    }
+    return s;
 }

@@ -12,5 +12,7 @@ struct tlsph_model *build_example(const char *name, double spacing);
 /* Runs steps until m->t >= t_end, calling the stability check every step;
  * fails the test if the model goes unstable. */
 void run_until(struct tlsph_model *m, double t_end);
+/* sum_i m_i |v_i|, kg m/s: the scale momentum drift is measured against. */
+double momentum_scale(const struct tlsph_model *m);
 
 #endif

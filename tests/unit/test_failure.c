@@ -70,22 +70,6 @@ static char *scene(const char *treatment, const char *motion)
     return scene_with(treatment, motion, JC_DAMAGE);
 }
 
-static double momentum_scale(const struct tlsph_model *m)
-{
-    double s = 0.0;
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *v = m->p.v + 3 * i;
-        s += m->p.mass[i] * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    }
-    return s;
-}
-
-static double balance(const struct tlsph_model *m)
-{
-    const struct tlsph_energy *e = &m->energy;
-    return e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
-}
-
 struct outcome {
     size_t failed;
     double worst_momentum; /* max |P - P0| / scale */
@@ -120,7 +104,7 @@ static struct outcome tear_with(const char *treatment, const char *motion, const
                 o.failed_velocity_changed = 1;
             }
         }
-        o.worst_balance = fmax(o.worst_balance, fabs(balance(m)) / m->energy.initial);
+        o.worst_balance = fmax(o.worst_balance, fabs(tlsph_energy_balance(&m->energy)) / m->energy.initial);
         if (s % 100 == 0) {
             double p[3];
             tlsph_model_momentum(m, p);

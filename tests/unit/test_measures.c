@@ -77,7 +77,8 @@ START_TEST(section_means_are_exact)
     ck_assert_msg(fabs(v[TLSPH_SECTION_MAX_PRINCIPAL] - p1) <= 1e-12 * p1, "s1 %.17g", v[0]);
     ck_assert_msg(fabs(v[TLSPH_SECTION_NORMAL] - sxx) <= 1e-12 * p1, "normal %.17g", v[1]);
     ck_assert_double_eq(v[TLSPH_SECTION_PLASTIC], 0.0); /* elastic: no plasticity module */
-    ck_assert_uint_eq(tlsph_section_series_width(m), 2);  /* so no such column either */
+    ck_assert_uint_eq(tlsph_family_width(&tlsph_series_families[TLSPH_FAMILY_SECTIONS], m),
+                      2); /* so no such column either */
     tlsph_model_free(m);
 }
 END_TEST

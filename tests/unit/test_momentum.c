@@ -23,12 +23,9 @@ static const char *scene =
 START_TEST(free_body_momentum)
 {
     struct tlsph_model *m = build_model(scene);
-    double p0[3], p[3], scale = 0.0;
+    double p0[3], p[3];
     tlsph_model_momentum(m, p0);
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *v = m->p.v + 3 * i;
-        scale += m->p.mass[i] * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-    }
+    const double scale = momentum_scale(m);
     for (int s = 0; s < 1000; s++)
         tlsph_model_step(m);
     tlsph_model_momentum(m, p);

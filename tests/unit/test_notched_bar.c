@@ -89,8 +89,7 @@ START_TEST(notched_bar_separates_with_a_steady_load_drop)
         failed_in_section += m->p.damage[i] >= 1.0;
     }
     const struct tlsph_energy *e = &m->energy;
-    const double bal = e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work -
-                       e->initial;
+    const double bal = tlsph_energy_balance(e);
     printf("notched R2 460E JC: %zu particles, peak %.4g N at %.3g us, damage from %.3g us, "
            "%zu failed (%zu of %zu within 1.5 h of the notch plane), end force %.3g N "
            "(%.2f %% of peak), worst rise after failure %.2f %%; work %.4g J, plastic %.4g J, "

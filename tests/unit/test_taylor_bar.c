@@ -46,8 +46,7 @@ START_TEST(taylor_bar_comes_to_rest_and_balances_energy)
     run_until(m, m->scene.end_time);
 
     const struct tlsph_energy *e = &m->energy;
-    const double balance =
-        e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    const double balance = tlsph_energy_balance(e);
     double zmax = -INFINITY, foot = 0.0, worst_vol = 0.0, eps_max = 0.0;
     const double K = m->scene.materials[0].bulk_modulus;
     for (size_t i = 0; i < m->p.n; i++) {
