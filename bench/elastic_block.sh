@@ -12,7 +12,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
-run="$top/tlsph-run"
+run="${BUILD_DIR:-$top/build}/tlsph-run"  # deploy/build.sh builds out of tree
 [ -x "$run" ] || { echo "build first: bash deploy/build.sh"; exit 1; }
 steps=${1:-200}; shift || true
 sizes=("$@"); [ ${#sizes[@]} -gt 0 ] || sizes=(22 47 74)

@@ -19,7 +19,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 top=$(cd "$here/.." && pwd)
-run="$top/tlsph-run"
+run="${BUILD_DIR:-$top/build}/tlsph-run"  # deploy/build.sh builds out of tree
 py=/usr/bin/python3
 [ -x "$run" ] || { echo "build first: bash deploy/build.sh"; exit 1; }
 what=${1:-all}

@@ -18,7 +18,7 @@ if curl -sf "$url/healthz" >/dev/null 2>&1; then
   exit 1
 fi
 mkdir -p results
-./tlsphd >results/tlsphd.log 2>&1 &
+build/tlsphd >results/tlsphd.log 2>&1 &
 daemon=$!
 trap 'kill -TERM $daemon 2>/dev/null; wait $daemon 2>/dev/null || true' EXIT
 for _ in $(seq 100); do curl -sf "$url/healthz" >/dev/null 2>&1 && break; sleep 0.1; done

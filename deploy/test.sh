@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
 # Sets everything up and runs the whole test suite twice:
-#   1. the optimised build (as users run it): make check;
-#   2. a copy of the tree built with AddressSanitizer + UndefinedBehaviorSanitizer
-#      (leak detection on): make check again, so every test also proves the code
-#      free of memory errors, leaks and undefined behaviour;
-#   3. make distcheck in another private copy, counted as one test: the release
+#   1. the optimised build (as users run it, build/): make check;
+#   2. a second out-of-tree build (build-sanitize/) with AddressSanitizer +
+#      UndefinedBehaviorSanitizer (leak detection on): make check again, so every
+#      test also proves the code free of memory errors, leaks and undefined
+#      behaviour;
+#   3. make distcheck from build/, counted as one test: the release
 #      tarball holds everything the build and the tests need, the whole suite
 #      passes in a VPATH build from the read-only unpacked sources, and
 #      install (systemd unit included) / installcheck / uninstall are clean.
@@ -35,26 +36,21 @@ run_check() { # dir label
   pass=$((pass + p)); fail=$((fail + f))
 }
 
-run_check "$top" "optimised build"
+run_check "$top/build" "optimised build"
 
-# Sanitizer build in a private copy of the tracked sources (the source tree is
-# configured in place, so an out-of-tree build of it is not possible).
-san="$top/.build-sanitize"
+# Sanitizer build: a second out-of-tree build of the same sources.
+san="$top/build-sanitize"
 rm -rf "$san" && mkdir -p "$san"
-git ls-files -z | xargs -0 tar cf - | tar xf - -C "$san"
-(cd "$san" && autoreconf -fi >/dev/null 2>&1 &&
-  ./configure --quiet CFLAGS="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
-              LDFLAGS="-fsanitize=address,undefined" >/dev/null 2>&1 &&
+(cd "$san" && "$top/configure" --quiet \
+    CFLAGS="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=undefined" \
+    LDFLAGS="-fsanitize=address,undefined" >/dev/null 2>&1 &&
   make -j"$(nproc)" >/dev/null 2>&1) || { echo "sanitizer build failed"; fail=$((fail + 1)); }
 [ -x "$san/tlsph-run" ] && run_check "$san" "sanitizer build (ASan + UBSan + LeakSanitizer)"
 
-# make distcheck in a private copy of the tracked sources (~1-2 min on 2 cores).
-dc="$top/.build-distcheck"
-rm -rf "$dc" && mkdir -p "$dc"
-git ls-files -z | xargs -0 tar cf - | tar xf - -C "$dc"
+# make distcheck (~1-2 min on 2 cores, plus its own make check).
+dc="$top/build"
 t0=$(date +%s)
-if (cd "$dc" && autoreconf -fi >/dev/null 2>&1 && ./configure --quiet >/dev/null 2>&1 &&
-    make -j"$(nproc)" distcheck >make-distcheck.out 2>&1); then
+if make -C "$dc" -j"$(nproc)" distcheck >"$dc/make-distcheck.out" 2>&1; then
   echo "== make distcheck"
   echo "PASS: distcheck ($(grep -m1 -E '^# TOTAL:' "$dc/make-distcheck.out" | sed 's/# TOTAL: *//') tests in the VPATH build, $(($(date +%s) - t0)) s)"
   pass=$((pass + 1))

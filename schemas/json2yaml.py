@@ -5,7 +5,7 @@ as schemas/openapi.yaml.
     json2yaml.py [--check] [JSON [YAML]]
 
 --check: exit 1 unless YAML parses to exactly the same document as JSON
-(tests/server/openapi_check.sh runs this)."""
+(tests/daemon/openapi_check.sh runs this)."""
 import json
 import os
 import sys

@@ -9,7 +9,7 @@
 
 #include <jansson.h>
 
-#include "errors.h"
+#include "util/errors.h"
 
 #define PROBLEM_CONTENT_TYPE "application/problem+json"
 

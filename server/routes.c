@@ -19,7 +19,7 @@
 #include "problem.h"
 #include "queue.h"
 #include "results.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "study.h"
 #include "supervisor.h"
 

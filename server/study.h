@@ -19,7 +19,7 @@
 #include <jansson.h>
 #include <stddef.h>
 
-#include "errors.h"
+#include "util/errors.h"
 
 struct tstudy_child {
     json_t *scene;  /* owned reference */

@@ -16,8 +16,8 @@
 #include <omp.h>
 #endif
 
-#include "model.h"
-#include "run.h"
+#include "run/model.h"
+#include "run/run.h"
 
 static volatile sig_atomic_t cancel_requested;
 

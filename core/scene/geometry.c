@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "parse_internal.h"
+#include "scene/parse_internal.h"
 
 static double dot3(const double a[3], const double b[3])
 {

@@ -1,4 +1,4 @@
-#include "json_check.h"
+#include "scene/json_check.h"
 
 #include <math.h>
 #include <stdio.h>

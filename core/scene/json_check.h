@@ -7,7 +7,7 @@
 
 #include <jansson.h>
 
-#include "../errors.h"
+#include "util/errors.h"
 
 enum jc_bound { JC_OPEN, JC_CLOSED, JC_NONE };
 

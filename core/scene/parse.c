@@ -13,9 +13,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "../eos/eos.h"
-#include "../strength/strength.h"
-#include "parse_internal.h"
+#include "material/eos/eos.h"
+#include "material/strength/strength.h"
+#include "scene/parse_internal.h"
 
 #define TLSPH_SCENE_FILE_MAX (16L * 1024 * 1024)
 

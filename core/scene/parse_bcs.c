@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "parse_internal.h"
+#include "scene/parse_internal.h"
 
 static const char *const xyz[] = {"x", "y", "z"};
 static const char *const tvar[] = {"t"};

@@ -1,11 +1,11 @@
 /* The damage parts of a scene: a material's "damage" block (the model's own
- * parameters are read by its file in core/damage/) and the discretization's
+ * parameters are read by its file in core/material/damage/) and the discretization's
  * "damage" block (how damage enters the approximation). */
 #include <string.h>
 
-#include "../damage/damage.h"
-#include "../strength/strength.h"
-#include "parse_internal.h"
+#include "material/damage/damage.h"
+#include "material/strength/strength.h"
+#include "scene/parse_internal.h"
 
 int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, const char *pointer,
                                 struct tlsph_errors *err)

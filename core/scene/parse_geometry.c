@@ -1,5 +1,5 @@
 /* Scene geometry objects: {"box"|"cylinder"|"sphere"|"plate"|"notched_bar"|
- * "union"|"difference": ...} -> struct tlsph_geometry (see core/scene.h for the
+ * "union"|"difference": ...} -> struct tlsph_geometry (see core/scene/scene.h for the
  * meaning of a[]).  Vectors always have 3 components; in 2-D the z components
  * of points and directions are ignored (set to 0), a box spans z in
  * [-0.5, 0.5] (the unit thickness), a sphere is a disk in the x-y plane and a
@@ -9,7 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "parse_internal.h"
+#include "scene/parse_internal.h"
 
 static const char *const kinds[] = {"box", "cylinder", "sphere", "plate", "notched_bar",
                                     "union", "difference", NULL};

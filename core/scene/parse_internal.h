@@ -1,13 +1,13 @@
 /* Internal interface between the scene parser's files (core/scene/parse*.c,
  * geometry.c, condition.c).  Not part of the engine's API: the engine sees only
- * core/scene.h. */
+ * core/scene/scene.h. */
 #ifndef TLSPH_SCENE_PARSE_INTERNAL_H
 #define TLSPH_SCENE_PARSE_INTERNAL_H
 
 #include <jansson.h>
 
-#include "../scene.h"
-#include "json_check.h"
+#include "scene/scene.h"
+#include "scene/json_check.h"
 
 #define TLSPH_GEOMETRY_MAX_DEPTH 16
 #define TLSPH_MAX_PARAMS 40

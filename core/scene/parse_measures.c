@@ -1,11 +1,11 @@
-/* Scene measurements written as time series (see core/measures.h):
+/* Scene measurements written as time series (see core/io/measures.h):
  *   "output": {"gauges": [{"name", "between": [GROUP, GROUP], "area", "length"?}],
  *              "sections": [{"name", "point", "normal", "thickness"}]}
  * A gauge's groups must be load-carrying boundary conditions (fixed or
  * velocity), since the gauge reads their reactions. */
 #include <string.h>
 
-#include "parse_internal.h"
+#include "scene/parse_internal.h"
 
 /* The array at out[key] (absent = empty): its size, or -1 with an error. */
 static long measure_array(const json_t *out, const char *key, const json_t **arr,

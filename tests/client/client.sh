@@ -1,9 +1,9 @@
 #!/bin/bash
 # Integration tests of the tlsph client against a real tlsphd on loopback.
-# Environment: top_srcdir, top_builddir, SYSTEM_PYTHON (see tests/server/common.sh);
+# Environment: top_srcdir, top_builddir, SYSTEM_PYTHON (see tests/daemon/common.sh);
 # CLIENT_WRAPPER (e.g. "valgrind --leak-check=full --error-exitcode=99 -q") runs
 # every client invocation under a wrapper.
-. "$(cd "$(dirname "$0")/.." && pwd)/server/common.sh"
+. "$(cd "$(dirname "$0")/.." && pwd)/daemon/common.sh"
 
 CLIENT=$top_builddir/tlsph
 [ -x "$CLIENT" ] || { echo "FAIL: $CLIENT not built"; exit 1; }
@@ -127,7 +127,7 @@ cl cancel "$ID"
 check "cancel on a final job keeps it" bash -c "[ $RC = 0 ] && [ -e '$DATA/jobs/$ID/result.h5' ]"
 
 # ------------------------------------------------------------ study
-"$PY" - "$top_srcdir/tests/server/examples/study.json" >"$TMP/study.json" <<'PYEOF'
+"$PY" - "$top_srcdir/tests/daemon/examples/study.json" >"$TMP/study.json" <<'PYEOF'
 import json, sys
 s = json.load(open(sys.argv[1]))
 s["base"]["bodies"][0]["spacing"] = 0.002

@@ -1,0 +1,50 @@
+/* Scene measurements sampled as time series (scene "output.gauges" and
+ * "output.sections", see core/scene/scene.h): engineering stress and strain between
+ * two loaded groups, and averages over a Lagrangian cross-section, the
+ * quantities tensile tests report (paper 000 §6: engineering stress-strain of
+ * smooth bars, principal stress vs plastic strain averaged over the notch
+ * section of notched bars). */
+#ifndef TLSPH_MEASURES_H
+#define TLSPH_MEASURES_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "util/errors.h"
+#include "scene/scene.h"
+
+struct tlsph_model;
+
+/* Per-run state of the measurements; owned by the model. */
+struct tlsph_measures {
+    double gauge_axis[TLSPH_MAX_MEASURES][3];   /* unit, group 0 -> group 1 centroid (reference) */
+    double gauge_length[TLSPH_MAX_MEASURES];    /* m */
+    int32_t *section_index[TLSPH_MAX_MEASURES]; /* particles of each section (owned) */
+    size_t section_count[TLSPH_MAX_MEASURES];
+    double section_volume[TLSPH_MAX_MEASURES];  /* reference volume of the section, m^3 */
+};
+
+/* Values of one section, in this order; the output keeps the present ones. */
+enum tlsph_section_value {
+    TLSPH_SECTION_MAX_PRINCIPAL, /* mean largest principal Cauchy stress, Pa */
+    TLSPH_SECTION_NORMAL,        /* mean normal stress n.sigma.n, Pa */
+    TLSPH_SECTION_PLASTIC,       /* mean equivalent plastic strain, 1 */
+    TLSPH_SECTION_DAMAGE,        /* mean damage, 1 */
+    TLSPH_SECTION_NVALUES
+};
+
+/* Sets up the gauges (axis, length) and sections (particle lists) from the
+ * reference configuration; needs the boundary groups.  A section that holds
+ * no particle, or a gauge whose groups share a centroid, is an error naming
+ * the scene field.  Returns 0 or -1 with err. */
+int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err);
+void tlsph_measures_free(struct tlsph_measures *ms);
+
+/* Engineering stress (Pa, positive in tension) and strain (1) of gauge k. */
+void tlsph_gauge_values(const struct tlsph_model *m, size_t k, double out[2]);
+/* Reference-volume-weighted means over section k (enum tlsph_section_value);
+ * entries whose module is absent (plasticity, damage) are 0. */
+void tlsph_section_values(const struct tlsph_model *m, size_t k,
+                          double out[TLSPH_SECTION_NVALUES]);
+
+#endif

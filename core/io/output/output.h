@@ -1,0 +1,55 @@
+/* The result file of a run: DIR/result.h5 (H5MD-style, SWMR-readable while the
+ * run writes) and DIR/result.xmf (XDMF 2 sidecar for ParaView's "XDMF Reader").
+ *
+ * Layout (all datasets carry a "units" attribute; see docs/output.md):
+ *   /h5md                             attrs version=[1,1], creator/name, creator/version
+ *   /parameters                       datasets scene (JSON text), modules (JSON array text);
+ *                                     attrs dimension, engine_version, units_system
+ *   /particles/solid/<field>          reference fields: dataset [N] or [N, C]
+ *   /particles/solid/<field>/{step,time,value}  frame fields: value [F, N] or [F, N, C]
+ *   /observables/<column>/{step,time,value}     time series: value [T] or [T, 3]
+ *   /observables/groups/<bc>/<column>/{step,time,value}
+ *   /cost                             attrs particles, pairs, steps, wall_seconds,
+ *                                     particle_steps_per_second, peak_memory_bytes,
+ *                                     bytes_per_particle (placeholders until close)
+ *   /diagnostics                      attrs status, and when unstable: step, time, quantity,
+ *                                     value, limit, nids, ids, message (rewritten at close)
+ * Frame datasets grow along an unlimited first axis; everything is created before
+ * SWMR writing starts, so nothing is created afterwards. */
+#ifndef TLSPH_OUTPUT_H
+#define TLSPH_OUTPUT_H
+
+#include "util/errors.h"
+#include "run/model.h"
+
+struct tlsph_output; /* opaque */
+
+struct tlsph_cost {
+    size_t particles, pairs;
+    long steps;
+    double wall_seconds;
+    double particle_steps_per_second;
+    size_t peak_memory_bytes; /* peak resident set of the process */
+    double bytes_per_particle;
+};
+
+/* Creates dir/result.h5 (truncating) and dir/result.xmf. Returns NULL and adds an error. */
+struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
+                                       struct tlsph_errors *err);
+/* Appends one frame of every present frame field, then flushes; rewrites the .xmf
+ * (via a temporary file and rename) when the last rewrite is more than 2 s old;
+ * tlsph_output_close always rewrites it.  Returns 0 or -1. */
+int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m);
+/* Appends one sample of every time-series column.  Rows are buffered and written
+ * (and flushed) when 1024 are pending, at every frame, after ~1 s of wall time and
+ * at close; a second sample at the same step replaces the first. */
+int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m);
+/* Records cost and outcome, closes everything. status: "successful", "unstable",
+ * "cancelled", "io_error". d may be NULL. Returns 0 or -1 (the handle is freed either way). */
+int tlsph_output_close(struct tlsph_output *o, const struct tlsph_model *m,
+                       const struct tlsph_cost *cost, const char *status,
+                       const struct tlsph_diagnostic *d);
+/* Frees without writing the closing records (used on abort paths). */
+void tlsph_output_abort(struct tlsph_output *o);
+
+#endif

@@ -1,0 +1,19 @@
+/* Constitutive update: stress from the deformation gradient for every particle,
+ * dispatched once per body (one material per body).  The per-particle physics
+ * (Hencky strain in the unrotated frame, elastic predictor, J2 return mapping,
+ * EOS, exact second Piola-Kirchhoff stress) is core/material/material_point.c; this file
+ * moves the particles' arrays through it.  Bodies of an elastic material run the
+ * elastic path: no plastic history is read or written and no return mapping runs. */
+#ifndef TLSPH_CONSTITUTIVE_H
+#define TLSPH_CONSTITUTIVE_H
+
+#include "run/model.h"
+
+/* Also finishes the trapezoidal energy update (e += dt/2 / rho0 * P_new : Fdot),
+ * adds the step's plastic work to m->energy.plastic_work, records det F problems
+ * (m->inverted, m->first_inverted_id, m->min_detF), return-mapping failures
+ * (m->return_failures, m->first_return_failure_id) and the stable time step
+ * estimate m->dt_cfl and m->max_wave_speed. */
+void tlsph_constitutive(struct tlsph_model *m, double dt);
+
+#endif

@@ -1,0 +1,76 @@
+/* Damage and failure models (paper 000 §5).  One file per model, one row per
+ * model in material/damage/registry.c; a material names a row:
+ *   "damage": {"type": name, ...model parameters, "evolution": {"factor": 10}}
+ *
+ * Two variables per particle: the damage-initiation variable D_init (0 at the
+ * start, damage starts when it reaches 1) and the damage D in [0, 1] (1 =
+ * failed: the particle carries no stress).  An initiation model (Cockcroft-
+ * Latham, Johnson-Cook) says how much D_init grows in a step of plastic flow;
+ * the evolution law (material/damage/evolution.c, eq. 45) turns D_init into D.
+ *
+ * Damage couples into the constitutive update (core/material/material_point.c): the
+ * deviatoric stress and the flow stress carry (1 - D) (eq. 38, 2G(1 - D)),
+ * the tensile pressure carries (1 - D) (eq. 37), and the criteria read the
+ * effective (undamaged-matrix) stress.  It couples into the approximation
+ * through core/sph/kinematics.c and core/sph/forces.c (eqs. 33-35).
+ *
+ * Units: SI (Pa, 1/s, K). */
+#ifndef TLSPH_DAMAGE_H
+#define TLSPH_DAMAGE_H
+
+#include <jansson.h>
+
+#include "util/errors.h"
+#include "scene/scene.h"
+
+/* What an initiation criterion sees of one step of plastic flow at a point. */
+struct tlsph_damage_step {
+    double deps_p;      /* equivalent plastic strain increment of the step (> 0), 1 */
+    double rate;        /* equivalent plastic strain rate, 1/s */
+    double T;           /* temperature, K (only with the material's thermal block) */
+    double triaxiality; /* sigma_m / sigma_eq of the effective stress at the end of the step, 1 */
+    double sigma1;      /* largest principal effective Cauchy stress, Pa (models with
+                           needs_sigma1 only; 0 otherwise) */
+};
+
+struct tlsph_damage_model {
+    const char *name;   /* as written in the scene */
+    const char *module; /* "damage:<name>", for the run's list of active modules */
+    int needs_sigma1;   /* the criterion reads the largest principal stress */
+    /* 1 for a porous-plasticity model (GTN, material/damage/gtn.h): it replaces the J2
+     * return by its own yield surface and sets D itself, so it has no
+     * initiation criterion and no eq. 45 evolution. */
+    int porous;
+    /* Reads the model's parameters (its "type" and "evolution" keys are handled
+     * by the caller) into m->damage.params / m->damage.terms.  m's elastic
+     * constants, thermal block and strength are already parsed.  Returns 0 or -1. */
+    int (*parse)(const json_t *obj, struct tlsph_material *m, const char *pointer,
+                 struct tlsph_errors *err);
+    /* Increment of D_init over one step of plastic flow, >= 0 (NULL when porous). */
+    double (*initiation)(const struct tlsph_material *m, const struct tlsph_damage_step *step);
+};
+
+const struct tlsph_damage_model *tlsph_damage_find(const char *name);
+/* Comma-separated list of names, for error messages. */
+const char *tlsph_damage_names(void);
+
+/* Eq. 45 with its factor as a parameter: D = 0 for D_init < 1, D = min(1,
+ * factor (D_init - 1)) beyond.  D = 1 is failure, and it is the model's
+ * definition, not a clamp: D is a volume fraction of cracked material. */
+static inline double tlsph_damage_evolution(const struct tlsph_damage *d, double D_init)
+{
+    if (D_init < 1.0)
+        return 0.0;
+    const double D = d->evolution_factor * (D_init - 1.0);
+    return D < 1.0 ? D : 1.0;
+}
+
+/* Parses "evolution": {"factor": >0} (optional; default 10, the paper's value). */
+int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, const char *pointer,
+                                 struct tlsph_errors *err);
+
+extern const struct tlsph_damage_model tlsph_damage_cockcroft_latham;
+extern const struct tlsph_damage_model tlsph_damage_johnson_cook;
+extern const struct tlsph_damage_model tlsph_damage_gtn;
+
+#endif

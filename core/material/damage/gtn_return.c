@@ -1,0 +1,357 @@
+#include "material/damage/gtn_return.h"
+
+#include <math.h>
+
+#include "material/eos/eos.h"
+#include "material/strength/strength.h"
+#include "material/damage/gtn.h"
+
+#define TOLERANCE 1e-12
+#define SQRT_2PI 2.5066282746310002
+
+/* The end-of-step state at one iterate u = (dq, f, dM), with the residuals
+ * and their Jacobian.  The void fraction rather than dv is the unknown: as
+ * voids close under pressure f -> 0 is the difference of two numbers near f_n
+ * when computed from dv, but dv from f loses nothing. */
+struct eval {
+    double R[3], dR[3][3]; /* residuals (R2, R3 divided by the strain scale), d R_i / d u_k */
+    double size[3];        /* magnitude of the terms of each residual */
+    double merit;          /* R . R */
+    double tau_q, dv, p, K_t, sigma_M, f, T, W, phi;
+};
+
+/* Chu-Needleman nucleation rate d f / d eps_M at matrix strain e (eq. 50). */
+static double nucleation_rate(const double *g, double e)
+{
+    if (!(g[GTN_FN] > 0.0))
+        return 0.0;
+    const double z = (e - g[GTN_EN]) / g[GTN_SN];
+    return g[GTN_FN] / (g[GTN_SN] * SQRT_2PI) * exp(-0.5 * z * z);
+}
+
+static void evaluate(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+                     double scale, const double u[3], struct eval *s)
+{
+    const double *g = m->damage.params;
+    const double q1 = g[GTN_Q1], q2 = g[GTN_Q2], G3 = 3.0 * in->G;
+    const double dq = u[0], dM = u[2];
+    s->f = u[1];
+
+    /* each quantity with its gradient with respect to u = (dq, f, dM) */
+    const double d_f[3] = {0.0, 1.0, 0.0};
+    s->tau_q = in->q_trial - G3 * dq;
+    const double d_tau_q[3] = {-G3, 0.0, 0.0};
+    /* plastic volume from f: (1 - f_n) exp(-dv) = 1 + N - f (1 - k_w omega dq) =: c;
+     * written with log1p, dv keeps full precision as f -> 0 (voids closing) */
+    const double kwo = g[GTN_KW] * in->omega, den = 1.0 - kwo * dq;
+    const double N = tlsph_gtn_nucleated(g, in->eps_M, in->eps_M + dM);
+    const double c = 1.0 + N - s->f * den;
+    s->dv = log1p(-in->f) - log1p(N - s->f * den);
+    const double d_dv[3] = {-s->f * kwo / c, den / c, -nucleation_rate(g, in->eps_M + dM) / c};
+    const double dv = s->dv;
+    const double Je = in->J * exp(-(in->lnJp + dv));
+    m->eos->pressure(m, Je, in->e, &s->p, &s->K_t);
+    s->W = s->tau_q * dq - in->J * s->p * dv;
+    double d_p[3], d_W[3];
+    for (int k = 0; k < 3; k++) {
+        d_p[k] = s->K_t * d_dv[k]; /* dp/dJe = -K_t/Je, dJe/ddv = -Je */
+        d_W[k] = d_tau_q[k] * dq - in->J * (s->K_t * dv + s->p) * d_dv[k];
+    }
+    d_W[0] += s->tau_q;
+    s->T = in->T + in->heating * s->W;
+
+    struct tlsph_flow fl;
+    m->strength->flow(m, in->eps_M + dM, in->dt > 0.0 ? dM / in->dt : 0.0, s->T, &fl);
+    s->sigma_M = fl.stress;
+    double d_sM[3];
+    const double sT = in->heating > 0.0 ? fl.d_temperature * in->heating : 0.0;
+    for (int k = 0; k < 3; k++)
+        d_sM[k] = sT * d_W[k];
+    d_sM[2] += fl.d_strain + (in->dt > 0.0 ? fl.d_rate / in->dt : 0.0);
+
+    const double fs = tlsph_gtn_fstar(g, s->f);
+    const double fs_slope =
+        s->f <= g[GTN_FC] ? 1.0 : (1.0 / q1 - g[GTN_FC]) / (g[GTN_FF] - g[GTN_FC]);
+    const double D = q1 * fs;
+
+    const double JsM = in->J * s->sigma_M;
+    const double x = s->tau_q / JsM, y = -s->p / s->sigma_M, a = 1.5 * q2 * y;
+    const double ch = cosh(a), sh = sinh(a);
+    const double normal_v = 2.0 * x * dv, normal_q = 3.0 * q1 * q2 * fs * sh * dq;
+    s->phi = x * x + 2.0 * D * ch - (1.0 + D * D);
+    s->R[0] = s->phi;
+    s->R[1] = (normal_v - normal_q) / scale;
+    s->R[2] = ((1.0 - s->f) * dM - s->W / JsM) / scale;
+    /* the size of the terms each residual is the difference of: its round-off floor */
+    s->size[0] = x * x + 2.0 * D * ch + 1.0 + D * D;
+    /* dv is the difference of two logarithms: its floor is theirs */
+    const double dv_floor = fabs(log1p(-in->f)) + fabs(log1p(N - s->f * den));
+    s->size[1] = (fabs(normal_v) + fabs(normal_q) + 2.0 * x * dv_floor) / scale;
+    s->size[2] = ((1.0 - s->f) * dM + (fabs(s->tau_q * dq) + in->J * fabs(s->p) * (fabs(dv) + dv_floor)) / JsM) / scale;
+    for (int k = 0; k < 3; k++) {
+        const double dx = d_tau_q[k] / JsM - x * d_sM[k] / s->sigma_M;
+        const double dy = -d_p[k] / s->sigma_M - y * d_sM[k] / s->sigma_M;
+        const double dfs = fs_slope * d_f[k], dD = q1 * dfs;
+        s->dR[0][k] = 2.0 * x * dx + 2.0 * dD * (ch - D) + 3.0 * q2 * D * sh * dy;
+        s->dR[1][k] = (2.0 * dv * dx + 2.0 * x * d_dv[k] -
+                       3.0 * q1 * q2 *
+                           (dfs * sh * dq + fs * ch * 1.5 * q2 * dy * dq + (k == 0 ? fs * sh : 0.0))) /
+                      scale;
+        s->dR[2][k] = (-d_f[k] * dM + (k == 2 ? 1.0 - s->f : 0.0) - d_W[k] / JsM +
+                       s->W * d_sM[k] / (JsM * s->sigma_M)) /
+                      scale;
+    }
+    s->merit = s->R[0] * s->R[0] + s->R[1] * s->R[1] + s->R[2] * s->R[2];
+}
+
+/* Solves A d = b (3x3, Gaussian elimination with partial pivoting); 0 if singular. */
+static int solve3(double A[3][3], double b[3], double d[3])
+{
+    for (int c = 0; c < 3; c++) {
+        int piv = c;
+        for (int r = c + 1; r < 3; r++)
+            if (fabs(A[r][c]) > fabs(A[piv][c]))
+                piv = r;
+        if (!(fabs(A[piv][c]) > 0.0) || !isfinite(A[piv][c]))
+            return 0;
+        if (piv != c) {
+            for (int k = 0; k < 3; k++) {
+                const double t = A[c][k];
+                A[c][k] = A[piv][k];
+                A[piv][k] = t;
+            }
+            const double t = b[c];
+            b[c] = b[piv];
+            b[piv] = t;
+        }
+        for (int r = c + 1; r < 3; r++) {
+            const double l = A[r][c] / A[c][c];
+            for (int k = c; k < 3; k++)
+                A[r][k] -= l * A[c][k];
+            b[r] -= l * b[c];
+        }
+    }
+    for (int r = 2; r >= 0; r--) {
+        double s = b[r];
+        for (int k = r + 1; k < 3; k++)
+            s -= A[r][k] * d[k];
+        d[r] = s / A[r][r];
+    }
+    return isfinite(d[0]) && isfinite(d[1]) && isfinite(d[2]);
+}
+
+/* The iterates stay where the state means something: the deviator does not
+ * reverse (dq <= q_tr/(3G)), 0 <= f < 1 (f >= 0 also excludes a spurious root
+ * with f < 0, where "negative voids" shrink in tension), and dM stays
+ * positive (some hardening laws have an infinite slope at eps_M = 0). */
+static void keep_admissible(const struct tlsph_gtn_input *in, double scale, double u[3])
+{
+    const double dq_max = in->q_trial / (3.0 * in->G);
+    u[0] = fmin(fmax(u[0], 0.0), dq_max);
+    u[1] = fmin(fmax(u[1], 0.0), 1.0 - 1e-9);
+    u[2] = fmax(u[2], 1e-12 * scale);
+}
+
+/* First guess: the return with the matrix flow stress and the void fraction
+ * frozen at their start-of-step values and the EOS linearised (bulk modulus
+ * K_t).  In the plane x = q/(J sigma_M), y = sigma_m/sigma_M the elastic
+ * law is x = x_tr - 3G dq/(J sigma_M), y = y_tr - K_t dv/sigma_M; on the
+ * surface x(y) = sqrt(1 + D^2 - 2D cosh(3/2 q2 y)), and normality leaves one
+ * equation in y,
+ *   g(y) = 2 x(y) (y_tr - y) J/(3G) - (x_tr - x(y)) Phi_y(y)/K_t = 0,
+ * with a sign change between y = 0 (g >= 0: Phi_y = 0) and the trial value or
+ * the cap of the surface, whichever comes first (g <= 0): a bracketed root,
+ * found by the Illinois variant of regula falsi.  This replaces the paper's
+ * constant-triaxiality estimate (Algorithm 2 lines 10-17), which ignores the
+ * pressure the plastic dilatation relieves and can start Newton near the
+ * spurious root with f < 0. */
+static void first_guess(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+                        double sM, double p_tr, double K_t, double u[3])
+{
+    const double *g = m->damage.params;
+    const double q1 = g[GTN_Q1], q2 = g[GTN_Q2];
+    const double fs = tlsph_gtn_fstar(g, in->f), D = q1 * fs;
+    const double JsM = in->J * sM, x_tr = in->q_trial / JsM, y_tr = -p_tr / sM;
+    const double cG = JsM / (3.0 * in->G), cK = sM / K_t; /* strain per unit of x, of y */
+    /* cap: x(y) = 0 at cosh(3/2 q2 y) = (1 + D^2)/(2D) */
+    const double cap = D > 0.0 ? acosh((1.0 + D * D) / (2.0 * D)) / (1.5 * q2) : INFINITY;
+    const double side = y_tr >= 0.0 ? 1.0 : -1.0;
+    double a = 0.0, b = side * fmin(fabs(y_tr), cap);
+#define SURFACE_X(y) sqrt(fmax(1.0 + D * D - 2.0 * D * cosh(1.5 * q2 * (y)), 0.0))
+#define NORMAL_G(y, x)                                                                             \
+    (2.0 * (x) * (y_tr - (y)) * cK - (x_tr - (x)) * 3.0 * q1 * q2 * fs * sinh(1.5 * q2 * (y)) * cG)
+    double xa = SURFACE_X(a), xb = SURFACE_X(b);
+    double ga = NORMAL_G(a, xa), gb = NORMAL_G(b, xb);
+    double y = b, x = xb;
+    if (ga * gb < 0.0) {
+        for (int it = 0; it < 60; it++) {
+            y = (a * gb - b * ga) / (gb - ga);
+            x = SURFACE_X(y);
+            const double gy = NORMAL_G(y, x);
+            if (gy * gb < 0.0) {
+                a = b;
+                ga = gb;
+            } else {
+                ga *= 0.5; /* Illinois: the end kept twice counts half */
+            }
+            b = y;
+            gb = gy;
+            if (gy == 0.0 || fabs(b - a) <= 1e-12 * fmax(fabs(y), 1e-3))
+                break;
+        }
+    } else if (ga == 0.0 || fabs(ga) < fabs(gb)) {
+        y = a, x = xa;
+    }
+#undef SURFACE_X
+#undef NORMAL_G
+    const double dq = fmax(x_tr - x, 0.0) * JsM / (3.0 * in->G);
+    const double dv = (y_tr - y) * cK;
+    const double W = (in->q_trial - 3.0 * in->G * dq) * dq - in->J * (p_tr + K_t * dv) * dv;
+    u[0] = dq;
+    u[2] = fmax(W, 0.0) / ((1.0 - in->f) * JsM);
+    u[1] = (1.0 - (1.0 - in->f) * exp(-dv) + tlsph_gtn_nucleated(g, in->eps_M, in->eps_M + u[2])) /
+           (1.0 - g[GTN_KW] * in->omega * dq);
+}
+
+/* Newton from u with a backtracking line search; at most `budget` residual
+ * evaluations, counted in *evals.  Returns 1 when converged (e: the state at u). */
+static int newton(const struct tlsph_material *m, const struct tlsph_gtn_input *in, double scale,
+                  double u[3], struct eval *e, int budget, int *evals)
+{
+    struct eval trial;
+    keep_admissible(in, scale, u);
+    evaluate(m, in, scale, u, e);
+    int used = 1;
+    for (;;) {
+        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1] &&
+            fabs(e->R[2]) <= TOLERANCE * e->size[2])
+            break;
+        if (used >= budget) {
+            *evals += used;
+            return 0;
+        }
+        double A[3][3], b[3], d[3];
+        for (int i = 0; i < 3; i++) {
+            b[i] = -e->R[i];
+            for (int k = 0; k < 3; k++)
+                A[i][k] = e->dR[i][k];
+        }
+        if (!solve3(A, b, d)) {
+            *evals += used;
+            return 0;
+        }
+        /* backtracking: halve the step until |R|^2 decreases (Armijo); a step
+         * that finds no decrease at all ends the iteration unconverged */
+        double lambda = 1.0;
+        int moved = 0;
+        while (used < budget && lambda >= 1e-6) {
+            double v[3];
+            for (int k = 0; k < 3; k++)
+                v[k] = u[k] + lambda * d[k];
+            keep_admissible(in, scale, v);
+            evaluate(m, in, scale, v, &trial);
+            used++;
+            if (isfinite(trial.merit) && trial.merit <= (1.0 - 1e-4 * lambda) * e->merit) {
+                for (int k = 0; k < 3; k++)
+                    u[k] = v[k];
+                *e = trial;
+                moved = 1;
+                break;
+            }
+            lambda *= 0.5;
+        }
+        if (!moved) {
+            *evals += used;
+            return 0;
+        }
+    }
+    *evals += used;
+    return 1;
+}
+
+/* The trial state of `in` with its elastic strain scaled by s (deviator and
+ * log elastic volume), for the continuation below. */
+static struct tlsph_gtn_input scaled_trial(const struct tlsph_gtn_input *in, double s)
+{
+    struct tlsph_gtn_input sub = *in;
+    const double lnJ = log(in->J);
+    sub.q_trial = s * in->q_trial;
+    sub.lnJp = lnJ - s * (lnJ - in->lnJp);
+    return sub;
+}
+
+static double trial_phi(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+                        double yield, double *p, double *K_t)
+{
+    const double *g = m->damage.params;
+    m->eos->pressure(m, in->J * exp(-in->lnJp), in->e, p, K_t);
+    const double D = g[GTN_Q1] * tlsph_gtn_fstar(g, in->f);
+    const double x = in->q_trial / (in->J * yield);
+    return x * x + 2.0 * D * cosh(1.5 * g[GTN_Q2] * (-*p / yield)) - (1.0 + D * D);
+}
+
+static double strain_scale(const struct tlsph_gtn_input *in, double p)
+{
+    return (in->q_trial + in->J * fabs(p)) / (3.0 * in->G);
+}
+
+int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+                     struct tlsph_gtn_result *out)
+{
+    double yield = in->yield;
+    if (!(yield > 0.0)) {
+        struct tlsph_flow fl;
+        m->strength->flow(m, in->eps_M, 0.0, in->T, &fl);
+        yield = fl.stress;
+    }
+    double p_tr, K_tr;
+    const double phi_tr = trial_phi(m, in, yield, &p_tr, &K_tr);
+    *out = (struct tlsph_gtn_result){.f = in->f, .T = in->T, .sigma_M = yield, .p = p_tr,
+                                     .K_t = K_tr, .phi = phi_tr, .yield = yield, .converged = 1};
+    if (!(phi_tr > 0.0))
+        return 0; /* inside or on the yield surface: elastic step */
+    out->yield = 0.0;
+
+    const double scale = strain_scale(in, p_tr);
+    double u[3];
+    struct eval e;
+    int evals = 0;
+    first_guess(m, in, yield, p_tr, K_tr, u);
+    int ok = newton(m, in, scale, u, &e, TLSPH_GTN_MAX_ITERATIONS, &evals);
+    /* A large increment (many yield strains in one step, strong void growth)
+     * can defeat Newton from the frozen guess.  Continuation: reach the same
+     * end-of-step system through trial states scaled by k/n, each solve
+     * started from the previous solution; the last one (k = n) is the system
+     * itself, so a converged result is the exact backward-Euler step. */
+    for (int n = 4; !ok && n <= 64; n *= 4) {
+        double v[3] = {0.0, 0.0, 0.0};
+        int flowing = 0;
+        ok = 1;
+        for (int k = 1; k <= n && ok; k++) {
+            const struct tlsph_gtn_input sub = scaled_trial(in, (double)k / n);
+            double p, K_t;
+            if (!(trial_phi(m, &sub, yield, &p, &K_t) > 0.0))
+                continue;
+            if (!flowing)
+                first_guess(m, &sub, yield, p, K_t, v);
+            flowing = 1;
+            ok = newton(m, &sub, strain_scale(&sub, p), v, &e, TLSPH_GTN_MAX_ITERATIONS, &evals);
+        }
+        if (ok)
+            for (int k = 0; k < 3; k++)
+                u[k] = v[k];
+    }
+    out->iterations = evals;
+    out->converged = ok;
+    out->dq = u[0];
+    out->dv = e.dv;
+    out->dM = u[2];
+    out->f = e.f;
+    out->T = e.T;
+    out->sigma_M = e.sigma_M;
+    out->p = e.p;
+    out->K_t = e.K_t;
+    out->work = e.W;
+    out->phi = e.phi;
+    return 1;
+}

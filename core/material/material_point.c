@@ -1,0 +1,341 @@
+#include "material/material_point.h"
+
+#include <math.h>
+
+#include "material/eos/eos.h"
+#include "util/mat3.h"
+#include "material/damage/damage.h"
+#include "material/damage/gtn.h"
+#include "material/damage/gtn_return.h"
+#include "material/strength/j2_return.h"
+#include "material/strength/strength.h"
+
+/* (ln a - ln b)/(a - b) for eigenvalues a, b > 0 of C whose logarithms are
+ * already known (ln a = 2 lns_a): the difference of the logs loses no more
+ * than 1e-13 when a/b - 1 > 1e-3; closer, the series of log1p(x)/x. */
+static inline double log_divided_difference(double a, double b, double lna, double lnb)
+{
+    const double x = a / b - 1.0;
+    if (fabs(x) < 1e-3)
+        return (1.0 - x * (0.5 - x * (1.0 / 3.0 - x * (0.25 - 0.2 * x)))) / b;
+    return (lna - lnb) / (a - b);
+}
+
+/* Returns the plastic work per unit reference volume; tau (eigenbasis of C,
+ * deviatoric trial on entry) is returned to the yield surface in place.  tau is
+ * the effective (undamaged) stress: the damaged return is the same one scaled
+ * by (1 - D), so only the heat, (1 - D) of the effective work, sees D. */
+static double plastic_correction(const struct tlsph_material *mat, const double *Q, double J,
+                                 double dt, double intact, struct tlsph_point_state *s,
+                                 double tau[9], const double Ep_basis[9],
+                                 struct tlsph_point_result *r, double *dgamma)
+{
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau[k] * tau[k];
+    const double G = mat->shear_modulus;
+    const struct tlsph_j2_input in = {
+        .q_trial = sqrt(1.5 * t2),
+        .J = J,
+        .G = G,
+        .eps_p = s->eps_p,
+        .T = s->T,
+        .dt = dt,
+        .heating = mat->thermal.enabled ? intact * mat->thermal.taylor_quinney /
+                                              (mat->density * mat->thermal.specific_heat)
+                                        : 0.0,
+        .yield = s->yield,
+        .guess = s->rate * dt,
+    };
+    struct tlsph_j2_result out;
+    const int plastic = tlsph_j2_return(mat, &in, &out);
+    s->yield = out.yield;
+    *dgamma = 0.0;
+    if (!plastic) {
+        s->rate = 0.0;
+        return 0.0;
+    }
+    r->iterations = out.iterations;
+    r->converged = out.converged;
+    /* normal n = 3/2 tau_trial / q; dEp = dgamma n; tau = (1 - 3G dgamma / q) tau_trial */
+    const double flow = 1.5 * out.dgamma / in.q_trial;
+    const double shrink = 1.0 - 3.0 * G * out.dgamma / in.q_trial;
+    double Epb[9], Ep[9];
+    for (int k = 0; k < 9; k++) {
+        Epb[k] = Ep_basis[k] + flow * tau[k];
+        tau[k] *= shrink;
+    }
+    mat3_from_basis(Q, Epb, Ep);
+    mat3_to_sym6(Ep, s->plastic_strain);
+    s->eps_p += out.dgamma;
+    s->rate = dt > 0.0 ? out.dgamma / dt : 0.0;
+    if (mat->thermal.enabled)
+        s->T = out.T;
+    *dgamma = out.dgamma;
+    return intact * out.dgamma * (in.q_trial - 3.0 * G * out.dgamma);
+}
+
+/* Largest eigenvalue of the symmetric 3x3 matrix A (row-major). */
+static double largest_eigenvalue(const double A[9])
+{
+    double lam[3], Q[9];
+    sym3_eigen(A, lam, Q);
+    return fmax(lam[0], fmax(lam[1], lam[2]));
+}
+
+/* Stored elastic energy per unit reference volume (J/m^3) of a stress state:
+ * deviatoric G |dev He|^2 = q^2/(6G) (q the Kirchhoff von Mises value);
+ * volumetric by the secant p (1 - J_e)/2 (exact for a linear EOS) per unit
+ * intermediate volume, times the plastic volume ratio J_p. */
+static double deviatoric_energy(double G, double q) { return q * q / (6.0 * G); }
+static double volumetric_energy(double p, double Je, double Jp)
+{
+    return 0.5 * fmax(p * (1.0 - Je), 0.0) * Jp;
+}
+
+/* Grows the damage of a point that flowed plastically by dgamma this step and
+ * returns the energy released (J/m^3).  tau_dev: effective deviatoric Kirchhoff
+ * stress after the return (any basis); p: effective pressure (Pa). */
+static double damage_growth(const struct tlsph_material *mat, double dgamma, double J, double p,
+                            const double tau_dev[9], double triax, struct tlsph_point_state *s)
+{
+    const struct tlsph_damage_model *model = mat->damage.model;
+    struct tlsph_damage_step step = {
+        .deps_p = dgamma, .rate = s->rate, .T = s->T, .triaxiality = triax, .sigma1 = 0.0};
+    if (model->needs_sigma1)
+        step.sigma1 = largest_eigenvalue(tau_dev) / J - p;
+    s->damage_init += model->initiation(mat, &step);
+    const double D0 = s->damage, D1 = fmax(D0, tlsph_damage_evolution(&mat->damage, s->damage_init));
+    if (D1 == D0)
+        return 0.0;
+    s->damage = D1;
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau_dev[k] * tau_dev[k];
+    /* effective stored energy; its volumetric part splits into the tensile part,
+     * which damage degrades, and the compressive part, which only failure removes */
+    const double psi_dev = deviatoric_energy(mat->shear_modulus, sqrt(1.5 * t2));
+    const double psi_vol = volumetric_energy(p, J, 1.0);
+    const double tensile = p < 0.0 ? psi_vol : 0.0;
+    double released = (psi_dev + tensile) * (D1 - D0);
+    if (D1 >= 1.0 && p >= 0.0)
+        released += psi_vol;
+    return released;
+}
+
+/* The result of a failed point: no stress at all. */
+static void no_stress(struct tlsph_point_result *r, double J, double min_stretch, double K_t)
+{
+    for (int k = 0; k < 9; k++)
+        r->P[k] = 0.0;
+    for (int k = 0; k < 6; k++)
+        r->sigma[k] = 0.0;
+    r->J = J;
+    r->min_stretch = min_stretch;
+    r->K_t = K_t;
+}
+
+/* Stress output from the total Kirchhoff-type stress tau (conjugate to the
+ * Hencky strain, in the eigenbasis of C): S by the derivative of the matrix
+ * logarithm, P = F S, Cauchy sigma = P F^T / J. */
+static void assemble(const double F[9], const double tau[9], const double lam[3],
+                     const double lns[3], const double Q[9], int general, double J, double smin,
+                     double K_t, struct tlsph_point_result *r)
+{
+    double S[9];
+    if (general) {
+        double Sb[9];
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < 3; b++)
+                Sb[3 * a + b] =
+                    tau[3 * a + b] * (a == b ? 1.0 / lam[a]
+                                             : log_divided_difference(lam[a], lam[b], 2.0 * lns[a],
+                                                                      2.0 * lns[b]));
+        mat3_from_basis(Q, Sb, S);
+    } else {
+        /* elastic: tau is diagonal in the eigenbasis (coaxial with C), S = U^-1 tau U^-1 */
+        const double d[3] = {tau[0] / lam[0], tau[4] / lam[1], tau[8] / lam[2]};
+        double S6[6];
+        sym3_compose(Q, d, S6);
+        sym6_to_mat3(S6, S);
+    }
+    mat3_mul(F, S, r->P);
+
+    double sig[9];
+    mat3_mul_bt(r->P, F, sig);
+    const double rJ = 1.0 / J;
+    r->sigma[0] = sig[0] * rJ;
+    r->sigma[1] = 0.5 * (sig[1] + sig[3]) * rJ;
+    r->sigma[2] = 0.5 * (sig[2] + sig[6]) * rJ;
+    r->sigma[3] = sig[4] * rJ;
+    r->sigma[4] = 0.5 * (sig[5] + sig[7]) * rJ;
+    r->sigma[5] = sig[8] * rJ;
+    r->J = J;
+    r->min_stretch = smin;
+    r->K_t = K_t;
+}
+
+/* GTN (material/damage/gtn.h, material/damage/gtn_return.h): the point carries the macroscopic
+ * stress of the porous material, on or inside the GTN surface.  No (1 - D)
+ * factor on top: the voids act through the yield surface and D = q1 f* only
+ * enters the approximation (eqs. 33-35).  The elastic moduli are not degraded
+ * either (Algorithm 2's 2G(1 - D) would count the voids twice).  The plastic
+ * strain has a trace, the plastic volume change of void growth, so the EOS
+ * sees the elastic volume ratio J exp(-tr Ep). */
+static void gtn_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
+                       const double lam[3], const double lns[3], const double Q[9], double J,
+                       double smin, struct tlsph_point_state *s, struct tlsph_point_result *r)
+{
+    const double *g = mat->damage.params;
+    const double G = mat->shear_modulus, G2 = 2.0 * G;
+    double Ep[9], Epb[9];
+    sym6_to_mat3(s->plastic_strain, Ep);
+    mat3_to_basis(Q, Ep, Epb);
+    const double lnJp = Epb[0] + Epb[4] + Epb[8], lnJ = lns[0] + lns[1] + lns[2];
+    double tau[9]; /* trial deviator 2G dev(H - Ep) */
+    for (int k = 0; k < 9; k++)
+        tau[k] = -G2 * Epb[k];
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] += G2 * (lns[a] - lnJ / 3.0 + lnJp / 3.0);
+    double t2 = 0.0;
+    for (int k = 0; k < 9; k++)
+        t2 += tau[k] * tau[k];
+    const double q_tr = sqrt(1.5 * t2);
+    double omega = 0.0;
+    if (g[GTN_KW] > 0.0 && q_tr > 0.0) {
+        const double xi = 13.5 * mat3_det(tau) / (q_tr * q_tr * q_tr);
+        omega = fmin(fmax(1.0 - xi * xi, 0.0), 1.0); /* |xi| <= 1 up to round-off */
+    }
+    const struct tlsph_gtn_input in = {
+        .q_trial = q_tr,
+        .omega = omega,
+        .J = J,
+        .lnJp = lnJp,
+        .e = e,
+        .G = G,
+        .eps_M = s->eps_p,
+        .f = s->void_fraction,
+        .T = s->T,
+        .dt = dt,
+        .heating = mat->thermal.enabled
+                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
+                       : 0.0,
+        .yield = s->yield,
+    };
+    struct tlsph_gtn_result out;
+    const int plastic = tlsph_gtn_return(mat, &in, &out);
+    s->yield = out.yield;
+    s->rate = 0.0;
+    double tau_q = q_tr;
+    if (plastic) {
+        r->iterations = out.iterations;
+        r->converged = out.converged;
+        const double flow = q_tr > 0.0 ? 1.5 * out.dq / q_tr : 0.0;
+        const double shrink = q_tr > 0.0 ? 1.0 - 3.0 * G * out.dq / q_tr : 1.0;
+        for (int k = 0; k < 9; k++) {
+            Epb[k] += flow * tau[k];
+            tau[k] *= shrink;
+        }
+        for (int a = 0; a < 3; a++)
+            Epb[4 * a] += out.dv / 3.0;
+        mat3_from_basis(Q, Epb, Ep);
+        mat3_to_sym6(Ep, s->plastic_strain);
+        s->eps_p += out.dM;
+        s->rate = dt > 0.0 ? out.dM / dt : 0.0;
+        if (mat->thermal.enabled)
+            s->T = out.T;
+        s->void_fraction = out.f;
+        r->plastic_work = out.work;
+        tau_q = q_tr - 3.0 * G * out.dq;
+    }
+    s->damage = tlsph_gtn_damage(g, s->void_fraction);
+    s->damage_init = s->void_fraction / g[GTN_FC];
+    if (tau_q > 0.0)
+        r->triaxiality = -out.p * J / tau_q;
+    if (s->damage >= 1.0) {
+        /* the surface has shrunk to the origin: what elastic energy is left is
+         * released with the failure */
+        const double Je = J * exp(-(lnJp + out.dv));
+        r->damage_work =
+            deviatoric_energy(G, tau_q) + volumetric_energy(out.p, Je, exp(lnJp + out.dv));
+        no_stress(r, J, smin, out.K_t);
+        return;
+    }
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] -= J * out.p;
+    assemble(F, tau, lam, lns, Q, 1, J, smin, out.K_t, r);
+}
+
+void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
+                        struct tlsph_point_state *s, struct tlsph_point_result *r)
+{
+    const int damaging = s && mat->damage.model;
+    r->plastic_work = 0.0;
+    r->damage_work = 0.0;
+    r->iterations = 0;
+    r->converged = 1;
+    r->triaxiality = NAN;
+    if (damaging && s->damage >= 1.0) {
+        /* failed: no stress; its F is no longer a strain of material (see kinematics.c) */
+        no_stress(r, 1.0, 1.0, 0.0);
+        return;
+    }
+    double C[9], lam[3], Q[9];
+    mat3_mul_at(F, F, C);
+    sym3_eigen(C, lam, Q);
+    double lns[3], smin = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        const double st = sqrt(lam[a]);
+        lns[a] = log(st);
+        smin = fmin(smin, st);
+    }
+    const double J = mat3_det(F);
+    const double lnJ = lns[0] + lns[1] + lns[2];
+    const double G2 = 2.0 * mat->shear_modulus;
+    if (damaging && mat->damage.model->porous) {
+        gtn_update(mat, F, e, dt, lam, lns, Q, J, smin, s, r);
+        return;
+    }
+    const double intact = damaging ? 1.0 - s->damage : 1.0;
+
+    /* tau: the effective stress conjugate to H, in the eigenbasis of C (row-major 3x3). */
+    double tau[9] = {0};
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] = G2 * (lns[a] - lnJ / 3.0);
+    double dgamma = 0.0;
+    if (s) {
+        double Ep[9], Epb[9];
+        sym6_to_mat3(s->plastic_strain, Ep);
+        mat3_to_basis(Q, Ep, Epb);
+        for (int k = 0; k < 9; k++)
+            tau[k] -= G2 * Epb[k];
+        r->plastic_work = plastic_correction(mat, Q, J, dt, intact, s, tau, Epb, r, &dgamma);
+    }
+
+    double p, K_t;
+    mat->eos->pressure(mat, J, e, &p, &K_t);
+    double scale = 1.0, p_carried = p;
+    if (damaging) {
+        double t2 = 0.0;
+        for (int k = 0; k < 9; k++)
+            t2 += tau[k] * tau[k];
+        const double q = sqrt(1.5 * t2) / J; /* Cauchy von Mises */
+        if (q > 0.0)
+            r->triaxiality = -p / q;
+        if (dgamma > 0.0)
+            r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality, s);
+        if (s->damage >= 1.0) {
+            no_stress(r, J, smin, K_t);
+            return;
+        }
+        scale = 1.0 - s->damage;
+        if (p < 0.0)
+            p_carried = scale * p;
+        if (scale < 1.0)
+            for (int k = 0; k < 9; k++)
+                tau[k] *= scale;
+    }
+    for (int a = 0; a < 3; a++)
+        tau[4 * a] -= J * p_carried;
+    assemble(F, tau, lam, lns, Q, s != NULL, J, smin, K_t, r);
+}

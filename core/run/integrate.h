@@ -1,0 +1,25 @@
+/* Time integration: velocity Verlet (kick-drift-kick) with a CFL time step.
+ *
+ *   v(n+1/2) = v(n) + dt/2 f(n)/m,  constraints at t + dt/2, walls
+ *   x(n+1)   = x(n) + dt v(n+1/2)
+ *   f(n+1)   = forces at x(n+1), rates from v(n+1/2)
+ *   v(n+1)   = v(n+1/2) + dt/2 f(n+1)/m, constraints at t + dt
+ *
+ * F is computed from positions, so F(n+1) - F(n) = dt Fdot(v(n+1/2)) exactly and
+ * the trapezoidal internal-energy update matches the work of the stress forces. */
+#ifndef TLSPH_INTEGRATE_H
+#define TLSPH_INTEGRATE_H
+
+#include "run/model.h"
+
+/* Kinematics, constitutive update, pair forces, body forces for the current
+ * positions; dt is the step that led here (0 at setup). Updates energy terms. */
+void tlsph_evaluate(struct tlsph_model *m, double dt);
+/* Time step for the next step: fixed, or cfl times the stable estimate, never
+ * past the end time. */
+double tlsph_next_dt(const struct tlsph_model *m);
+/* Kinetic energy (J). */
+double tlsph_kinetic_energy(const struct tlsph_model *m);
+double tlsph_internal_energy(const struct tlsph_model *m);
+
+#endif

@@ -1,0 +1,169 @@
+/* The model object: particles, reference pairs, boundary groups, clocks and
+ * diagnostics of one run.  There is no global mutable state in the engine:
+ * every function takes the model it works on.
+ *
+ * Storage is structure-of-arrays.  Vectors are 3 doubles per particle and 3x3
+ * tensors 9 doubles (row-major) even in 2-D, where the z components stay zero
+ * (plane strain: F_zz = 1).  Symmetric tensors are 6 doubles in the order
+ * xx xy xz yy yz zz.  Particles are ordered body by body, and within a body
+ * along the reference cell list, so each body is one contiguous index range.
+ *
+ * Units: SI (m, kg, s, Pa, J). */
+#ifndef TLSPH_MODEL_H
+#define TLSPH_MODEL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "io/measures.h"
+#include "scene/scene.h"
+
+struct tlsph_particles {
+    size_t n;
+    int64_t *id;      /* stable id: order of generation, body by body */
+    int32_t *body;    /* index into scene->bodies */
+    double *X;        /* reference position, m [3n] */
+    double *x;        /* current position, m [3n] */
+    double *v;        /* velocity, m/s [3n] (synchronous, time t) */
+    double *f;        /* total force, N [3n] */
+    double *vol0;     /* reference volume, m^3 (m^2 x 1 m in 2-D) */
+    double *mass;     /* kg */
+    double *h;        /* smoothing length, m (support radius = 2h) */
+    double *Linv;     /* inverse (or safe pseudo-inverse) of the correction matrix L_i [9n] */
+    double *F;        /* deformation gradient, 1 [9n] */
+    double *Fdot;     /* its rate at the half step, 1/s [9n] */
+    double *P_tilde;  /* P_i L_i^-T: first Piola-Kirchhoff stress folded with the correction, Pa [9n] */
+    double *sigma;    /* Cauchy stress, Pa [6n] */
+    double *e;        /* specific internal energy, J/kg */
+    double *f_hourglass;  /* hourglass-control force of the last evaluation, N [3n]; only with hourglass */
+    double *f_viscous;    /* artificial-viscosity force of the last evaluation, N [3n]; only with viscosity */
+
+    /* Plastic history (core/material/material_point.h); allocated only when some material
+     * of the scene is plastic (NULL otherwise).  Zero for particles of elastic bodies. */
+    double *eps_p;          /* equivalent plastic strain, 1 */
+    double *plastic_strain; /* plastic logarithmic strain in the unrotated frame, 1 [6n] */
+    double *eps_p_rate;     /* equivalent plastic strain rate of the last step, 1/s */
+    double *yield_stress;   /* cached static flow stress at the current state, Pa (0 = unknown) */
+    double *hg_scale;       /* hourglass spring modulus / E of the last step, 1 (only with the
+                               "tangent" hourglass stiffness and plasticity; NULL otherwise) */
+    /* Temperature, K; allocated only when some material has thermal coupling.
+     * NaN for particles whose material has no temperature. */
+    double *T;
+
+    /* Damage (core/material/damage/damage.h); allocated only when some material of the
+     * scene has a damage model (NULL otherwise), zero for the others. */
+    double *damage;         /* D in [0, 1]; 1 = failed, 1 */
+    double *damage_init;    /* damage-initiation variable D_init, 1 (GTN: f / f_c) */
+    /* GTN void volume fraction f, 1; allocated only when some material is GTN
+     * (material/damage/gtn.h), zero for the others. */
+    double *void_fraction;
+    /* Damage-aware treatment only: sum_j V_j sum_steps D_j (du_j - du_i) (x) grad W_i,
+     * the part of the displacement gradient (before L_i^-1) that damaged
+     * neighbours did not transmit, so that F follows eq. 34 [9n]. */
+    double *crack_gradient;
+};
+
+/* Reference neighbour pairs in CSR form, built once: the pairs of i are
+ * start[i] .. start[i+1]-1.  The list is symmetric (j in i's list <=> i in j's). */
+struct tlsph_pairs {
+    size_t npairs;
+    int64_t *start;   /* [n+1] */
+    int32_t *j;       /* neighbour index */
+    double *dw;       /* W'(|X_ij|)/|X_ij|, 1/m^(d+2): grad W_i(X_ij) = dw * (X_j - X_i) */
+    double *w;        /* W(|X_ij|), 1/m^d (hourglass control only; NULL otherwise) */
+};
+
+/* One boundary condition's particle group and its running totals. */
+struct tlsph_group {
+    size_t n;
+    int32_t *index;           /* particle indices */
+    double impulse[3];        /* constraint impulse accumulated during the current step, N s */
+    double reaction[3];       /* force exerted by the support on the group (last step), N */
+    double displacement[3];   /* mean displacement of the group, m */
+    double mass;              /* kg */
+};
+
+struct tlsph_energy {
+    double kinetic;           /* J */
+    double internal;          /* stored (strain + thermal) energy, J */
+    double external_work;     /* work done on the body by boundary conditions and body forces, J */
+    double hourglass;         /* work done against hourglass-control forces, J */
+    double viscous;           /* work done against artificial-viscosity forces, J */
+    double plastic_work;      /* plastic dissipation (part of internal), J */
+    double damage_work;       /* energy released by damage growth (part of internal), J */
+    double initial;           /* kinetic + internal at t = 0, J */
+    double scale;             /* largest |term| seen so far, J: the drift reference */
+};
+
+/* Why a run was stopped by the stability contract. */
+struct tlsph_diagnostic {
+    long step;
+    double time;
+    char quantity[64];        /* "nan", "det_F", "energy_balance", "speed", ... */
+    double value;             /* the offending value */
+    double limit;             /* the bound it crossed */
+    size_t nids;
+    int64_t ids[16];          /* first offending particle ids */
+    char message[256];
+};
+
+#define TLSPH_MAX_MODULES 32
+
+struct tlsph_model {
+    struct tlsph_scene scene;   /* owned */
+    int dim;
+    struct tlsph_particles p;
+    struct tlsph_pairs pairs;
+    size_t *body_begin, *body_end; /* particle ranges per body */
+    struct tlsph_group *groups;    /* one per scene->bcs entry (empty for walls/body forces) */
+    struct tlsph_measures measures; /* gauges and sections of scene.output */
+
+    /* run state */
+    long step;
+    double t, dt;
+    double dt_cfl;                /* stable step estimate of the last force evaluation (s), before the CFL factor */
+    double max_wave_speed;        /* largest P-wave speed of the last evaluation, m/s */
+    size_t inverted;              /* particles with det F <= 0 or non-finite in the last evaluation */
+    int64_t first_inverted_id;    /* id of one of them */
+    double min_detF;              /* smallest det F of the last evaluation */
+    size_t return_failures;       /* points whose return mapping did not converge (last evaluation) */
+    long long plastic_point_steps; /* return mappings that found plastic flow, whole run */
+    long long return_iterations;  /* their residual evaluations, whole run (cost of plasticity) */
+    int64_t first_return_failure_id;
+    size_t failed;                /* particles with D = 1 (after the last evaluation) */
+    struct tlsph_energy energy;
+
+    /* setup statistics */
+    size_t deficient_supports;    /* particles whose L_i needed the safe inverse */
+    double max_L_condition;       /* largest condition number of L_i accepted */
+    size_t isolated;              /* particles with no neighbour at all */
+
+    /* modules (effects) active in this run, for the metadata */
+    const char *modules[TLSPH_MAX_MODULES];
+    int nmodules;
+
+    /* cost record */
+    double wall_seconds;
+    size_t bytes_allocated;       /* engine arrays, bytes */
+};
+
+/* Takes ownership of *scene (leaves it empty).  Generates particles, builds pairs
+ * and the correction matrices, selects groups and modules. Returns 0 or -1 with err. */
+int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
+                       struct tlsph_errors *err);
+void tlsph_model_free(struct tlsph_model *m);
+
+/* Advances one time step. */
+void tlsph_model_step(struct tlsph_model *m);
+/* Stability contract; returns 0 when healthy, -1 and fills d otherwise. */
+int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
+/* Total linear momentum, kg m/s. */
+void tlsph_model_momentum(const struct tlsph_model *m, double out[3]);
+/* kinetic + internal + hourglass + viscous - external work - initial energy, J:
+ * 0 when energy is conserved (the stability contract bounds it). */
+double tlsph_energy_balance(const struct tlsph_energy *e);
+
+/* Tracked allocation helpers (count bytes into m->bytes_allocated). */
+void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size);
+
+#endif

@@ -1,0 +1,34 @@
+#include "run/progress.h"
+
+#include <errno.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+void tlsph_progress_emit(int fd, const json_t *obj)
+{
+    if (fd < 0 || !obj)
+        return;
+    char *text = json_dumps(obj, JSON_COMPACT);
+    if (!text)
+        return;
+    size_t len = strlen(text);
+    text[len] = '\0';
+    /* write the line in one buffer so concurrent readers never see half a line */
+    char *line = malloc(len + 2);
+    if (line) {
+        memcpy(line, text, len);
+        line[len] = '\n';
+        size_t off = 0;
+        while (off < len + 1) {
+            ssize_t w = write(fd, line + off, len + 1 - off);
+            if (w < 0 && errno == EINTR)
+                continue;
+            if (w <= 0)
+                break;
+            off += (size_t)w;
+        }
+        free(line);
+    }
+    free(text);
+}

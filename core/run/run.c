@@ -1,0 +1,216 @@
+#include "run/run.h"
+
+#include <math.h>
+#include <string.h>
+#include <sys/resource.h>
+#include <time.h>
+
+#include "bc/boundary.h"
+#include "io/output/output.h"
+#include "run/progress.h"
+
+static double now_seconds(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
+}
+
+static size_t peak_rss_bytes(void)
+{
+    struct rusage ru;
+    if (getrusage(RUSAGE_SELF, &ru) != 0)
+        return 0;
+    return (size_t)ru.ru_maxrss * 1024u; /* Linux reports KiB */
+}
+
+static void fill_cost(const struct tlsph_model *m, double wall, struct tlsph_cost *c)
+{
+    c->particles = m->p.n;
+    c->pairs = m->pairs.npairs;
+    c->steps = m->step;
+    c->wall_seconds = wall;
+    c->particle_steps_per_second = wall > 0 ? (double)m->p.n * (double)m->step / wall : 0.0;
+    c->peak_memory_bytes = peak_rss_bytes();
+    c->bytes_per_particle = m->p.n ? (double)m->bytes_allocated / (double)m->p.n : 0.0;
+}
+
+static json_t *cost_json(const struct tlsph_cost *c)
+{
+    return json_pack("{s:I, s:I, s:I, s:f, s:f, s:I, s:f}", "particles", (json_int_t)c->particles,
+                     "pairs", (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds",
+                     c->wall_seconds, "particle_steps_per_second", c->particle_steps_per_second,
+                     "peak_memory_bytes", (json_int_t)c->peak_memory_bytes, "bytes_per_particle",
+                     c->bytes_per_particle);
+}
+
+static json_t *diagnostic_json(const struct tlsph_diagnostic *d)
+{
+    json_t *ids = json_array();
+    for (size_t k = 0; ids && k < d->nids; k++)
+        json_array_append_new(ids, json_integer(d->ids[k]));
+    return json_pack("{s:I, s:f, s:s, s:f, s:f, s:o, s:s}", "step", (json_int_t)d->step, "time",
+                     d->time, "quantity", d->quantity, "value", isfinite(d->value) ? d->value : -1.0,
+                     "limit", d->limit, "particle_ids", ids ? ids : json_array(), "message",
+                     d->message);
+}
+
+static void emit_started(const struct tlsph_model *m, int fd)
+{
+    json_t *mods = json_array();
+    for (int k = 0; mods && k < m->nmodules; k++)
+        json_array_append_new(mods, json_string(m->modules[k]));
+    json_t *o = json_pack("{s:s, s:I, s:I, s:f, s:o, s:I, s:f}", "event", "started", "particles",
+                          (json_int_t)m->p.n, "pairs", (json_int_t)m->pairs.npairs, "end_time",
+                          m->scene.end_time, "modules", mods ? mods : json_array(),
+                          "deficient_supports", (json_int_t)m->deficient_supports, "dt", m->dt);
+    tlsph_progress_emit(fd, o);
+    json_decref(o);
+}
+
+static void emit_progress(const struct tlsph_model *m, int fd, double wall, long frames)
+{
+    const double frac = m->scene.end_time > 0 ? m->t / m->scene.end_time : 1.0;
+    const double eta = frac > 0 ? wall * (1.0 - frac) / frac : -1.0;
+    json_t *o = json_pack("{s:s, s:I, s:f, s:f, s:f, s:f, s:I}", "event", "progress", "step",
+                          (json_int_t)m->step, "time", m->t, "end_time", m->scene.end_time,
+                          "wall_seconds", wall, "eta_seconds", eta, "frames", (json_int_t)frames);
+    tlsph_progress_emit(fd, o);
+    json_decref(o);
+}
+
+static void emit_finished(const struct tlsph_model *m, int fd, const char *status,
+                          const struct tlsph_cost *c, const struct tlsph_diagnostic *d)
+{
+    json_t *o = json_pack("{s:s, s:s, s:I, s:f, s:o}", "event", "finished", "status", status,
+                          "step", (json_int_t)m->step, "time", m->t, "cost", cost_json(c));
+    if (o && d)
+        json_object_set_new(o, "diagnostic", diagnostic_json(d));
+    tlsph_progress_emit(fd, o);
+    json_decref(o);
+}
+
+static int write_frame(struct tlsph_output *out, struct tlsph_model *m, long *frames)
+{
+    if (tlsph_output_frame(out, m) != 0)
+        return -1;
+    (*frames)++;
+    return 0;
+}
+
+int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
+              struct tlsph_diagnostic *d, struct tlsph_errors *err)
+{
+    const double t0 = now_seconds();
+    struct tlsph_output *out = tlsph_output_open(o->output_dir, m, err);
+    if (!out)
+        return TLSPH_EXIT_IO;
+    emit_started(m, o->progress_fd);
+    if (o->log)
+        fprintf(o->log,
+                "tlsph: %zu particles, %zu pairs (%.1f per particle), %zu deficient supports, "
+                "%zu isolated, dt = %.4g s\n",
+                m->p.n, m->pairs.npairs, m->p.n ? (double)m->pairs.npairs / (double)m->p.n : 0.0,
+                m->deficient_supports, m->isolated, m->dt);
+
+    const struct tlsph_scene *s = &m->scene;
+    const double frame_dt = s->end_time / (double)s->frames;
+    long frames = 0, next_frame = 1;
+    const char *status = "successful";
+    int code = TLSPH_EXIT_SUCCESS;
+    int have_diag = 0;
+    double last_progress = t0;
+
+    tlsph_boundary_displacements(m);
+    if (write_frame(out, m, &frames) != 0 || tlsph_output_series(out, m) != 0)
+        goto io_error;
+
+    for (;;) {
+        const int at_end = m->t >= s->end_time * (1.0 - 1e-12) ||
+                           (s->max_steps > 0 && m->step >= s->max_steps);
+        const int cancelled = o->cancel && *o->cancel;
+        if (at_end || cancelled) {
+            if (tlsph_model_check(m, d) != 0) {
+                have_diag = 1;
+                break;
+            }
+            tlsph_boundary_displacements(m);
+            if (write_frame(out, m, &frames) != 0 || tlsph_output_series(out, m) != 0)
+                goto io_error;
+            if (cancelled && !at_end) {
+                status = "cancelled";
+                code = TLSPH_EXIT_CANCELLED;
+            }
+            break;
+        }
+        tlsph_model_step(m);
+        const int frame_due = m->t >= (double)next_frame * frame_dt * (1.0 - 1e-12) &&
+                              m->t < s->end_time * (1.0 - 1e-12);
+        if (frame_due || m->step % s->check_every == 0) {
+            if (tlsph_model_check(m, d) != 0) {
+                have_diag = 1;
+                break;
+            }
+        }
+        if (m->step % s->series_every == 0) {
+            tlsph_boundary_displacements(m);
+            if (tlsph_output_series(out, m) != 0)
+                goto io_error;
+        }
+        if (frame_due) {
+            if (write_frame(out, m, &frames) != 0)
+                goto io_error;
+            while ((double)next_frame * frame_dt <= m->t * (1.0 + 1e-12))
+                next_frame++;
+        }
+        const double wall = now_seconds();
+        if (frame_due || wall - last_progress > 0.5) {
+            emit_progress(m, o->progress_fd, wall - t0, frames);
+            last_progress = wall;
+        }
+    }
+
+    if (have_diag) {
+        status = "unstable";
+        code = TLSPH_EXIT_UNSTABLE;
+        if (o->log)
+            fprintf(o->log, "tlsph: %s\n", d->message);
+    }
+    struct tlsph_cost cost;
+    m->wall_seconds = now_seconds() - t0;
+    fill_cost(m, m->wall_seconds, &cost);
+    if (tlsph_output_close(out, m, &cost, status, have_diag ? d : NULL) != 0) {
+        tlsph_errors_add(err, "", "could not finish writing the result file");
+        emit_finished(m, o->progress_fd, "io_error", &cost, NULL);
+        return TLSPH_EXIT_IO;
+    }
+    emit_finished(m, o->progress_fd, status, &cost, have_diag ? d : NULL);
+    if (o->log && m->p.eps_p)
+        fprintf(o->log,
+                "tlsph: plasticity: %lld plastic point-steps (%.1f %% of all), %.2f return-mapping "
+                "iterations each\n",
+                m->plastic_point_steps,
+                m->step ? 100.0 * (double)m->plastic_point_steps / ((double)m->step * (double)m->p.n)
+                        : 0.0,
+                m->plastic_point_steps
+                    ? (double)m->return_iterations / (double)m->plastic_point_steps
+                    : 0.0);
+    if (o->log)
+        fprintf(o->log,
+                "tlsph: %s after %ld steps, t = %.6g s, %.2f s wall, %.3g particle-steps/s, "
+                "%.0f bytes/particle, peak RSS %.1f MiB\n",
+                status, m->step, m->t, cost.wall_seconds, cost.particle_steps_per_second,
+                cost.bytes_per_particle, (double)cost.peak_memory_bytes / 1048576.0);
+    return code;
+
+io_error:
+    tlsph_output_abort(out);
+    {
+        struct tlsph_cost partial;
+        fill_cost(m, now_seconds() - t0, &partial);
+        emit_finished(m, o->progress_fd, "io_error", &partial, NULL);
+    }
+    if (err->count == 0)
+        tlsph_errors_add(err, "", "writing the result file failed");
+    return TLSPH_EXIT_IO;
+}

@@ -1,0 +1,224 @@
+/* The validated, typed scene: what the engine runs.  Produced only by
+ * tlsph_scene_parse (core/scene/parse.c) from the JSON text; every field here
+ * has passed range and consistency checks, so the engine does not re-check.
+ *
+ * Units are SI everywhere: m, kg, s, Pa, K, J/kg.
+ * Ownership: the scene owns everything it points to; tlsph_scene_free releases it. */
+#ifndef TLSPH_SCENE_H
+#define TLSPH_SCENE_H
+
+#include <stddef.h>
+#include <jansson.h>
+
+#include "util/errors.h"
+#include "util/expr.h"
+
+#define TLSPH_NAME_MAX 64
+#define TLSPH_MAX_PARTICLES 50000000L /* absolute ceiling; the scene may set a lower one */
+
+struct tlsph_eos_model;      /* core/material/eos/eos.h */
+struct tlsph_strength_model; /* core/material/strength/strength.h */
+struct tlsph_damage_model;   /* core/material/damage/damage.h */
+
+enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
+
+/* How damage enters the particle approximation (paper 000 §3.1). */
+enum tlsph_crack_treatment {
+    TLSPH_CRACK_DAMAGE_AWARE, /* eqs. 33-35: velocity differences scaled by (1 - D_j) */
+    TLSPH_CRACK_PSEUDO_SPRING /* kernel scaled per pair by (1 - D_i)(1 - D_j); comparison only */
+};
+
+/* What a failed particle (D = 1: no stress, no interaction) does next. */
+enum tlsph_failed_motion {
+    TLSPH_FAILED_FREE,  /* keeps its momentum and flies on: total momentum is conserved */
+    TLSPH_FAILED_ARREST /* the paper's choice: velocity set to 0 when it fails (the
+                           lost kinetic energy is booked as external work) */
+};
+
+/* Optional terms of a flow-stress law, each active only when the scene gives
+ * its parameters (core/material/strength/johnson_cook.c). */
+#define TLSPH_FLOW_RATE 1u    /* strain-rate hardening */
+#define TLSPH_FLOW_THERMAL 2u /* thermal softening: needs the material's temperature */
+
+/* Adiabatic heating by plastic work (paper 003 eq. 58): rho C_p dT = chi sigma : d^p.
+ * A material has a temperature only when its scene entry has a "thermal" block. */
+struct tlsph_thermal {
+    int enabled;
+    double specific_heat;       /* C_p, J/(kg K) */
+    double taylor_quinney;      /* chi, fraction of plastic work turned into heat, 1 */
+    double initial_temperature; /* K */
+};
+
+/* Ductile damage and failure (paper 000 §5): present when the material's scene
+ * entry has a "damage" block (model != NULL).  Needs a plastic strength model. */
+struct tlsph_damage {
+    const struct tlsph_damage_model *model; /* NULL: the material does not damage */
+    double params[12];        /* meaning fixed by the model */
+    unsigned terms;           /* TLSPH_FLOW_RATE / TLSPH_FLOW_THERMAL terms of the criterion */
+    double evolution_factor;  /* eq. 45: D = factor (D_init - 1) once D_init >= 1, 1 */
+};
+
+struct tlsph_material {
+    char name[TLSPH_NAME_MAX];
+    double density;       /* rho0, kg/m^3 */
+    double youngs_modulus; /* E, Pa */
+    double poisson_ratio;  /* nu, 1, in (-1, 0.5) */
+    double shear_modulus;  /* G = E/(2(1+nu)), Pa (derived) */
+    double bulk_modulus;   /* K = E/(3(1-2nu)), Pa (derived) */
+    double wave_speed;     /* sqrt((K+4G/3)/rho0), m/s (derived, P-wave) */
+    const struct tlsph_eos_model *eos;
+    double eos_params[8];  /* meaning fixed by the EOS model */
+    const struct tlsph_strength_model *strength;
+    double strength_params[8];  /* meaning fixed by the strength model */
+    unsigned strength_terms;    /* TLSPH_FLOW_* terms the scene switched on */
+    struct tlsph_thermal thermal;
+    struct tlsph_damage damage;
+};
+
+enum tlsph_geometry_type {
+    TLSPH_GEOM_BOX,        /* a[0..2] min corner, a[3..5] max corner */
+    TLSPH_GEOM_CYLINDER,   /* a[0..2] base centre, a[3..5] unit axis, a[6] radius, a[7] length */
+    TLSPH_GEOM_SPHERE,     /* a[0..2] centre, a[3] radius */
+    TLSPH_GEOM_PLATE,      /* a[0..2] centre, a[3..5] unit normal, a[6] thickness,
+                              a[7],a[8] in-plane sizes along u and w = n x u,
+                              a[9..11] unit in-plane axis u (set by the parser, see parse_geometry.c) */
+    TLSPH_GEOM_NOTCHED_BAR, /* round bar with a circumferential notch of radius R:
+                              a[0..2] base centre, a[3..5] unit axis, a[6] bar radius,
+                              a[7] length, a[8] notch root radius (bar radius at the notch),
+                              a[9] notch radius R (a U-notch with flanks 2R apart when the
+                              notch is deeper than R), a[10] notch position along the axis */
+    TLSPH_GEOM_UNION,      /* children[0..n-1] */
+    TLSPH_GEOM_DIFFERENCE  /* children[0] minus children[1..n-1] */
+};
+
+struct tlsph_geometry {
+    enum tlsph_geometry_type type;
+    double a[12];
+    struct tlsph_geometry *children; /* owned array of nchildren */
+    size_t nchildren;
+};
+
+struct tlsph_body {
+    char name[TLSPH_NAME_MAX];
+    int material;       /* index into scene->materials */
+    double spacing;     /* lattice spacing, m */
+    double origin[3];   /* lattice origin (a lattice point sits at origin + (i+1/2)*spacing), m */
+    struct tlsph_geometry geometry;
+    struct tlsph_expr initial_velocity[3]; /* expressions of x, y, z (m) -> m/s; evaluator NULL = 0 */
+};
+
+/* Which particles a boundary condition applies to.  A particle is selected when it
+ * belongs to the body (or any body when body < 0), lies inside the box (when
+ * has_box) and the expression (when present) is non-zero; all tests use the
+ * reference position. */
+struct tlsph_selector {
+    int body;            /* index into scene->bodies, -1 = all bodies */
+    int has_box;
+    double box_min[3], box_max[3]; /* m */
+    struct tlsph_expr expression;  /* of x, y, z; evaluator NULL = none */
+};
+
+enum tlsph_bc_type {
+    TLSPH_BC_FIXED,      /* v = 0 in every component */
+    TLSPH_BC_VELOCITY,   /* v_k = expression of t for each given component */
+    TLSPH_BC_WALL,       /* rigid frictionless impenetrable plane, normal points into the solid */
+    TLSPH_BC_SYMMETRY,   /* particles on the plane keep zero normal velocity; see bc.c */
+    TLSPH_BC_BODY_FORCE  /* uniform acceleration, m/s^2 */
+};
+
+struct tlsph_bc {
+    enum tlsph_bc_type type;
+    char name[TLSPH_NAME_MAX];      /* used for output series names */
+    struct tlsph_selector select;   /* fixed, velocity, symmetry, body_force */
+    struct tlsph_expr velocity[3];  /* velocity: expressions of t (s) -> m/s; NULL = free */
+    int velocity_set[3];
+    double point[3];                /* wall, symmetry: a point of the plane, m */
+    double normal[3];               /* wall, symmetry: unit normal (into the solid for walls) */
+    double acceleration[3];         /* body force, m/s^2 */
+};
+
+#define TLSPH_MAX_MEASURES 32
+
+/* An engineering stress-strain gauge between two load-carrying groups (fixed or
+ * velocity conditions): along the unit axis a from group[0]'s reference
+ * centroid to group[1]'s, engineering stress = (R_1 - R_0).a / (2 area) (the
+ * mean axial load, positive in tension) and engineering strain =
+ * (u_1 - u_0).a / length, with R the reaction and u the mean displacement of a
+ * group. */
+struct tlsph_gauge {
+    char name[TLSPH_NAME_MAX];
+    int group[2];                 /* indices into scene->bcs */
+    double area;                  /* initial load-carrying area, m^2 (m per metre of thickness in 2-D) */
+    double length;                /* gauge length, m; 0 = initial distance of the two centroids */
+};
+
+/* A Lagrangian cross-section: the particles whose reference position lies
+ * within thickness/2 of the plane through point with unit normal normal. */
+struct tlsph_section {
+    char name[TLSPH_NAME_MAX];
+    double point[3];              /* m */
+    double normal[3];             /* unit */
+    double thickness;             /* m */
+};
+
+struct tlsph_scene {
+    int dimension;                /* 2 (plane strain, x-y, unit thickness) or 3 */
+    char name[TLSPH_NAME_MAX];
+
+    /* time */
+    double end_time;              /* s */
+    double cfl;                   /* safety factor on the CFL step, (0, 10] */
+    double fixed_dt;              /* s; 0 = use the CFL step */
+    long max_steps;               /* 0 = unlimited */
+
+    /* discretisation */
+    enum tlsph_kernel_type kernel;
+    double support_factor;        /* kernel support radius / spacing, 1.2..4 */
+    int hourglass;                /* enabled */
+    double hourglass_coefficient; /* alpha (Ganzenmueller 2015), 1 */
+    int hourglass_tangent;        /* spring modulus: 0 = Young's modulus everywhere; 1 = the
+                                     elasto-plastic tangent E H / (E + H) where the pair's
+                                     particles flowed plastically in the last step */
+    int viscosity;                /* enabled */
+    double viscosity_linear;      /* beta1 (paper 001 eq. 18), 1 */
+    double viscosity_quadratic;   /* beta2, 1 */
+    enum tlsph_crack_treatment crack_treatment; /* only read when some material damages */
+    enum tlsph_failed_motion failed_motion;
+
+    /* stability contract */
+    long check_every;             /* steps between stability checks, >= 1 */
+    double energy_tolerance;      /* max |energy balance| / energy scale, 1 */
+    double speed_limit_factor;    /* max speed / max wave speed, 1 */
+    long max_particles;           /* refuse scenes that would generate more */
+
+    /* output */
+    long frames;                  /* number of field frames over [0, end_time], >= 1 */
+    long series_every;            /* steps between time-series samples, >= 1 */
+    struct tlsph_gauge gauges[TLSPH_MAX_MEASURES];     size_t ngauges;
+    struct tlsph_section sections[TLSPH_MAX_MEASURES]; size_t nsections;
+
+    struct tlsph_param *params;   size_t nparams;
+    struct tlsph_material *materials; size_t nmaterials;
+    struct tlsph_body *bodies;    size_t nbodies;
+    struct tlsph_bc *bcs;         size_t nbcs;
+
+    char *json_text;              /* the scene as submitted, compact JSON, for the output file */
+};
+
+/* Parses and validates.  Returns 0 on success; otherwise -1 with every problem
+ * found in err (JSON pointer + message) and *scene left empty. */
+int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
+                      struct tlsph_errors *err);
+int tlsph_scene_load_file(const char *path, struct tlsph_scene *scene, struct tlsph_errors *err);
+void tlsph_scene_free(struct tlsph_scene *scene);
+
+/* Geometry (core/scene/geometry.c). */
+int tlsph_geometry_contains(const struct tlsph_geometry *g, const double X[3]);
+/* Axis-aligned bounding box of g (m). */
+void tlsph_geometry_bounds(const struct tlsph_geometry *g, double lo[3], double hi[3]);
+/* Lattice points of body b inside its geometry: *out gets 3*n doubles (z = 0 in 2-D),
+ * owned by the caller.  Counts first and refuses more than max_points. */
+int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                       size_t *n, struct tlsph_errors *err);
+
+#endif

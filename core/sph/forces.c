@@ -1,0 +1,166 @@
+#include "sph/forces.h"
+
+#include "sph/hourglass.h"
+#include "sph/viscosity.h"
+#include "util/parallel.h"
+
+struct body_constants {
+    double hg_coeff;  /* alpha/2 E */
+    double h;         /* smoothing length for mu_ij, m */
+    double c, rho0;   /* wave speed m/s, density kg/m^3 */
+    double beta1, beta2;
+};
+
+/* The forces on particle i.  Always inlined into the variant loops below with
+ * constant with_hg / with_visc / with_damage, so each variant's pair loop
+ * carries no branch on the scene's choices (the OpenMP region must sit in the
+ * variant itself: a parallel loop is outlined before inlining, and flags
+ * passed into it would stay run-time values). */
+static inline __attribute__((always_inline)) void
+force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc, const int with_hg,
+               const int with_visc, const int with_damage, double *power_hg, double *power_visc)
+{
+    const double *restrict D = m->p.damage;
+    const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
+    const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
+    const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
+    const int64_t *restrict start = m->pairs.start;
+    const int32_t *restrict nbr = m->pairs.j;
+    const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
+    double *restrict f = m->p.f;
+    double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
+    const double *restrict hs = m->p.hg_scale;
+    const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
+    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+    const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
+    double f0 = 0, f1 = 0, f2 = 0;
+    double h0 = 0, h1 = 0, h2 = 0, q0 = 0, q1 = 0, q2 = 0;
+    const double Di = with_damage ? D[i] : 0.0;
+    const double hs_i = hs ? hs[i] : 1.0;
+    /* a failed particle (D = 1) neither exerts nor receives any pair force */
+    const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
+    for (int64_t k = start[i]; k < k_end; k++) {
+        const size_t j = (size_t)nbr[k];
+        const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
+        const double s = vol0[j] * dw[k];
+        const double *Pj = Pt + 9 * j;
+        /* weights of P_i and P_j: 1 and 1 without damage; eq. 35 (1 - D_j) and
+         * (1 - D_i), the force conjugate to the damage-aware Fdot of eq. 33 and
+         * antisymmetric in i, j (momentum exact); the pseudo-spring scales the
+         * pair's kernel by (1 - D_i)(1 - D_j) */
+        const double pair = with_damage ? (1.0 - Di) * (1.0 - D[j]) : 1.0;
+        const double wi = with_damage == 1 ? 1.0 - D[j] : pair;
+        const double wj = with_damage == 1 ? 1.0 - Di : pair;
+        f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
+                   (wi * Pi[2] + wj * Pj[2]) * d2);
+        f1 += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
+                   (wi * Pi[5] + wj * Pj[5]) * d2);
+        f2 += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
+                   (wi * Pi[8] + wj * Pj[8]) * d2);
+        /* stabilisation across a crack: scaled by the intact fractions of both */
+        if ((with_hg || with_visc) && pair > 0.0) {
+            const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
+            if (with_hg) {
+                /* the pair's modulus: the mean of both particles' (symmetric in
+                 * i, j, so the force stays antisymmetric) */
+                const double stiff = hs ? 0.5 * (hs_i + hs[j]) : 1.0;
+                const double c = pair * stiff *
+                                 hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
+                                                d1, d2, x0, x1, x2);
+                h0 += c * x0;
+                h1 += c * x1;
+                h2 += c * x2;
+            }
+            if (with_visc) {
+                const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+                const double c =
+                    pair * viscosity_pair(mass[j], bc->h, bc->c, bc->rho0, bc->beta1,
+                                          bc->beta2, dw[k], R, x0, x1, x2, v[3 * j] - vi0,
+                                          v[3 * j + 1] - vi1, v[3 * j + 2] - vi2);
+                q0 += c * x0;
+                q1 += c * x1;
+                q2 += c * x2;
+            }
+        }
+    }
+    const double Vi = vol0[i];
+    h0 *= Vi; h1 *= Vi; h2 *= Vi;
+    q0 *= mass[i]; q1 *= mass[i]; q2 *= mass[i];
+    f[3 * i] = Vi * f0 + h0 + q0;
+    f[3 * i + 1] = Vi * f1 + h1 + q1;
+    f[3 * i + 2] = Vi * f2 + h2 + q2;
+    /* Trapezoidal power with the previous step's force: the same rule the
+     * kicks apply to kinetic energy, so the energy balance closes. */
+    if (with_hg) {
+        double *o = f_hg + 3 * i;
+        *power_hg += 0.5 * ((h0 + o[0]) * vi0 + (h1 + o[1]) * vi1 + (h2 + o[2]) * vi2);
+        o[0] = h0;
+        o[1] = h1;
+        o[2] = h2;
+    }
+    if (with_visc) {
+        double *o = f_visc + 3 * i;
+        *power_visc += 0.5 * ((q0 + o[0]) * vi0 + (q1 + o[1]) * vi1 + (q2 + o[2]) * vi2);
+        o[0] = q0;
+        o[1] = q1;
+        o[2] = q2;
+    }
+}
+
+/* One parallel loop per combination of the optional terms; with_damage: 0 none,
+ * 1 damage-aware (eq. 35), 2 pseudo-spring. */
+typedef void (*force_loop)(struct tlsph_model *, size_t, size_t, const struct body_constants *,
+                           double *, double *);
+#define FORCE_LOOP(NAME, HG, VISC, DMG)                                                           \
+    static void NAME(struct tlsph_model *m, size_t lo, size_t hi,                                 \
+                     const struct body_constants *bc, double *p_hg, double *p_visc)               \
+    {                                                                                             \
+        double hg = 0.0, visc = 0.0;                                                              \
+        _Pragma("omp parallel for schedule(static) reduction(+ : hg, visc) if (hi - lo >= TLSPH_PARALLEL_MIN_ITEMS)") \
+        for (size_t i = lo; i < hi; i++)                                                          \
+            force_particle(m, i, bc, HG, VISC, DMG, &hg, &visc);                                  \
+        *p_hg += hg;                                                                              \
+        *p_visc += visc;                                                                          \
+    }
+FORCE_LOOP(loop_000, 0, 0, 0)
+FORCE_LOOP(loop_010, 0, 1, 0)
+FORCE_LOOP(loop_100, 1, 0, 0)
+FORCE_LOOP(loop_110, 1, 1, 0)
+FORCE_LOOP(loop_001, 0, 0, 1)
+FORCE_LOOP(loop_011, 0, 1, 1)
+FORCE_LOOP(loop_101, 1, 0, 1)
+FORCE_LOOP(loop_111, 1, 1, 1)
+FORCE_LOOP(loop_002, 0, 0, 2)
+FORCE_LOOP(loop_012, 0, 1, 2)
+FORCE_LOOP(loop_102, 1, 0, 2)
+FORCE_LOOP(loop_112, 1, 1, 2)
+/* [damage treatment][hourglass][viscosity] */
+static const force_loop force_loops[3][2][2] = {
+    {{loop_000, loop_010}, {loop_100, loop_110}},
+    {{loop_001, loop_011}, {loop_101, loop_111}},
+    {{loop_002, loop_012}, {loop_102, loop_112}},
+};
+
+struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
+{
+    struct tlsph_force_power pw = {0.0, 0.0};
+    const struct tlsph_scene *s = &m->scene;
+    for (size_t b = 0; b < s->nbodies; b++) {
+        const struct tlsph_body *body = &s->bodies[b];
+        const struct tlsph_material *mat = &s->materials[body->material];
+        const struct body_constants bc = {
+            .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
+            .h = 0.5 * s->support_factor * body->spacing,
+            .c = mat->wave_speed,
+            .rho0 = mat->density,
+            .beta1 = s->viscosity_linear,
+            .beta2 = s->viscosity_quadratic,
+        };
+        const size_t lo = m->body_begin[b], hi = m->body_end[b];
+        const int dmg = !m->p.damage ? 0 : s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? 2 : 1;
+        force_loops[dmg][s->hourglass != 0][s->viscosity != 0](m, lo, hi, &bc, &pw.hourglass,
+                                                              &pw.viscous);
+    }
+    return pw;
+}

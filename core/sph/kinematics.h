@@ -1,0 +1,44 @@
+/* Kinematics: deformation gradient and its rate (paper 000 eqs. 26-27) with the
+ * corrected kernel gradient, one gather pass over the reference pairs. */
+#ifndef TLSPH_KINEMATICS_H
+#define TLSPH_KINEMATICS_H
+
+#include "run/model.h"
+
+/* F_i    = I + [sum_j V_j (u_j - u_i) (x) grad W_i(X_ij)] L_i^-1   (positions x)
+ * Fdot_i =     [sum_j V_j (v_j - v_i) (x) grad W_i(X_ij)] L_i^-1   (velocities v)
+ * and the first half of the trapezoidal internal-energy update,
+ * e_i += dt/2 / rho0 * P_i(old) : Fdot_i, using P_tilde of the previous step
+ * (P:Fdot = P_tilde : G_dot, so L_i never has to be re-applied).
+ *
+ * With damage (damage-aware treatment, paper 000 eqs. 33-34) neighbour j
+ * transmits (1 - D_j) of the velocity difference, and F integrates exactly
+ * those transmitted increments: F_i = I + [G_i - C_i] L_i^-1 with C_i the
+ * accumulated untransmitted part (model.h: crack_gradient).  A failed particle
+ * (D = 1) gets Fdot = 0 and no update. */
+void tlsph_kinematics(struct tlsph_model *m, double dt);
+
+/* The end of particle i's gather, shared by every treatment: G and Gd are the
+ * uncorrected sums of V_j (u_j - u_i) (x) grad W and V_j (v_j - v_i) (x) grad W.
+ * Books the first half of the trapezoidal energy update with the old P_tilde,
+ * then sets F_i = I + G L_i^-1 and Fdot_i = Gd L_i^-1 (with the current p.Linv). */
+static inline void tlsph_kinematics_finish(struct tlsph_particles *p, size_t i, double dt,
+                                           const double G[9], const double Gd[9])
+{
+    double power = 0.0;
+    for (int a = 0; a < 9; a++)
+        power += p->P_tilde[9 * i + a] * Gd[a];
+    p->e[i] += 0.5 * dt * power * p->vol0[i] / p->mass[i];
+
+    const double *Li = p->Linv + 9 * i;
+    double *Fi = p->F + 9 * i, *Fdi = p->Fdot + 9 * i;
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++) {
+            Fi[3 * r + c] = (r == c) + G[3 * r] * Li[c] + G[3 * r + 1] * Li[3 + c] +
+                            G[3 * r + 2] * Li[6 + c];
+            Fdi[3 * r + c] =
+                Gd[3 * r] * Li[c] + Gd[3 * r + 1] * Li[3 + c] + Gd[3 * r + 2] * Li[6 + c];
+        }
+}
+
+#endif

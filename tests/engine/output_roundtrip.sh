@@ -1,0 +1,184 @@
+#!/bin/bash
+# Output round trip: run tests/scenes/good/output_small.json with tlsph-run and check the
+# result files against docs/output.md (tests/support/h5_check.py does the checking):
+#  - while the run writes: an h5py SWMR reader sees the documented datasets with the
+#    documented shapes and units, and frame counts that grow;
+#  - after exit 0: plain h5py and h5dump read every documented dataset ([F,N,3] position,
+#    [F,N,6] stress with components "xx xy xz yy yz zz", units), times strictly increase,
+#    /cost values are positive, /parameters/scene is the submitted JSON, and result.xmf is
+#    XML whose HyperSlabs and HDF paths match the file.
+# If the scene runs too fast to observe two partial states, the live check is repeated
+# with the same scene and a longer end time (x8, then x64).
+# Environment (set by make check): top_srcdir, top_builddir, SYSTEM_PYTHON.
+set -u
+
+here=$(cd "$(dirname "$0")" && pwd)
+top_srcdir=${top_srcdir:-$(cd "$here/../.." && pwd)}
+top_builddir=${top_builddir:-$top_srcdir}
+PY=${SYSTEM_PYTHON:-/usr/bin/python3}
+if [ "$PY" = no ] || [ -z "$PY" ]; then PY=/usr/bin/python3; fi
+
+RUN=$top_builddir/tlsph-run
+CHECK=$top_srcdir/tests/support/h5_check.py
+DOCS=$top_srcdir/docs/output.md
+SCENE=$top_srcdir/tests/scenes/good/output_small.json
+
+fail() {
+    echo "FAIL: $*"
+    exit 1
+}
+
+[ -x "$RUN" ] || fail "$RUN not built"
+"$PY" -c 'import h5py, numpy' || fail "$PY cannot import h5py and numpy"
+command -v h5dump >/dev/null || fail "h5dump not found (hdf5-tools)"
+
+TMP=$(mktemp -d "${TMPDIR:-/tmp}/tlsph-output.XXXXXX") || fail "mktemp"
+pid=
+cleanup() {
+    if [ -n "$pid" ] && kill -0 "$pid" 2>/dev/null; then kill "$pid"; wait "$pid" 2>/dev/null; fi
+    rm -rf "$TMP"
+}
+trap cleanup EXIT
+
+# run SCENE OUTDIR: runs tlsph-run in the background with the live SWMR check alongside.
+# Sets run_rc (exit status of tlsph-run) and live_rc (0 ok, 1 failed, 3 too fast to see).
+run() {
+    "$RUN" "$1" -o "$2" --progress-fd 3 3>"$TMP/progress.jsonl" &
+    pid=$!
+    "$PY" "$CHECK" live "$DOCS" "$2/result.h5" "$pid"
+    live_rc=$?
+    if [ "$live_rc" = 1 ]; then
+        kill "$pid" 2>/dev/null
+    fi
+    wait "$pid"
+    run_rc=$?
+    pid=
+}
+
+echo "== run $SCENE"
+run "$SCENE" "$TMP/out"
+[ "$run_rc" = 0 ] || fail "tlsph-run exited with $run_rc"
+[ "$live_rc" = 1 ] && fail "live SWMR check"
+echo "== progress stream"
+"$PY" - "$TMP/progress.jsonl" <<'EOF' || fail "progress stream is not JSON lines"
+import json, sys
+lines = [l for l in open(sys.argv[1]) if l.strip()]
+assert lines, "no progress lines"
+for l in lines:
+    json.loads(l)
+print("progress: %d JSON lines" % len(lines))
+EOF
+
+echo "== final checks"
+"$PY" "$CHECK" final "$DOCS" "$TMP/out" "$SCENE" || fail "final checks"
+
+# Module-dependent output: a plastic scene with thermal coupling writes the
+# plastic and thermal fields and series (documented in docs/output.md); the
+# elastic scene above writes none of them.
+PSCENE=$top_srcdir/tests/scenes/good/plastic_thermal.json
+echo "== plastic + thermal scene $PSCENE"
+"$RUN" "$PSCENE" -o "$TMP/plastic" --quiet || fail "tlsph-run on the plastic scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/plastic" "$PSCENE" || fail "final checks (plastic scene)"
+"$PY" - "$TMP/out/result.h5" "$TMP/plastic/result.h5" <<'EOF' || fail "module-dependent output"
+import sys
+import h5py
+import numpy as np
+optional_fields = ("plastic_strain", "plastic_strain_rate", "temperature")
+optional_series = ("plastic_work", "max_temperature")
+with h5py.File(sys.argv[1], "r") as f:
+    for name in optional_fields:
+        assert name not in f["particles/solid"], "elastic run wrote %s" % name
+    for name in optional_series:
+        assert name not in f["observables"], "elastic run wrote %s" % name
+with h5py.File(sys.argv[2], "r") as f:
+    ps, obs = f["particles/solid"], f["observables"]
+    for name in optional_fields:
+        assert name in ps, "plastic run lacks %s" % name
+    for name in optional_series:
+        assert name in obs, "plastic run lacks %s" % name
+    eps = ps["plastic_strain/value"][-1]
+    T = ps["temperature/value"][-1]
+    work = obs["plastic_work/value"][:]
+    tmax = obs["max_temperature/value"][:]
+    assert eps.max() > 0.01, "no plastic flow (max eps_p %g)" % eps.max()
+    assert np.all(np.diff(work) >= 0) and work[-1] > 0, "plastic work not growing"
+    assert np.isclose(tmax[-1], np.nanmax(T), rtol=1e-6), "max_temperature %g vs field %g" % (tmax[-1], np.nanmax(T))
+    assert tmax[-1] > tmax[0], "no heating"
+    print("plastic output: max eps_p %.3f, plastic work %.4g J, max T %.2f K" % (eps.max(), work[-1], tmax[-1]))
+EOF
+
+# damage fields and series (docs/output.md): present only with a damage model,
+# and consistent with each other.
+DSCENE=$top_srcdir/tests/scenes/good/damage_jc_thermal.json
+echo "== damage scene $DSCENE"
+"$RUN" "$DSCENE" -o "$TMP/damage" --quiet || fail "tlsph-run on the damage scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/damage" "$DSCENE" || fail "final checks (damage scene)"
+"$PY" - "$TMP/plastic/result.h5" "$TMP/damage/result.h5" <<'EOF' || fail "damage output"
+import sys
+import h5py
+import numpy as np
+fields = ("damage", "damage_initiation", "triaxiality")
+series = ("failed_particles", "damage_energy")
+with h5py.File(sys.argv[1], "r") as f:
+    for name in fields:
+        assert name not in f["particles/solid"], "undamaged run wrote %s" % name
+    for name in series:
+        assert name not in f["observables"], "undamaged run wrote %s" % name
+with h5py.File(sys.argv[2], "r") as f:
+    ps, obs = f["particles/solid"], f["observables"]
+    assert "void_fraction" not in ps, "Johnson-Cook damage run wrote the GTN void_fraction"
+    D = ps["damage/value"][-1]
+    Di = ps["damage_initiation/value"][-1]
+    nf = obs["failed_particles/value"][:]
+    ed = obs["damage_energy/value"][:]
+    assert D.min() >= 0 and D.max() <= 1, "damage outside [0, 1]"
+    assert not np.any((Di < 1) & (D > 0)), "damage without initiation"
+    assert np.all(np.diff(ed) >= 0) and ed[-1] > 0, "damage energy not growing"
+    assert nf[-1] == np.count_nonzero(D >= 1), "failed_particles %g vs field %d" % (nf[-1], np.count_nonzero(D >= 1))
+    assert nf[-1] > 0, "nothing failed"
+    print("damage output: %d failed, damage energy %.4g J" % (nf[-1], ed[-1]))
+    # gauge and section (docs/output.md), recomputed here from the group series
+    # and the fields of the last frame, which is also a series sample
+    gs, sec = obs["gauges/strip"], obs["sections/notch"]
+    rc = obs["groups/clamp/reaction_force/value"][:, 0]
+    rp = obs["groups/pull/reaction_force/value"][:, 0]
+    uc = obs["groups/clamp/displacement/value"][:, 0]
+    up = obs["groups/pull/displacement/value"][:, 0]
+    X = ps["reference_position"][:]
+    V = ps["volume"][:]
+    clamp, pull = X[:, 0] < 0.0006, X[:, 0] > 0.0094
+    L0 = X[pull, 0].mean() - X[clamp, 0].mean()
+    assert np.allclose(gs["engineering_stress/value"][:], 0.5 * (rp - rc) / 0.002, rtol=1e-12, atol=1e-3), "gauge stress"
+    assert np.allclose(gs["engineering_strain/value"][:], (up - uc) / L0, rtol=1e-9, atol=1e-15), "gauge strain"
+    inside = np.abs(X[:, 0] - 0.005) <= 0.5 * 0.000375
+    w = V[inside] / V[inside].sum()
+    k = list(sec["damage/step"][:]).index(ps["damage/step"][-1])
+    assert np.isclose(sec["damage/value"][k], (w * D[inside]).sum(), rtol=1e-6, atol=1e-7), "section damage"
+    s = ps["stress/value"][-1][inside]  # float32: xx xy xz yy yz zz
+    assert np.isclose(sec["normal_stress/value"][k], (w * s[:, 0]).sum(), rtol=1e-5, atol=1e3), "section normal stress"
+    A = np.stack([s[:, [0, 1, 2]], s[:, [1, 3, 4]], s[:, [2, 4, 5]]], axis=1).astype(float)
+    s1 = np.linalg.eigvalsh(A)[:, -1]
+    assert np.isclose(sec["max_principal_stress/value"][k], (w * s1).sum(), rtol=1e-5, atol=1e3), "section sigma_1"
+    print("gauge: peak %.4g MPa; notch section: %d particles, mean D %.3f at the end" % (
+        gs["engineering_stress/value"][:].max() / 1e6, inside.sum(), sec["damage/value"][k]))
+EOF
+
+factor=8
+while [ "$live_rc" = 3 ]; do
+    [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"
+    echo "== too fast to observe growth; rerun with time.end x$factor"
+    "$PY" - "$SCENE" "$TMP/slow.json" "$factor" <<'EOF' || fail "cannot write the slower scene"
+import json, sys
+scene = json.load(open(sys.argv[1]))
+scene["time"]["end"] *= int(sys.argv[3])
+json.dump(scene, open(sys.argv[2], "w"))
+EOF
+    rm -rf "$TMP/slow"
+    run "$TMP/slow.json" "$TMP/slow"
+    [ "$run_rc" = 0 ] || fail "tlsph-run (time.end x$factor) exited with $run_rc"
+    [ "$live_rc" = 1 ] && fail "live SWMR check (time.end x$factor)"
+    factor=$((factor * 8))
+done
+
+echo "PASS: output round trip"
+exit 0

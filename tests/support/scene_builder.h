@@ -1,0 +1,18 @@
+/* Test support: build a model from a scene given as JSON text, failing the
+ * test (with every validation error printed) when the scene is rejected. */
+#ifndef TLSPH_TEST_SCENE_BUILDER_H
+#define TLSPH_TEST_SCENE_BUILDER_H
+
+#include "run/model.h"
+
+struct tlsph_model *build_model(const char *json);
+/* The model of examples/<name>.json (under $top_srcdir, else "."), with the
+ * first body's spacing (m) replaced when spacing > 0. */
+struct tlsph_model *build_example(const char *name, double spacing);
+/* Runs steps until m->t >= t_end, calling the stability check every step;
+ * fails the test if the model goes unstable. */
+void run_until(struct tlsph_model *m, double t_end);
+/* sum_i m_i |v_i|, kg m/s: the scale momentum drift is measured against. */
+double momentum_scale(const struct tlsph_model *m);
+
+#endif
