@@ -20,6 +20,7 @@
 
 #include "material/eos/eos.h"
 #include "scene/scene.h"
+#include "support/check_main.h"
 
 #define BASE_HEAD                                                                            \
     "{\"dimension\": 3, \"time\": {\"end\": 1e-4},"                                          \
@@ -595,9 +596,5 @@ static Suite *scene_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(scene_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return tlsph_check_run(scene_suite());
 }
