@@ -18,6 +18,7 @@
 #include "http.h"
 #include "queue.h"
 #include "routes.h"
+#include "strbuf.h"
 #include "supervisor.h"
 
 static int mkdir_p(const char *path)
@@ -36,30 +37,21 @@ static int mkdir_p(const char *path)
     return 0;
 }
 
+/* The whole file (malloc'ed, *len bytes), or NULL. */
 static char *read_file(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
         return NULL;
-    char *buf = NULL;
-    size_t cap = 0, n = 0, r;
-    do {
-        if (n + 65536 > cap) {
-            cap = cap ? 2 * cap : 131072;
-            char *b = realloc(buf, cap);
-            if (!b) {
-                free(buf);
-                fclose(f);
-                return NULL;
-            }
-            buf = b;
-        }
-        r = fread(buf + n, 1, cap - n, f);
-        n += r;
-    } while (r > 0);
-    fclose(f);
-    *len = n;
-    return buf;
+    struct strbuf b = {0};
+    int rc = strbuf_read_fd(&b, fd);
+    close(fd);
+    *len = b.len;
+    if (rc != 0) {
+        strbuf_free(&b);
+        return NULL;
+    }
+    return strbuf_take(&b);
 }
 
 static void log_msg(const char *fmt, const char *a, const char *b)

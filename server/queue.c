@@ -12,13 +12,11 @@
  *   left open (it would block WAL checkpoints). */
 #include "queue.h"
 
-#include <errno.h>
 #include <sqlite3.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
 #include <time.h>
 
 /* ------------------------------------------------------------------ schema */
@@ -194,28 +192,6 @@ const char *tq_last_error(struct tq *q)
     return q ? q->err : "no queue handle";
 }
 
-int tq_new_id(char out[TQ_ID_LEN + 1])
-{
-    unsigned char b[TQ_ID_LEN / 2];
-    size_t got = 0;
-    while (got < sizeof b) {
-        ssize_t r = getrandom(b + got, sizeof b - got, 0);
-        if (r < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        got += (size_t)r;
-    }
-    static const char hex[] = "0123456789abcdef";
-    for (size_t i = 0; i < sizeof b; i++) {
-        out[2 * i] = hex[b[i] >> 4];
-        out[2 * i + 1] = hex[b[i] & 15];
-    }
-    out[TQ_ID_LEN] = '\0';
-    return 0;
-}
-
 /* Public entry points refuse a NULL handle (tq_last_error(NULL) explains). */
 #define NEED_Q(q)      \
     do {               \
@@ -223,33 +199,24 @@ int tq_new_id(char out[TQ_ID_LEN + 1])
             return -1; \
     } while (0)
 
-static int valid_id(const char *id)
-{
-    if (!id || !id[0])
-        return 0;
-    size_t n = 0;
-    for (const char *c = id; *c; c++, n++) {
-        if (n >= TQ_ID_LEN)
-            return 0;
-        if (!((*c >= '0' && *c <= '9') || (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
-              *c == '_' || *c == '-'))
-            return 0;
-    }
-    return 1;
-}
-
 static int check_id(struct tq *q, const char *fn, const char *id)
 {
-    if (valid_id(id))
+    if (job_key_valid(id))
         return 0;
     set_err(q, "%s: invalid job id (1..%d characters of [0-9A-Za-z_-])", fn, TQ_ID_LEN);
     return -1;
 }
 
-static int is_final(const char *status)
+bool tq_status_final(const char *status)
 {
-    return !strcmp(status, TQ_SUCCESSFUL) || !strcmp(status, TQ_FAILED) ||
-           !strcmp(status, TQ_DISMISSED);
+    return status && (!strcmp(status, TQ_SUCCESSFUL) || !strcmp(status, TQ_FAILED) ||
+                      !strcmp(status, TQ_DISMISSED));
+}
+
+bool tq_status_valid(const char *status)
+{
+    return status && (!strcmp(status, TQ_ACCEPTED) || !strcmp(status, TQ_RUNNING) ||
+                      tq_status_final(status));
 }
 
 static void done_stmt(sqlite3_stmt *st)
@@ -1100,7 +1067,7 @@ int tq_finish(struct tq *q, const char *id, const char *status, const char *outc
     NEED_Q(q);
     if (check_id(q, "tq_finish", id) < 0)
         return -1;
-    if (!status || !is_final(status)) {
+    if (!status || !tq_status_final(status)) {
         set_err(q, "tq_finish: status must be successful, failed or dismissed");
         return -1;
     }
@@ -1163,7 +1130,7 @@ int tq_request_cancel(struct tq *q, const char *id)
     struct lookup l;
     int rc = lookup(q, id, &l);
     const double t = now_seconds();
-    if (rc != 0 || is_final(l.status))
+    if (rc != 0 || tq_status_final(l.status))
         return tx_end(q, "tq_request_cancel", rc);
     sqlite3_stmt *st;
     if (!strcmp(l.process, "study")) {
@@ -1209,14 +1176,14 @@ int tq_delete(struct tq *q, const char *id)
         return -1;
     struct lookup l;
     int rc = lookup(q, id, &l);
-    if (rc == 0 && !is_final(l.status))
+    if (rc == 0 && !tq_status_final(l.status))
         rc = 2;
     if (rc == 0 && l.study_id[0]) {
         struct lookup parent;
         int prc = lookup(q, l.study_id, &parent);
         if (prc < 0)
             rc = -1;
-        else if (prc == 0 && !is_final(parent.status))
+        else if (prc == 0 && !tq_status_final(parent.status))
             rc = 2;
     }
     if (rc == 0) {

@@ -11,9 +11,12 @@
 #ifndef TLSPHD_QUEUE_H
 #define TLSPHD_QUEUE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
-#define TQ_ID_LEN 32 /* 128 random bits as lowercase hex */
+#include "jobid.h"
+
+#define TQ_ID_LEN JOB_ID_LEN
 
 /* OGC status values */
 #define TQ_ACCEPTED "accepted"
@@ -21,6 +24,11 @@
 #define TQ_SUCCESSFUL "successful"
 #define TQ_FAILED "failed"
 #define TQ_DISMISSED "dismissed"
+
+/* successful, failed or dismissed: the job will not change any more. */
+bool tq_status_final(const char *status);
+/* One of the five status values above. */
+bool tq_status_valid(const char *status);
 
 struct tq_job {
     char id[TQ_ID_LEN + 1];
@@ -54,12 +62,9 @@ void tq_job_free(struct tq_job *j);
 /* [added] Message of the last error on this handle ("" if none); valid until the
  * next call on the handle.  Every function below that returns -1 sets it. */
 const char *tq_last_error(struct tq *q);
-/* [added] Fills out with a fresh id: 128 random bits (getrandom) as 32 lowercase
- * hex digits.  0 or -1. */
-int tq_new_id(char out[TQ_ID_LEN + 1]);
 
-/* Common conventions (all functions): ids are 1..TQ_ID_LEN characters of
- * [0-9A-Za-z_-]; a tq_job filled by tq_get/tq_list/tq_claim_next is fully
+/* Common conventions (all functions): ids are keys in the sense of
+ * job_key_valid (jobid.h; ids are made by job_id_new); a tq_job filled by tq_get/tq_list/tq_claim_next is fully
  * overwritten (zeroed and tq_job_free-safe when nothing is returned).
  * Functions that change one job return 0 changed, 1 no such job or the job is
  * not in a state the change applies to (nothing changed), -1 error. */

@@ -20,6 +20,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "strbuf.h"
+
 #define SERIES_NAME_MAX 200
 #define FIELD_NAME_MAX 64
 
@@ -587,51 +589,12 @@ json_t *tres_series(const char *h5path, const char *name, int *not_found, char *
     return o;
 }
 
-/* Growing text buffer. */
-struct sbuf {
-    char *p;
-    size_t len, cap;
-    int oom;
-};
-
-static void sb_printf(struct sbuf *b, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-
-static void sb_printf(struct sbuf *b, const char *fmt, ...)
-{
-    if (b->oom)
-        return;
-    for (;;) {
-        va_list ap;
-        va_start(ap, fmt);
-        int n = vsnprintf(b->p ? b->p + b->len : NULL, b->p ? b->cap - b->len : 0, fmt, ap);
-        va_end(ap);
-        if (n < 0) {
-            b->oom = 1;
-            return;
-        }
-        if (b->p && b->len + (size_t)n < b->cap) {
-            b->len += (size_t)n;
-            return;
-        }
-        size_t cap = b->cap ? b->cap : 4096;
-        while (cap <= b->len + (size_t)n)
-            cap *= 2;
-        char *q = realloc(b->p, cap);
-        if (!q) {
-            b->oom = 1;
-            return;
-        }
-        b->p = q;
-        b->cap = cap;
-    }
-}
-
-static void sb_num(struct sbuf *b, double v)
+static void sb_num(struct strbuf *b, double v)
 {
     if (isfinite(v))
-        sb_printf(b, ",%.17g", v);
+        strbuf_printf(b, ",%.17g", v);
     else
-        sb_printf(b, ",%s", isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
+        strbuf_printf(b, ",%s", isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
 }
 
 char *tres_series_csv(const char *h5path, const char *name, int *not_found, char *err,
@@ -648,32 +611,30 @@ char *tres_series_csv(const char *h5path, const char *name, int *not_found, char
     }
     const char *col = strrchr(name, '/');
     col = col ? col + 1 : name;
-    struct sbuf b = {0};
-    sb_printf(&b, "step,time");
+    struct strbuf b = {0};
+    strbuf_printf(&b, "step,time");
     if (s.ncomp) {
         json_t *comps = components_json(&s);
         for (size_t c = 0; c < json_array_size(comps); c++)
-            sb_printf(&b, ",%s_%s", col, json_string_value(json_array_get(comps, c)));
+            strbuf_printf(&b, ",%s_%s", col, json_string_value(json_array_get(comps, c)));
         json_decref(comps);
     } else {
-        sb_printf(&b, ",%s", col);
+        strbuf_printf(&b, ",%s", col);
     }
-    sb_printf(&b, "\n");
+    strbuf_printf(&b, "\n");
     size_t nc = s.ncomp ? (size_t)s.ncomp : 1;
     for (size_t i = 0; i < s.rows; i++) {
-        sb_printf(&b, "%lld", (long long)s.step[i]);
+        strbuf_printf(&b, "%lld", (long long)s.step[i]);
         sb_num(&b, s.time[i]);
         for (size_t c = 0; c < nc; c++)
             sb_num(&b, s.value[i * nc + c]);
-        sb_printf(&b, "\n");
+        strbuf_printf(&b, "\n");
     }
     series_free(&s);
-    if (b.oom) {
-        free(b.p);
+    char *csv = strbuf_take(&b);
+    if (!csv)
         seterr(err, errsize, "out of memory writing CSV");
-        return NULL;
-    }
-    return b.p;
+    return csv;
 }
 
 int tres_series_reduce(const char *h5path, const char *name, int component, double *final,

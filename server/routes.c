@@ -22,6 +22,7 @@
 #include "scene/scene.h"
 #include "study.h"
 #include "supervisor.h"
+#include "util/clock.h"
 
 #define MAX_SEGMENTS 16
 #define MAX_WAIT 60.0
@@ -36,26 +37,6 @@
 #define REL_CONFORMANCE "http://www.opengis.net/def/rel/ogc/1.0/conformance"
 
 /* ------------------------------------------------------------------ helpers */
-
-static int valid_id(const char *s)
-{
-    size_t i;
-    for (i = 0; s[i]; i++)
-        if (!((s[i] >= '0' && s[i] <= '9') || (s[i] >= 'a' && s[i] <= 'f')) || i >= TQ_ID_LEN)
-            return 0;
-    return i == TQ_ID_LEN;
-}
-
-static int is_final(const char *status)
-{
-    return !strcmp(status, TQ_SUCCESSFUL) || !strcmp(status, TQ_FAILED) ||
-           !strcmp(status, TQ_DISMISSED);
-}
-
-static int valid_status(const char *s)
-{
-    return !strcmp(s, TQ_ACCEPTED) || !strcmp(s, TQ_RUNNING) || is_final(s);
-}
 
 /* jobs_dir/<id>/<file>; id already validated. */
 static void job_file(char *out, size_t n, const struct tapp *a, const char *id, const char *file)
@@ -142,13 +123,13 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
     struct tq_job *kids = NULL;
     size_t nk = 0;
     char live_message[128] = "";
-    if (study && study_children(a, q, j->id, &kids, &nk) == 0 && nk > 0 && !is_final(j->status)) {
+    if (study && study_children(a, q, j->id, &kids, &nk) == 0 && nk > 0 && !tq_status_final(j->status)) {
         size_t nacc = 0, nfinal = 0;
         double sum = 0;
         for (size_t i = 0; i < nk; i++) {
             if (!strcmp(kids[i].status, TQ_ACCEPTED))
                 nacc++;
-            else if (is_final(kids[i].status))
+            else if (tq_status_final(kids[i].status))
                 nfinal++, sum += 100.0;
             else
                 sum += kids[i].progress;
@@ -187,7 +168,7 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
         json_object_set_new(sim, "time", json_real(j->sim_time));
         json_object_set_new(sim, "end_time", json_real(j->end_time));
         json_object_set_new(sim, "step", json_integer(j->step));
-        if (j->eta >= 0 && !is_final(j->status))
+        if (j->eta >= 0 && !tq_status_final(j->status))
             json_object_set_new(sim, "eta_seconds", json_real(j->eta));
         json_object_set_new(o, "simulation", sim);
     }
@@ -198,7 +179,7 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
         json_decref(cost);
     json_t *links = json_array();
     add_link(links, "self", "application/json", "this job", "/jobs/%s", j->id);
-    if (is_final(status) || !strcmp(status, TQ_RUNNING))
+    if (tq_status_final(status) || !strcmp(status, TQ_RUNNING))
         add_link(links, REL_RESULTS, "application/json", "results", "/jobs/%s/results", j->id);
     if (!study && strcmp(status, TQ_ACCEPTED))
         add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
@@ -394,7 +375,7 @@ static void healthz(struct hreq *r, struct tapp *a)
 static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs, json_t **inputs)
 {
     json_error_t e;
-    json_t *root = json_loadb(r->body ? r->body : "", r->body_len, JSON_REJECT_DUPLICATES, &e);
+    json_t *root = json_loadb(r->body.p ? r->body.p : "", r->body.len, JSON_REJECT_DUPLICATES, &e);
     if (!root) {
         char d[300];
         snprintf(d, sizeof d, "line %d column %d: %s", e.line, e.column, e.text);
@@ -543,7 +524,7 @@ static void task_submit_run(struct hreq *r, void *app, void *ctx)
     struct tq_job j;
     fill_job(a, &j, "run", text);
     char err[256];
-    if (tq_new_id(j.id) != 0 ||
+    if (job_id_new(j.id) != 0 ||
         tsup_prepare_job_dir(a->cfg->jobs_dir, j.id, text, err, sizeof err) != 0) {
         json_decref(prob);
         prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
@@ -677,7 +658,7 @@ static void task_submit_study(struct hreq *r, void *app, void *ctx)
     fill_job(a, &study, "study", study_text);
     rows = calloc(nk, sizeof *rows);
     char err[256];
-    if (!study_text || !rows || tq_new_id(study.id) != 0) {
+    if (!study_text || !rows || job_id_new(study.id) != 0) {
         json_decref(prob);
         prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
         goto fail;
@@ -687,7 +668,7 @@ static void task_submit_study(struct hreq *r, void *app, void *ctx)
         rows[i].params = json_dumps(kids[i].params, JSON_COMPACT);
         rows[i].seq = (long)i;
         strcpy(rows[i].study_id, study.id);
-        if (!rows[i].input || !rows[i].params || tq_new_id(rows[i].id) != 0 ||
+        if (!rows[i].input || !rows[i].params || job_id_new(rows[i].id) != 0 ||
             tsup_prepare_job_dir(a->cfg->jobs_dir, rows[i].id, rows[i].input, err, sizeof err) != 0)
             break;
     }
@@ -757,12 +738,12 @@ static void list_jobs(struct hreq *r, struct tapp *a)
     if (!process)
         process = http_query(r, "process");
     long limit = 100, offset = 0;
-    if (status && *status && !valid_status(status)) {
+    if (status && *status && !tq_status_valid(status)) {
         http_reply_problem(r, PROBLEM_BAD_REQUEST,
                            "status must be accepted, running, successful, failed or dismissed");
         return;
     }
-    if (study && *study && !valid_id(study)) {
+    if (study && *study && !job_id_valid(study)) {
         http_reply_problem(r, PROBLEM_BAD_REQUEST, "study must be a job id (32 hex digits)");
         return;
     }
@@ -806,7 +787,7 @@ static void list_jobs(struct hreq *r, struct tapp *a)
 /* Loads a job for a route: replies 404 (or 503) and returns -1 when it cannot. */
 static int load_job(struct hreq *r, struct tapp *a, struct tq *q, const char *id, struct tq_job *j)
 {
-    if (!valid_id(id)) {
+    if (!job_id_valid(id)) {
         memset(j, 0, sizeof *j);
         http_reply_problem(r, PROBLEM_NO_SUCH_JOB, "no job with this id");
         return -1;
@@ -843,8 +824,8 @@ static void get_job(struct hreq *r, struct tapp *a, const char *id)
     }
     if (load_job(r, a, a->q, id, &j) != 0)
         return;
-    if (!r->resumed && wait > 0 && !is_final(j.status) &&
-        http_wait(r, j.id, http_now() + wait) == 0) {
+    if (!r->resumed && wait > 0 && !tq_status_final(j.status) &&
+        http_wait(r, j.id, tlsph_monotonic_seconds() + wait) == 0) {
         tq_job_free(&j);
         return; /* parked; the route runs again with r->resumed */
     }
@@ -862,7 +843,7 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
         tq_job_free(&j);
         return;
     }
-    if (!is_final(j.status)) {
+    if (!tq_status_final(j.status)) {
         if (tq_request_cancel(a->q, j.id) < 0) {
             tq_job_free(&j);
             http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
@@ -873,8 +854,8 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
         if (load_job(r, a, a->q, id, &j) != 0)
             return;
         /* a running engine is stopped by the supervisor: wait for it (bounded) */
-        if (!is_final(j.status) &&
-            http_wait(r, j.id, http_now() + a->cfg->kill_grace + 3.0) == 0) {
+        if (!tq_status_final(j.status) &&
+            http_wait(r, j.id, tlsph_monotonic_seconds() + a->cfg->kill_grace + 3.0) == 0) {
             tq_job_free(&j);
             return;
         }
@@ -893,7 +874,7 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
     int rc = tq_delete(a->q, j.id);
     if (rc == 0) {
         for (size_t i = 0; i < nk; i++)
-            if (valid_id(kids[i].id))
+            if (job_id_valid(kids[i].id))
                 tsup_remove_job_dir(a->cfg->jobs_dir, kids[i].id);
         tsup_remove_job_dir(a->cfg->jobs_dir, j.id);
         http_reply_json(r, 200, json_pack("{s:s}", "removed", j.id));
@@ -1069,17 +1050,6 @@ static void serve_log(struct hreq *r, struct tapp *a, const struct tq_job *j)
         return;
     }
     http_reply_fd(r, 200, "text/plain; charset=utf-8", fd, off, size - off);
-}
-
-static int valid_name(const char *s, int allow_slash)
-{
-    if (!*s || strlen(s) > 200)
-        return 0;
-    for (const char *p = s; *p; p++)
-        if (!(isalnum((unsigned char)*p) || *p == '_' || *p == '-' || *p == '.' ||
-              (allow_slash && *p == '/')))
-            return 0;
-    return strstr(s, "..") == NULL && s[0] != '/' && s[strlen(s) - 1] != '/';
 }
 
 static void h5_path(char *out, size_t n, struct tapp *a, const char *id)
@@ -1262,7 +1232,7 @@ static void job_sub(struct hreq *r, struct tapp *a, const char *id, char **seg, 
     if (load_job(r, a, a->q, id, &j) != 0)
         return;
     const int study = !strcmp(j.process, "study");
-    const int final = is_final(j.status), accepted = !strcmp(j.status, TQ_ACCEPTED);
+    const int final = tq_status_final(j.status), accepted = !strcmp(j.status, TQ_ACCEPTED);
     snprintf(r->id, sizeof r->id, "%s", j.id);
     char path[1200];
     int csv = 0;
@@ -1320,7 +1290,7 @@ static void job_sub(struct hreq *r, struct tapp *a, const char *id, char **seg, 
                     strncat(r->arg, "/", sizeof r->arg - strlen(r->arg) - 1);
                 strncat(r->arg, seg[i], sizeof r->arg - strlen(r->arg) - 1);
             }
-            if (!valid_name(r->arg, 1)) {
+            if (!tres_series_name_ok(r->arg)) {
                 http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "no such series");
                 goto done;
             }
@@ -1330,7 +1300,7 @@ static void job_sub(struct hreq *r, struct tapp *a, const char *id, char **seg, 
     } else if (!strcmp(what, "frames") && nseg == 2) {
         task = task_frames;
     } else if (!strcmp(what, "fields") && nseg == 3) {
-        if (!valid_name(seg[2], 0)) {
+        if (!tres_field_name_ok(seg[2])) {
             http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "no such field");
             goto done;
         }
@@ -1511,7 +1481,7 @@ int troutes_wait_ready(void *app, void *ctx, const char *id)
     if (!ctx)
         return 1;
     int rc = tq_get(ctx, id, &j);
-    int ready = rc != 0 || is_final(j.status);
+    int ready = rc != 0 || tq_status_final(j.status);
     tq_job_free(&j);
     return ready;
 }

@@ -12,21 +12,18 @@
 #ifndef _GNU_SOURCE
 #define _GNU_SOURCE
 #endif
-#include <stddef.h> /* supervisor.h uses size_t without including it */
-
 #include "supervisor.h"
-#include "queue.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <jansson.h>
 #include <limits.h>
 #include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,40 +32,30 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
+
+#include "engine_report.h"
+#include "queue.h"
+#include "util/clock.h"
 
 #define TSUP_TICK_MS 200             /* poll timeout: reaping, limits, cancels */
 #define TSUP_CLAIM_INTERVAL 1.0      /* s between claim attempts when not woken */
 #define TSUP_PROGRESS_INTERVAL 0.25  /* s between queue progress writes per job */
-#define TSUP_LINE_MAX (256 * 1024)   /* longest progress line kept */
-#define TSUP_LOG_TAIL 4096           /* bytes of log.txt read for messages */
 #define TSUP_NOFILE 256              /* RLIMIT_NOFILE of an engine */
 
-enum stop_reason { R_NONE = 0, R_CANCEL, R_TIMEOUT, R_SHUTDOWN };
-
 struct child {
-    int used;
-    char id[TQ_ID_LEN + 1];
+    bool used;
+    char id[JOB_ID_LEN + 1];
     pid_t pid;
     int fd;                  /* progress pipe read end, -1 once closed */
-    char *line;              /* partial line */
-    size_t len, cap;
-    int overflow;            /* discarding an over-long line */
     double t_start;          /* monotonic */
     double wall_limit;       /* s, <= 0 none */
-    enum stop_reason reason;
+    enum engine_stop reason;
     double t_term;           /* monotonic time SIGTERM was sent, 0 none */
-    int killed;              /* SIGKILL sent */
-    /* progress */
-    double end_time, sim_time, eta;
-    long step;
-    int pending;             /* progress not yet written to the queue */
+    bool killed;             /* SIGKILL sent */
+    struct engine_report report;
+    bool pending;            /* progress not yet written to the queue */
     double t_update;         /* monotonic time of the last queue write */
-    /* finished line */
-    char *fin_status;
-    char *cost;              /* JSON text */
-    char *diag;              /* diagnostic message */
 };
 
 struct tsup {
@@ -98,13 +85,6 @@ struct tsup {
 
 /* ------------------------------------------------------------------ helpers */
 
-static double now_mono(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
 static void set_err(char *err, size_t errsize, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 static void set_err(char *err, size_t errsize, const char *fmt, ...)
@@ -126,21 +106,6 @@ static void logmsg(const char *fmt, ...)
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     fprintf(stderr, "tlsphd: supervisor: %s\n", buf);
-}
-
-static int valid_id(const char *id)
-{
-    if (!id)
-        return 0;
-    size_t i;
-    for (i = 0; id[i]; i++) {
-        if (i >= TQ_ID_LEN)
-            return 0;
-        char c = id[i];
-        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f')))
-            return 0;
-    }
-    return i == TQ_ID_LEN;
 }
 
 /* jobs_dir/id[/name] into buf; 0 or -1 if too long */
@@ -188,7 +153,7 @@ int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene
         set_err(err, errsize, "missing jobs directory or scene");
         return -1;
     }
-    if (!valid_id(id)) {
+    if (!job_id_valid(id)) {
         set_err(err, errsize, "invalid job id");
         return -1;
     }
@@ -275,7 +240,7 @@ static int remove_known_files(int dfd)
 int tsup_remove_job_dir(const char *jobs_dir, const char *id)
 {
     char dir[PATH_MAX];
-    if (!jobs_dir || !*jobs_dir || !valid_id(id) || strchr(id, '/') || strstr(id, ".."))
+    if (!jobs_dir || !*jobs_dir || !job_id_valid(id) || strchr(id, '/') || strstr(id, ".."))
         return -1;
     if (job_path(dir, sizeof dir, jobs_dir, id, NULL) < 0)
         return -1;
@@ -293,10 +258,7 @@ int tsup_remove_job_dir(const char *jobs_dir, const char *id)
 
 static void child_clear(struct child *c)
 {
-    free(c->line);
-    free(c->fin_status);
-    free(c->cost);
-    free(c->diag);
+    engine_report_free(&c->report);
     memset(c, 0, sizeof *c);
     c->fd = -1;
 }
@@ -305,74 +267,16 @@ static void flush_progress(struct tsup *s, struct child *c, double now)
 {
     if (!c->pending)
         return;
-    double p = c->end_time > 0 ? 100.0 * c->sim_time / c->end_time : 0.0;
+    const struct engine_report *r = &c->report;
+    double p = r->end_time > 0 ? 100.0 * r->sim_time / r->end_time : 0.0;
     if (p < 0)
         p = 0;
     if (p > 100)
         p = 100;
-    if (tq_update_progress(s->q, c->id, p, c->sim_time, c->end_time, c->step, c->eta) < 0)
+    if (tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) < 0)
         logmsg("job %s: cannot update progress", c->id);
-    c->pending = 0;
+    c->pending = false;
     c->t_update = now;
-}
-
-static char *dup_str(const char *s)
-{
-    return s ? strdup(s) : NULL;
-}
-
-static void handle_line(struct tsup *s, struct child *c, const char *line, size_t len)
-{
-    json_error_t jerr;
-    json_t *o = json_loadb(line, len, 0, &jerr);
-    if (!o)
-        return;
-    if (!json_is_object(o)) {
-        json_decref(o);
-        return;
-    }
-    const char *ev = json_string_value(json_object_get(o, "event"));
-    if (!ev) {
-        json_decref(o);
-        return;
-    }
-    json_t *v;
-    if (strcmp(ev, "started") == 0) {
-        if (json_is_number(v = json_object_get(o, "end_time")))
-            c->end_time = json_number_value(v);
-        c->pending = 1;
-    } else if (strcmp(ev, "progress") == 0) {
-        if (json_is_number(v = json_object_get(o, "end_time")))
-            c->end_time = json_number_value(v);
-        if (json_is_number(v = json_object_get(o, "time")))
-            c->sim_time = json_number_value(v);
-        if (json_is_integer(v = json_object_get(o, "step")))
-            c->step = (long)json_integer_value(v);
-        if (json_is_number(v = json_object_get(o, "eta_seconds")))
-            c->eta = json_number_value(v);
-        c->pending = 1;
-        double now = now_mono();
-        if (now - c->t_update >= TSUP_PROGRESS_INTERVAL)
-            flush_progress(s, c, now);
-    } else if (strcmp(ev, "finished") == 0) {
-        free(c->fin_status);
-        c->fin_status = dup_str(json_string_value(json_object_get(o, "status")));
-        if (json_is_integer(v = json_object_get(o, "step")))
-            c->step = (long)json_integer_value(v);
-        if (json_is_number(v = json_object_get(o, "time")))
-            c->sim_time = json_number_value(v);
-        json_t *cost = json_object_get(o, "cost");
-        if (json_is_object(cost)) {
-            free(c->cost);
-            c->cost = json_dumps(cost, JSON_COMPACT);
-        }
-        json_t *diag = json_object_get(o, "diagnostic");
-        if (json_is_object(diag)) {
-            free(c->diag);
-            c->diag = dup_str(json_string_value(json_object_get(diag, "message")));
-        }
-    }
-    json_decref(o);
 }
 
 /* Reads what is available. Closes the fd on EOF/error. */
@@ -392,123 +296,16 @@ static void read_progress(struct tsup *s, struct child *c)
         if (n == 0) {
             close(c->fd);
             c->fd = -1;
-            /* an unterminated last line still counts */
-            if (c->len > 0 && !c->overflow)
-                handle_line(s, c, c->line, c->len);
-            c->len = 0;
+            engine_report_eof(&c->report);
             return;
         }
-        for (ssize_t i = 0; i < n; i++) {
-            char ch = buf[i];
-            if (ch == '\n') {
-                if (!c->overflow && c->len > 0)
-                    handle_line(s, c, c->line, c->len);
-                c->len = 0;
-                c->overflow = 0;
-                continue;
-            }
-            if (c->overflow)
-                continue;
-            if (c->len >= TSUP_LINE_MAX) {
-                c->overflow = 1;
-                c->len = 0;
-                continue;
-            }
-            if (c->len + 1 > c->cap) {
-                size_t nc = c->cap ? c->cap * 2 : 1024;
-                char *p = realloc(c->line, nc);
-                if (!p) {
-                    c->overflow = 1;
-                    c->len = 0;
-                    continue;
-                }
-                c->line = p;
-                c->cap = nc;
-            }
-            c->line[c->len++] = ch;
+        if (engine_report_feed(&c->report, buf, (size_t)n)) {
+            c->pending = true;
+            const double now = tlsph_monotonic_seconds();
+            if (now - c->t_update >= TSUP_PROGRESS_INTERVAL)
+                flush_progress(s, c, now);
         }
     }
-}
-
-/* Appends line p[0..l) to out (newline-separated). */
-static void append_line(char *out, size_t size, size_t *olen, const char *p, size_t l)
-{
-    if (*olen + l + 2 >= size)
-        return;
-    if (*olen)
-        out[(*olen)++] = '\n';
-    memcpy(out + *olen, p, l);
-    *olen += l;
-    out[*olen] = 0;
-}
-
-/* Message from the tail (<= 4 KiB) of log.txt: up to 5 lines starting with
- * prefer, else the last 3 non-empty lines.  Returns malloc'd text or NULL. */
-static char *log_excerpt(const struct tsup *s, const char *id, const char *prefer)
-{
-    char path[PATH_MAX];
-    if (job_path(path, sizeof path, s->jobs_dir, id, "log.txt") < 0)
-        return NULL;
-    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-    if (fd < 0)
-        return NULL;
-    char buf[TSUP_LOG_TAIL + 1];
-    off_t end = lseek(fd, 0, SEEK_END);
-    off_t start = end > TSUP_LOG_TAIL ? end - TSUP_LOG_TAIL : 0;
-    size_t got = 0;
-    if (end >= 0 && lseek(fd, start, SEEK_SET) >= 0) {
-        while (got < TSUP_LOG_TAIL) {
-            ssize_t n = read(fd, buf + got, TSUP_LOG_TAIL - got);
-            if (n < 0 && errno == EINTR)
-                continue;
-            if (n <= 0)
-                break;
-            got += (size_t)n;
-        }
-    }
-    close(fd);
-    buf[got] = 0;
-    for (size_t i = 0; i < got; i++)
-        if (buf[i] == 0 || buf[i] == '\r')
-            buf[i] = ' ';
-    char *text = buf;
-    if (start > 0) { /* drop the partial first line */
-        char *nl = strchr(text, '\n');
-        text = nl ? nl + 1 : text + got;
-    }
-    char out[2048];
-    size_t olen = 0;
-    out[0] = 0;
-    size_t plen = prefer ? strlen(prefer) : 0;
-    int count = 0;
-    const char *last[3] = {NULL, NULL, NULL};
-    size_t lastl[3] = {0, 0, 0};
-    for (char *p = text; *p;) {
-        char *nl = strchr(p, '\n');
-        size_t l = nl ? (size_t)(nl - p) : strlen(p);
-        if (l > 0) {
-            if (plen && count < 5 && l >= plen && strncmp(p, prefer, plen) == 0) {
-                size_t skip = 0; /* "error: x" -> "x" */
-                if (strcmp(prefer, "error:") == 0)
-                    for (skip = plen; skip < l && p[skip] == ' '; skip++)
-                        ;
-                append_line(out, sizeof out, &olen, p + skip, l - skip);
-                count++;
-            }
-            last[0] = last[1];
-            lastl[0] = lastl[1];
-            last[1] = last[2];
-            lastl[1] = lastl[2];
-            last[2] = p;
-            lastl[2] = l;
-        }
-        p = nl ? nl + 1 : p + l;
-    }
-    if (count == 0)
-        for (int k = 0; k < 3; k++)
-            if (last[k])
-                append_line(out, sizeof out, &olen, last[k], lastl[k]);
-    return olen ? strdup(out) : NULL;
 }
 
 static char *fmt_msg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -523,21 +320,15 @@ static char *fmt_msg(const char *fmt, ...)
     return out;
 }
 
-static const char *sig_name(int sig)
-{
-    const char *n = sigabbrev_np(sig);
-    return n ? n : "?";
-}
-
 /* The leader has exited (zombie, not yet reaped): finish the job. */
 static void finish_child(struct tsup *s, struct child *c, int wstatus)
 {
     /* Drain the pipe.  The group has just been SIGKILLed, so any member still
      * holding the write end goes away within moments: wait briefly for EOF. */
-    double t_end = now_mono() + 0.2;
+    double t_end = tlsph_monotonic_seconds() + 0.2;
     read_progress(s, c);
     while (c->fd >= 0) {
-        double left = t_end - now_mono();
+        double left = t_end - tlsph_monotonic_seconds();
         if (left <= 0)
             break;
         struct pollfd pfd = {.fd = c->fd, .events = POLLIN};
@@ -550,84 +341,33 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
     if (c->fd >= 0) {
         close(c->fd);
         c->fd = -1;
-        if (c->len > 0 && !c->overflow) /* the leader is dead: its last words count */
-            handle_line(s, c, c->line, c->len);
-        c->len = 0;
+        engine_report_eof(&c->report); /* the leader is dead: its last words count */
     }
 
-    const char *status = TQ_FAILED, *outcome = "crashed";
-    char *msg = NULL;
-    int requeue = 0;
-    int lost = wstatus == -1; /* the exit status was reaped elsewhere */
-    int code = !lost && WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
-    int sig = !lost && WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-
-    if (code == 0) {
-        status = TQ_SUCCESSFUL;
-        outcome = "successful";
-    } else if (c->reason == R_CANCEL) {
-        status = TQ_DISMISSED;
-        outcome = "cancelled";
-        msg = strdup("cancelled");
-    } else if (c->reason == R_SHUTDOWN) {
-        requeue = 1;
-    } else if (c->reason == R_TIMEOUT) {
-        outcome = "timed_out";
-        msg = fmt_msg("wall-clock limit of %g s exceeded", c->wall_limit);
-    } else if (code == 2) {
-        outcome = "invalid";
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = ex ? ex : strdup("invalid scene");
-    } else if (code == 3) {
-        outcome = "unstable";
-        if (c->diag)
-            msg = strdup(c->diag);
-        else {
-            char *ex = log_excerpt(s, c->id, "tlsph: numerically unstable");
-            msg = ex ? ex : strdup("numerically unstable");
-        }
-    } else if (code == 4) {
-        outcome = "io_error";
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = ex ? fmt_msg("I/O failure: %s", ex) : strdup("I/O failure");
-        free(ex);
-    } else if (code == 5) {
-        status = TQ_DISMISSED;
-        outcome = "cancelled";
-        msg = strdup("cancelled");
-    } else if (lost) {
-        msg = strdup("engine ended, but its exit status was lost (reaped elsewhere)");
-    } else if (sig) {
-        msg = fmt_msg("killed by signal %d (SIG%s)%s", sig, sig_name(sig),
-                      sig == SIGKILL ? ": killed externally or out of memory" : "");
-    } else {
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = fmt_msg("engine exited with unexpected status %d%s%s", code, ex ? ": " : "",
-                      ex ? ex : "");
-        free(ex);
-    }
-
-    if (requeue) {
+    struct engine_outcome out;
+    engine_outcome(&c->report, wstatus, c->reason, c->wall_limit, &out);
+    if (out.requeue) {
         if (tq_requeue(s->q, c->id, "interrupted by daemon shutdown") < 0)
             logmsg("job %s: cannot requeue", c->id);
     } else {
-        if (code == 0) {
-            c->sim_time = c->end_time > 0 ? c->end_time : c->sim_time;
-            c->eta = 0;
-            c->pending = 1;
-            if (c->end_time > 0) {
-                flush_progress(s, c, now_mono());
-            } else if (tq_update_progress(s->q, c->id, 100.0, c->sim_time, c->end_time, c->step,
+        struct engine_report *r = &c->report;
+        if (!strcmp(out.status, TQ_SUCCESSFUL)) {
+            r->sim_time = r->end_time > 0 ? r->end_time : r->sim_time;
+            r->eta = 0;
+            c->pending = true;
+            if (r->end_time > 0) {
+                flush_progress(s, c, tlsph_monotonic_seconds());
+            } else if (tq_update_progress(s->q, c->id, 100.0, r->sim_time, r->end_time, r->step,
                                           0.0) < 0) {
                 logmsg("job %s: cannot update progress", c->id);
             }
         } else {
-            flush_progress(s, c, now_mono());
+            flush_progress(s, c, tlsph_monotonic_seconds());
         }
-        if (tq_finish(s->q, c->id, status, outcome, msg, c->cost) < 0)
+        if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) < 0)
             logmsg("job %s: cannot record the final state", c->id);
     }
-    free(msg);
+    free(out.message);
     child_clear(c);
     s->nrunning--;
 }
@@ -672,9 +412,9 @@ static void signal_group(struct child *c, int sig)
         logmsg("job %s: kill(-%ld, %d): %s", c->id, (long)c->pid, sig, strerror(errno));
 }
 
-static void request_stop(struct child *c, enum stop_reason why, double now)
+static void request_stop(struct child *c, enum engine_stop why, double now)
 {
-    if (c->reason == R_NONE || (why == R_CANCEL && c->reason != R_CANCEL))
+    if (c->reason == ENGINE_NOT_STOPPED || (why == ENGINE_STOP_CANCEL && c->reason != ENGINE_STOP_CANCEL))
         c->reason = why;
     if (c->t_term == 0) {
         c->t_term = now;
@@ -809,7 +549,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 {
     char dir[PATH_MAX], scene[PATH_MAX], logp[PATH_MAX];
     const char *id = j->id;
-    if (!valid_id(id)) {
+    if (!job_id_valid(id)) {
         logmsg("refusing job with invalid id");
         tq_finish(s->q, id, TQ_FAILED, "crashed", "invalid job id", NULL);
         return;
@@ -884,14 +624,13 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         logmsg("job %s: cannot make the pipe non-blocking: %s", id, strerror(errno));
 
     child_clear(c);
-    c->used = 1;
-    memcpy(c->id, id, TQ_ID_LEN + 1);
+    c->used = true;
+    memcpy(c->id, id, JOB_ID_LEN + 1);
     c->pid = pid;
     c->fd = pfd[0];
-    c->t_start = now_mono();
+    c->t_start = tlsph_monotonic_seconds();
     c->wall_limit = j->wall_limit > 0 ? j->wall_limit : s->wall_limit;
-    c->end_time = j->end_time;
-    c->eta = -1;
+    engine_report_init(&c->report, j->end_time);
     s->nrunning++;
     if (tq_set_pid(s->q, id, (long)pid) < 0)
         logmsg("job %s: cannot record pid", id);
@@ -934,9 +673,9 @@ static void check_cancels(struct tsup *s, double now)
     for (size_t k = 0; k < n; k++)
         for (int i = 0; i < s->max_jobs; i++) {
             struct child *c = &s->kids[i];
-            if (c->used && strcmp(c->id, ids[k]) == 0 && c->reason != R_CANCEL) {
-                c->reason = R_NONE;
-                request_stop(c, R_CANCEL, now);
+            if (c->used && strcmp(c->id, ids[k]) == 0 && c->reason != ENGINE_STOP_CANCEL) {
+                c->reason = ENGINE_NOT_STOPPED;
+                request_stop(c, ENGINE_STOP_CANCEL, now);
             }
         }
     free(ids);
@@ -986,12 +725,12 @@ static void *sup_main(void *arg)
     int want_claim = 1, stopping = 0;
     double last_claim = 0;
     for (;;) {
-        double now = now_mono();
+        double now = tlsph_monotonic_seconds();
         if (!stopping && atomic_load(&s->stop)) {
             stopping = 1;
             for (int i = 0; i < s->max_jobs; i++)
                 if (s->kids[i].used)
-                    request_stop(&s->kids[i], R_SHUTDOWN, now);
+                    request_stop(&s->kids[i], ENGINE_STOP_SHUTDOWN, now);
         }
         if (stopping && s->nrunning == 0)
             break;
@@ -1029,18 +768,18 @@ static void *sup_main(void *arg)
         }
 
         /* the tick: cancels, limits, escalation, progress, reaping */
-        now = now_mono();
+        now = tlsph_monotonic_seconds();
         if (!stopping)
             check_cancels(s, now);
         for (int i = 0; i < s->max_jobs; i++) {
             struct child *c = &s->kids[i];
             if (!c->used)
                 continue;
-            if (c->wall_limit > 0 && c->reason == R_NONE && now - c->t_start > c->wall_limit)
-                request_stop(c, R_TIMEOUT, now);
+            if (c->wall_limit > 0 && c->reason == ENGINE_NOT_STOPPED && now - c->t_start > c->wall_limit)
+                request_stop(c, ENGINE_STOP_TIMEOUT, now);
             if (c->t_term > 0 && !c->killed && now - c->t_term >= s->kill_grace) {
                 signal_group(c, SIGKILL);
-                c->killed = 1;
+                c->killed = true;
             }
             if (c->pending && now - c->t_update >= TSUP_PROGRESS_INTERVAL)
                 flush_progress(s, c, now);
