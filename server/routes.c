@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "auth.h"
+#include "jobdir.h"
 #include "problem.h"
 #include "queue.h"
 #include "results.h"
@@ -39,9 +40,11 @@
 /* ------------------------------------------------------------------ helpers */
 
 /* jobs_dir/<id>/<file>; id already validated. */
-static void job_file(char *out, size_t n, const struct tapp *a, const char *id, const char *file)
+static void job_file(char *out, size_t n, const struct tapp *a, const char *id,
+                     enum jobdir_file file)
 {
-    snprintf(out, n, "%s/%s/%s", a->cfg->jobs_dir, id, file);
+    if (jobdir_path(out, n, a->cfg->jobs_dir, id, file) != 0)
+        out[0] = '\0';
 }
 
 static void rfc3339(json_t *obj, const char *key, double t)
@@ -525,14 +528,14 @@ static void task_submit_run(struct hreq *r, void *app, void *ctx)
     fill_job(a, &j, "run", text);
     char err[256];
     if (job_id_new(j.id) != 0 ||
-        tsup_prepare_job_dir(a->cfg->jobs_dir, j.id, text, err, sizeof err) != 0) {
+        jobdir_create(a->cfg->jobs_dir, j.id, text, err, sizeof err) != 0) {
         json_decref(prob);
         prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
         goto fail;
     }
     if (tq_insert(q, &j) != 0) {
         fprintf(stderr, "tlsphd: tq_insert: %s\n", tq_last_error(q));
-        tsup_remove_job_dir(a->cfg->jobs_dir, j.id);
+        jobdir_remove(a->cfg->jobs_dir, j.id);
         json_decref(prob);
         prob = problem_new(PROBLEM_UNAVAILABLE, "cannot queue the job", r->path);
         goto fail;
@@ -669,7 +672,7 @@ static void task_submit_study(struct hreq *r, void *app, void *ctx)
         rows[i].seq = (long)i;
         strcpy(rows[i].study_id, study.id);
         if (!rows[i].input || !rows[i].params || job_id_new(rows[i].id) != 0 ||
-            tsup_prepare_job_dir(a->cfg->jobs_dir, rows[i].id, rows[i].input, err, sizeof err) != 0)
+            jobdir_create(a->cfg->jobs_dir, rows[i].id, rows[i].input, err, sizeof err) != 0)
             break;
     }
     if (i < nk || tq_insert_study(q, &study, rows, nk) != 0) {
@@ -677,7 +680,7 @@ static void task_submit_study(struct hreq *r, void *app, void *ctx)
             fprintf(stderr, "tlsphd: tq_insert_study: %s\n", tq_last_error(q));
         for (size_t k = 0; k < nk && k <= i; k++)
             if (rows[k].id[0])
-                tsup_remove_job_dir(a->cfg->jobs_dir, rows[k].id);
+                jobdir_remove(a->cfg->jobs_dir, rows[k].id);
         json_decref(prob);
         prob = problem_new(PROBLEM_UNAVAILABLE, "cannot queue the study", r->path);
         goto fail;
@@ -875,8 +878,8 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
     if (rc == 0) {
         for (size_t i = 0; i < nk; i++)
             if (job_id_valid(kids[i].id))
-                tsup_remove_job_dir(a->cfg->jobs_dir, kids[i].id);
-        tsup_remove_job_dir(a->cfg->jobs_dir, j.id);
+                jobdir_remove(a->cfg->jobs_dir, kids[i].id);
+        jobdir_remove(a->cfg->jobs_dir, j.id);
         http_reply_json(r, 200, json_pack("{s:s}", "removed", j.id));
     } else if (rc == 1) {
         http_reply_problem(r, PROBLEM_NO_SUCH_JOB, "no job with this id");
@@ -1033,7 +1036,7 @@ static void serve_file(struct hreq *r, const char *path, const char *ctype, cons
 static void serve_log(struct hreq *r, struct tapp *a, const struct tq_job *j)
 {
     char path[1200];
-    job_file(path, sizeof path, a, j->id, "log.txt");
+    job_file(path, sizeof path, a, j->id, JOBDIR_LOG);
     int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
     struct stat st;
     if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
@@ -1054,7 +1057,7 @@ static void serve_log(struct hreq *r, struct tapp *a, const struct tq_job *j)
 
 static void h5_path(char *out, size_t n, struct tapp *a, const char *id)
 {
-    job_file(out, n, a, id, "result.h5");
+    job_file(out, n, a, id, JOBDIR_RESULT);
 }
 
 static void task_series_list(struct hreq *r, void *app, void *ctx)
@@ -1273,7 +1276,7 @@ static void job_sub(struct hreq *r, struct tapp *a, const char *id, char **seg, 
             const int h5 = !strcmp(what, "result.h5");
             char name[64];
             snprintf(name, sizeof name, "job-%.12s.%s", j.id, h5 ? "h5" : "xmf");
-            job_file(path, sizeof path, a, j.id, what);
+            job_file(path, sizeof path, a, j.id, h5 ? JOBDIR_RESULT : JOBDIR_SIDECAR);
             serve_file(r, path, h5 ? "application/x-hdf5" : "text/xml", j.id, name, 1);
         }
         goto done;
@@ -1318,7 +1321,7 @@ static void job_sub(struct hreq *r, struct tapp *a, const char *id, char **seg, 
         goto done;
     }
     if (!study) {
-        job_file(path, sizeof path, a, j.id, "result.h5");
+        job_file(path, sizeof path, a, j.id, JOBDIR_RESULT);
         if (access(path, R_OK) != 0) {
             if (final)
                 http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no result file");

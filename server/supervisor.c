@@ -35,6 +35,7 @@
 #include <unistd.h>
 
 #include "engine_report.h"
+#include "jobdir.h"
 #include "queue.h"
 #include "util/clock.h"
 
@@ -106,152 +107,6 @@ static void logmsg(const char *fmt, ...)
     vsnprintf(buf, sizeof buf, fmt, ap);
     va_end(ap);
     fprintf(stderr, "tlsphd: supervisor: %s\n", buf);
-}
-
-/* jobs_dir/id[/name] into buf; 0 or -1 if too long */
-static int job_path(char *buf, size_t size, const char *jobs_dir, const char *id, const char *name)
-{
-    int n = name ? snprintf(buf, size, "%s/%s/%s", jobs_dir, id, name)
-                 : snprintf(buf, size, "%s/%s", jobs_dir, id);
-    return (n < 0 || (size_t)n >= size) ? -1 : 0;
-}
-
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-static int fsync_dir(const char *path)
-{
-    int fd = open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0)
-        return -1;
-    int rc = fsync(fd);
-    int e = errno;
-    close(fd);
-    errno = e;
-    return rc;
-}
-
-/* ------------------------------------------------------------------ job dirs */
-
-int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene_json,
-                         char *err, size_t errsize)
-{
-    char dir[PATH_MAX], tmp[PATH_MAX], dst[PATH_MAX];
-    if (!jobs_dir || !*jobs_dir || !scene_json) {
-        set_err(err, errsize, "missing jobs directory or scene");
-        return -1;
-    }
-    if (!job_id_valid(id)) {
-        set_err(err, errsize, "invalid job id");
-        return -1;
-    }
-    if (job_path(dir, sizeof dir, jobs_dir, id, NULL) < 0 ||
-        job_path(tmp, sizeof tmp, jobs_dir, id, "scene.json.XXXXXX.tmp") < 0 ||
-        job_path(dst, sizeof dst, jobs_dir, id, "scene.json") < 0) {
-        set_err(err, errsize, "job directory path too long");
-        return -1;
-    }
-    if (mkdir(jobs_dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", jobs_dir, strerror(errno));
-        return -1;
-    }
-    if (mkdir(dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", dir, strerror(errno));
-        return -1;
-    }
-    struct stat st;
-    if (lstat(dir, &st) < 0 || !S_ISDIR(st.st_mode)) {
-        set_err(err, errsize, "%s is not a directory", dir);
-        return -1;
-    }
-    int fd = mkostemps(tmp, 4, O_CLOEXEC);
-    if (fd < 0) {
-        set_err(err, errsize, "cannot create %s: %s", tmp, strerror(errno));
-        return -1;
-    }
-    if (write_all(fd, scene_json, strlen(scene_json)) < 0 || fsync(fd) < 0) {
-        set_err(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        close(fd);
-        unlink(tmp);
-        return -1;
-    }
-    if (close(fd) < 0) {
-        set_err(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (rename(tmp, dst) < 0) {
-        set_err(err, errsize, "cannot rename %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (fsync_dir(dir) < 0) {
-        set_err(err, errsize, "cannot sync %s: %s", dir, strerror(errno));
-        return -1;
-    }
-    return 0;
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t a = strlen(s), b = strlen(suffix);
-    return a >= b && strcmp(s + a - b, suffix) == 0;
-}
-
-/* Removes the daemon's files from an open job directory. -1 on a real error. */
-static int remove_known_files(int dfd)
-{
-    static const char *const known[] = {"scene.json", "result.h5", "result.xmf", "log.txt"};
-    int rc = 0;
-    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-        if (unlinkat(dfd, known[i], 0) < 0 && errno != ENOENT)
-            rc = -1;
-    int d2 = dup(dfd);
-    if (d2 < 0)
-        return -1;
-    DIR *d = fdopendir(d2);
-    if (!d) {
-        close(d2);
-        return -1;
-    }
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && !e->d_name[2])))
-            continue;
-        if (ends_with(e->d_name, ".tmp") && unlinkat(dfd, e->d_name, 0) < 0 && errno != ENOENT)
-            rc = -1;
-    }
-    closedir(d);
-    return rc;
-}
-
-int tsup_remove_job_dir(const char *jobs_dir, const char *id)
-{
-    char dir[PATH_MAX];
-    if (!jobs_dir || !*jobs_dir || !job_id_valid(id) || strchr(id, '/') || strstr(id, ".."))
-        return -1;
-    if (job_path(dir, sizeof dir, jobs_dir, id, NULL) < 0)
-        return -1;
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (dfd < 0)
-        return errno == ENOENT ? 0 : -1;
-    int rc = remove_known_files(dfd);
-    close(dfd);
-    if (rmdir(dir) < 0 && errno != ENOENT)
-        rc = -1;
-    return rc;
 }
 
 /* ------------------------------------------------------------------ children */
@@ -527,23 +382,6 @@ static void run_child(const struct spawn_args *a)
     child_fail(2, "execv failed");
 }
 
-static int remove_stale(const struct tsup *s, const char *id)
-{
-    char dir[PATH_MAX];
-    if (job_path(dir, sizeof dir, s->jobs_dir, id, NULL) < 0)
-        return -1;
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (dfd < 0)
-        return -1;
-    static const char *const stale[] = {"result.h5", "result.xmf", "log.txt", "result.xmf.tmp"};
-    int rc = 0;
-    for (size_t i = 0; i < sizeof stale / sizeof stale[0]; i++)
-        if (unlinkat(dfd, stale[i], 0) < 0 && errno != ENOENT)
-            rc = -1;
-    close(dfd);
-    return rc;
-}
-
 /* Starts a claimed job in slot c. On failure the job is finished as failed. */
 static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 {
@@ -554,9 +392,9 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         tq_finish(s->q, id, TQ_FAILED, "crashed", "invalid job id", NULL);
         return;
     }
-    if (job_path(dir, sizeof dir, s->jobs_dir, id, NULL) < 0 ||
-        job_path(scene, sizeof scene, s->jobs_dir, id, "scene.json") < 0 ||
-        job_path(logp, sizeof logp, s->jobs_dir, id, "log.txt") < 0) {
+    if (jobdir_path(dir, sizeof dir, s->jobs_dir, id, JOBDIR_FILES) < 0 ||
+        jobdir_path(scene, sizeof scene, s->jobs_dir, id, JOBDIR_SCENE) < 0 ||
+        jobdir_path(logp, sizeof logp, s->jobs_dir, id, JOBDIR_LOG) < 0) {
         tq_finish(s->q, id, TQ_FAILED, "crashed", "job directory path too long", NULL);
         return;
     }
@@ -569,7 +407,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         free(m);
         return;
     }
-    if (remove_stale(s, id) < 0) {
+    if (jobdir_clear_outputs(s->jobs_dir, id) < 0) {
         char *m = fmt_msg("cannot remove stale results: %s", strerror(errno));
         if (tq_finish(s->q, id, TQ_FAILED, "io_error", m, NULL) < 0)
             logmsg("job %s: cannot record the final state", id);

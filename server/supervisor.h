@@ -11,8 +11,7 @@
  * status into the job's final state (docs/protocol.md).
  * Cancellation: SIGTERM to the process group, SIGKILL after a grace period.
  *
- * Job directories: jobs_dir/<id>/ (the id is validated hex, never a raw path
- * from a request). */
+ * Job directories: jobdir.h. */
 #ifndef TLSPHD_SUPERVISOR_H
 #define TLSPHD_SUPERVISOR_H
 
@@ -39,10 +38,4 @@ void tsup_wake(struct tsup *s);
 /* Stops: running engines get SIGTERM (then SIGKILL after the grace period) and
  * their jobs are requeued so the next daemon runs them again; joins the thread. */
 void tsup_stop(struct tsup *s);
-/* Writes the scene file for a job: jobs_dir/<id>/scene.json (0 or -1). */
-int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene_json,
-                         char *err, size_t errsize);
-/* Removes jobs_dir/<id> recursively (only files the daemon writes). */
-int tsup_remove_job_dir(const char *jobs_dir, const char *id);
-
 #endif
