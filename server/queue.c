@@ -368,6 +368,13 @@ void tq_job_free(struct tq_job *j)
     memset(j, 0, sizeof *j);
 }
 
+void tq_jobs_free(struct tq_job *jobs, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        tq_job_free(&jobs[i]);
+    free(jobs);
+}
+
 /* Row of S_LOOKUP. */
 struct lookup {
     char process[16];
@@ -665,7 +672,7 @@ static int insert_row(struct tq *q, const struct tq_job *j, const char *study_id
 
 static int study_refresh_locked(struct tq *q, const char *study_id);
 
-int tq_insert(struct tq *q, const struct tq_job *j)
+enum tq_rc tq_insert(struct tq *q, const struct tq_job *j)
 {
     NEED_Q(q);
     if (check_job_fields(q, "tq_insert", j, NULL) < 0)
@@ -679,8 +686,8 @@ int tq_insert(struct tq *q, const struct tq_job *j)
     return tx_end(q, "tq_insert", rc);
 }
 
-int tq_insert_study(struct tq *q, const struct tq_job *study, const struct tq_job *children,
-                    size_t n)
+enum tq_rc tq_insert_study(struct tq *q, const struct tq_job *study,
+                           const struct tq_job *children, size_t n)
 {
     NEED_Q(q);
     if (check_job_fields(q, "tq_insert_study", study, "study") < 0)
@@ -706,7 +713,7 @@ int tq_insert_study(struct tq *q, const struct tq_job *study, const struct tq_jo
 
 /* ------------------------------------------------------------------ reads */
 
-int tq_get(struct tq *q, const char *id, struct tq_job *out)
+enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out)
 {
     NEED_Q(q);
     if (!out) {
@@ -742,8 +749,8 @@ int tq_get(struct tq *q, const char *id, struct tq_job *out)
     return 0;
 }
 
-int tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
-            long limit, long offset, struct tq_job **out, size_t *n)
+enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
+                   long limit, long offset, struct tq_job **out, size_t *n)
 {
     NEED_Q(q);
     if (!out || !n) {
@@ -806,7 +813,7 @@ fail:
     return -1;
 }
 
-int tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n)
+enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n)
 {
     NEED_Q(q);
     if (!ids || !n) {
@@ -848,7 +855,7 @@ fail:
     return -1;
 }
 
-int tq_counts(struct tq *q, long *accepted, long *running, long *final)
+enum tq_rc tq_counts(struct tq *q, long *accepted, long *running, long *final)
 {
     NEED_Q(q);
     sqlite3_stmt *st = q->st[S_COUNTS];
@@ -967,7 +974,7 @@ static int study_refresh_locked(struct tq *q, const char *study_id)
     return run_stmt(q, st, "tq_study_refresh: update");
 }
 
-int tq_study_refresh(struct tq *q, const char *study_id)
+enum tq_rc tq_study_refresh(struct tq *q, const char *study_id)
 {
     NEED_Q(q);
     if (check_id(q, "tq_study_refresh", study_id) < 0)
@@ -987,7 +994,7 @@ static int refresh_parent(struct tq *q, const char *study, int rc)
 
 /* ------------------------------------------------------------------ state changes */
 
-int tq_claim_next(struct tq *q, struct tq_job *out)
+enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out)
 {
     NEED_Q(q);
     if (!out) {
@@ -1021,7 +1028,7 @@ int tq_claim_next(struct tq *q, struct tq_job *out)
     return ret;
 }
 
-int tq_set_pid(struct tq *q, const char *id, long pid)
+enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
 {
     NEED_Q(q);
     if (check_id(q, "tq_set_pid", id) < 0)
@@ -1037,8 +1044,8 @@ int tq_set_pid(struct tq *q, const char *id, long pid)
     return tx_end(q, "tq_set_pid", rc);
 }
 
-int tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
-                       double end_time, long step, double eta)
+enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
+                              double end_time, long step, double eta)
 {
     NEED_Q(q);
     if (check_id(q, "tq_update_progress", id) < 0)
@@ -1061,8 +1068,8 @@ int tq_update_progress(struct tq *q, const char *id, double progress, double sim
     return tx_end(q, "tq_update_progress", refresh_parent(q, study, rc));
 }
 
-int tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
-              const char *message, const char *cost_json)
+enum tq_rc tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
+                     const char *message, const char *cost_json)
 {
     NEED_Q(q);
     if (check_id(q, "tq_finish", id) < 0)
@@ -1091,7 +1098,7 @@ int tq_finish(struct tq *q, const char *id, const char *status, const char *outc
     return tx_end(q, "tq_finish", refresh_parent(q, study, rc));
 }
 
-int tq_requeue(struct tq *q, const char *id, const char *message)
+enum tq_rc tq_requeue(struct tq *q, const char *id, const char *message)
 {
     NEED_Q(q);
     if (check_id(q, "tq_requeue", id) < 0)
@@ -1120,7 +1127,7 @@ int tq_requeue(struct tq *q, const char *id, const char *message)
     return tx_end(q, "tq_requeue", refresh_parent(q, study, rc));
 }
 
-int tq_request_cancel(struct tq *q, const char *id)
+enum tq_rc tq_request_cancel(struct tq *q, const char *id)
 {
     NEED_Q(q);
     if (check_id(q, "tq_request_cancel", id) < 0)
@@ -1167,7 +1174,7 @@ int tq_request_cancel(struct tq *q, const char *id)
     return tx_end(q, "tq_request_cancel", refresh_parent(q, l.study_id, rc));
 }
 
-int tq_delete(struct tq *q, const char *id)
+enum tq_rc tq_delete(struct tq *q, const char *id)
 {
     NEED_Q(q);
     if (check_id(q, "tq_delete", id) < 0)

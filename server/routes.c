@@ -16,7 +16,9 @@
 #include <unistd.h>
 
 #include "auth.h"
+#include "errmsg.h"
 #include "jobdir.h"
+#include "jobs.h"
 #include "problem.h"
 #include "queue.h"
 #include "results.h"
@@ -29,7 +31,6 @@
 #define MAX_WAIT 60.0
 #define LOG_TAIL (64 * 1024)
 #define JSON_FIELD_MAX 100000
-#define MAX_REPORTED_ERRORS 50
 #define MAX_ITEM_LINKS 100
 #define REL_RESULTS "http://www.opengis.net/def/rel/ogc/1.0/results"
 #define REL_EXEC "http://www.opengis.net/def/rel/ogc/1.0/execute"
@@ -91,27 +92,17 @@ static json_t *json_parse_or_null(const char *text)
     return json_loads(text, 0, NULL);
 }
 
-static int cmp_seq(const void *x, const void *y)
+static struct jobs_env jobs_env(struct tapp *a, struct tq *q)
 {
-    const struct tq_job *a = x, *b = y;
-    return (a->seq > b->seq) - (a->seq < b->seq);
-}
-
-static void free_jobs(struct tq_job *jobs, size_t n)
-{
-    for (size_t i = 0; i < n; i++)
-        tq_job_free(&jobs[i]);
-    free(jobs);
+    return (struct jobs_env){.q = q, .cfg = a->cfg, .sup = a->sup};
 }
 
 /* Children of a study ordered by seq. */
 static int study_children(struct tapp *a, struct tq *q, const char *id, struct tq_job **out,
                           size_t *n)
 {
-    if (tq_list(q, NULL, id, NULL, a->cfg->max_children + 1, 0, out, n) != 0)
-        return -1;
-    qsort(*out, *n, sizeof **out, cmp_seq);
-    return 0;
+    const struct jobs_env env = jobs_env(a, q);
+    return jobs_study_children(&env, id, out, n);
 }
 
 /* statusInfo (schemas/job.schema.json).  For a study, status, progress and
@@ -195,7 +186,7 @@ static json_t *status_info(struct tapp *a, struct tq *q, const struct tq_job *j,
                 add_link(links, "item", "application/json", NULL, "/jobs/%s", kids[i].id);
     }
     json_object_set_new(o, "links", links);
-    free_jobs(kids, nk);
+    tq_jobs_free(kids, nk);
     return o;
 }
 
@@ -432,45 +423,6 @@ static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs, jso
     return root;
 }
 
-/* Applies the daemon's particle limit to a scene object: injects it when the
- * scene sets none, reports an error at pointer when it sets a larger one. */
-static int apply_particle_limit(struct tapp *a, json_t *scene, json_t *prob, const char *pointer)
-{
-    json_t *lim = json_object_get(scene, "limits");
-    if (!lim) {
-        json_object_set_new(scene, "limits",
-                            json_pack("{s:I}", "max_particles", (json_int_t)a->cfg->max_particles));
-        return 0;
-    }
-    if (!json_is_object(lim))
-        return 0; /* the scene validator reports it */
-    json_t *mp = json_object_get(lim, "max_particles");
-    if (!mp) {
-        json_object_set_new(lim, "max_particles", json_integer(a->cfg->max_particles));
-        return 0;
-    }
-    if (json_is_number(mp) && json_number_value(mp) > (double)a->cfg->max_particles) {
-        char d[160];
-        snprintf(d, sizeof d, "exceeds this server's limit of %ld particles per job",
-                 a->cfg->max_particles);
-        problem_add_error(prob, pointer, d);
-        return -1;
-    }
-    return 0;
-}
-
-static void fill_job(struct tapp *a, struct tq_job *j, const char *process, char *input)
-{
-    memset(j, 0, sizeof *j);
-    snprintf(j->process, sizeof j->process, "%s", process);
-    strcpy(j->status, TQ_ACCEPTED);
-    j->seq = -1;
-    j->input = input;
-    j->eta = -1;
-    j->threads = a->cfg->threads_per_job;
-    j->wall_limit = a->cfg->wall_limit;
-}
-
 static void reply_created(struct hreq *r, struct tapp *a, struct tq *q, const char *id)
 {
     struct tq_job j;
@@ -487,220 +439,62 @@ static void reply_created(struct hreq *r, struct tapp *a, struct tq *q, const ch
         http_add_header(r, "Preference-Applied", "respond-async");
 }
 
-static void task_submit_run(struct hreq *r, void *app, void *ctx)
+/* The answer to a submit the jobs service refused. */
+static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
+                                const struct jobs_submitted *sub)
 {
-    struct tapp *a = app;
-    struct tq *q = ctx;
-    static const char *const allowed[] = {"scene", NULL};
+    json_t *prob;
+    switch (rc) {
+    case JOBS_INVALID:
+        prob = problem_new(PROBLEM_VALIDATION,
+                           study ? "the study is invalid" : "the scene is invalid", r->path);
+        problem_add_errors(prob, "/inputs", &sub->errors);
+        break;
+    case JOBS_NO_MEMORY:
+        prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
+        break;
+    case JOBS_NO_DIRECTORY:
+        prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
+        break;
+    default:
+        prob = problem_new(PROBLEM_UNAVAILABLE,
+                           study ? "cannot queue the study" : "cannot queue the job", r->path);
+        break;
+    }
+    if (sub->why[0])
+        tlog("%s", sub->why);
+    http_reply_problem_json(r, prob);
+}
+
+static void submit(struct hreq *r, struct tapp *a, struct tq *q, bool study)
+{
+    static const char *const run_inputs[] = {"scene", NULL};
+    static const char *const study_inputs[] = {"base", "sweep", "outputs", NULL};
     json_t *inputs = NULL;
-    json_t *root = parse_body(r, allowed, &inputs);
+    json_t *root = parse_body(r, study ? study_inputs : run_inputs, &inputs);
     if (!root)
         return;
-    json_t *scene = json_object_get(inputs, "scene");
-    json_t *prob = problem_new(PROBLEM_VALIDATION, "the scene is invalid", r->path);
-    char *text = NULL;
-    if (!json_is_object(scene)) {
-        problem_add_error(prob, "/inputs/scene", scene ? "must be an object (a scene document)"
-                                                       : "required");
-        goto fail;
-    }
-    if (apply_particle_limit(a, scene, prob, "/inputs/scene/limits/max_particles") != 0)
-        goto fail;
-    text = json_dumps(scene, JSON_COMPACT);
-    if (!text) {
-        json_decref(prob);
-        prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
-        goto fail;
-    }
-    struct tlsph_scene sc;
-    struct tlsph_errors errs;
-    tlsph_errors_init(&errs);
-    memset(&sc, 0, sizeof sc);
-    if (tlsph_scene_parse(text, strlen(text), &sc, &errs) != 0) {
-        problem_add_errors(prob, "/inputs/scene", &errs);
-        tlsph_errors_free(&errs);
-        goto fail;
-    }
-    tlsph_scene_free(&sc);
-    tlsph_errors_free(&errs);
-
-    struct tq_job j;
-    fill_job(a, &j, "run", text);
-    char err[256];
-    if (job_id_new(j.id) != 0 ||
-        jobdir_create(a->cfg->jobs_dir, j.id, text, err, sizeof err) != 0) {
-        json_decref(prob);
-        prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
-        goto fail;
-    }
-    if (tq_insert(q, &j) != 0) {
-        fprintf(stderr, "tlsphd: tq_insert: %s\n", tq_last_error(q));
-        jobdir_remove(a->cfg->jobs_dir, j.id);
-        json_decref(prob);
-        prob = problem_new(PROBLEM_UNAVAILABLE, "cannot queue the job", r->path);
-        goto fail;
-    }
-    tsup_wake(a->sup);
-    reply_created(r, a, q, j.id);
-    json_decref(prob);
+    const struct jobs_env env = jobs_env(a, q);
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    enum jobs_rc rc = study ? jobs_submit_study(&env, inputs, &sub)
+                            : jobs_submit_run(&env, inputs, &sub);
+    if (rc == JOBS_OK)
+        reply_created(r, a, q, sub.id);
+    else
+        reply_not_submitted(r, rc, study, &sub);
+    jobs_submitted_free(&sub);
     json_decref(root);
-    free(text);
-    return;
-fail:
-    http_reply_problem_json(r, prob);
-    json_decref(root);
-    free(text);
 }
 
-/* Is error pointer p inside (or equal to) swept pointer s? */
-static int pointer_under(const char *p, const char *s)
+static void task_submit_run(struct hreq *r, void *app, void *ctx)
 {
-    size_t n = strlen(s);
-    return !strncmp(p, s, n) && (p[n] == '\0' || p[n] == '/');
-}
-
-static int error_seen(json_t *prob, const char *pointer, const char *detail)
-{
-    json_t *arr = json_object_get(prob, "errors"), *e;
-    size_t i;
-    char p[1100];
-    snprintf(p, sizeof p, "#%s", pointer);
-    json_array_foreach(arr, i, e)
-    {
-        if (!strcmp(json_string_value(json_object_get(e, "pointer")), p) &&
-            !strcmp(json_string_value(json_object_get(e, "detail")), detail))
-            return 1;
-    }
-    return 0;
-}
-
-static size_t nerrors(json_t *prob)
-{
-    return json_array_size(json_object_get(prob, "errors"));
+    submit(r, app, ctx, false);
 }
 
 static void task_submit_study(struct hreq *r, void *app, void *ctx)
 {
-    struct tapp *a = app;
-    struct tq *q = ctx;
-    static const char *const allowed[] = {"base", "sweep", "outputs", NULL};
-    json_t *inputs = NULL;
-    json_t *root = parse_body(r, allowed, &inputs);
-    if (!root)
-        return;
-    json_t *prob = problem_new(PROBLEM_VALIDATION, "the study is invalid", r->path);
-    struct tstudy_child *kids = NULL;
-    size_t nk = 0, i;
-    struct tq_job *rows = NULL;
-    char *study_text = NULL;
-    json_t *base = json_object_get(inputs, "base");
-    if (json_is_object(base) &&
-        apply_particle_limit(a, base, prob, "/inputs/base/limits/max_particles") != 0)
-        goto fail;
-    struct tlsph_errors errs;
-    tlsph_errors_init(&errs);
-    if (tstudy_expand(inputs, (size_t)a->cfg->max_children, &kids, &nk, &errs) != 0) {
-        problem_add_errors(prob, "/inputs", &errs);
-        tlsph_errors_free(&errs);
-        goto fail;
-    }
-    tlsph_errors_free(&errs);
-    if (nk == 0) {
-        problem_add_error(prob, "/inputs/sweep", "the sweep yields no child");
-        goto fail;
-    }
-    /* validate every child; map errors to the base or to the swept parameter */
-    json_t *params = json_object_get(json_object_get(inputs, "sweep"), "parameters");
-    for (i = 0; i < nk && nerrors(prob) < MAX_REPORTED_ERRORS; i++) {
-        json_t *mp = tstudy_pointer_get(kids[i].scene, "/limits/max_particles");
-        char *text = NULL;
-        if (json_is_number(mp) && json_number_value(mp) > (double)a->cfg->max_particles) {
-            tlsph_errors_add(&errs, "/limits/max_particles",
-                             "exceeds this server's limit of %ld particles per job",
-                             a->cfg->max_particles);
-        } else {
-            text = json_dumps(kids[i].scene, JSON_COMPACT);
-            struct tlsph_scene sc;
-            memset(&sc, 0, sizeof sc);
-            if (!text || tlsph_scene_parse(text, strlen(text), &sc, &errs) == 0)
-                tlsph_scene_free(&sc);
-        }
-        free(text);
-        for (size_t k = 0; k < errs.count && nerrors(prob) < MAX_REPORTED_ERRORS; k++) {
-            const char *ep = errs.items[k].pointer ? errs.items[k].pointer : "";
-            char pointer[600], detail[1200];
-            snprintf(pointer, sizeof pointer, "/inputs/base%s", ep);
-            snprintf(detail, sizeof detail, "%s", errs.items[k].message);
-            json_t *pp;
-            size_t pi;
-            json_array_foreach(params, pi, pp)
-            {
-                const char *sp = json_string_value(json_object_get(pp, "pointer"));
-                if (sp && pointer_under(ep, sp)) {
-                    char *vals = json_dumps(kids[i].params, JSON_COMPACT);
-                    snprintf(pointer, sizeof pointer, "/inputs/sweep/parameters/%zu", pi);
-                    snprintf(detail, sizeof detail, "child %zu %s: %s", i, vals ? vals : "",
-                             errs.items[k].message);
-                    free(vals);
-                    break;
-                }
-            }
-            if (!error_seen(prob, pointer, detail))
-                problem_add_error(prob, pointer, detail);
-        }
-        tlsph_errors_free(&errs);
-        tlsph_errors_init(&errs);
-    }
-    tlsph_errors_free(&errs);
-    if (nerrors(prob) > 0)
-        goto fail;
-
-    /* create: dirs first, then the rows (the supervisor never sees a job without its dir) */
-    study_text = json_dumps(inputs, JSON_COMPACT);
-    struct tq_job study;
-    fill_job(a, &study, "study", study_text);
-    rows = calloc(nk, sizeof *rows);
-    char err[256];
-    if (!study_text || !rows || job_id_new(study.id) != 0) {
-        json_decref(prob);
-        prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
-        goto fail;
-    }
-    for (i = 0; i < nk; i++) {
-        fill_job(a, &rows[i], "run", json_dumps(kids[i].scene, JSON_COMPACT));
-        rows[i].params = json_dumps(kids[i].params, JSON_COMPACT);
-        rows[i].seq = (long)i;
-        strcpy(rows[i].study_id, study.id);
-        if (!rows[i].input || !rows[i].params || job_id_new(rows[i].id) != 0 ||
-            jobdir_create(a->cfg->jobs_dir, rows[i].id, rows[i].input, err, sizeof err) != 0)
-            break;
-    }
-    if (i < nk || tq_insert_study(q, &study, rows, nk) != 0) {
-        if (i == nk)
-            fprintf(stderr, "tlsphd: tq_insert_study: %s\n", tq_last_error(q));
-        for (size_t k = 0; k < nk && k <= i; k++)
-            if (rows[k].id[0])
-                jobdir_remove(a->cfg->jobs_dir, rows[k].id);
-        json_decref(prob);
-        prob = problem_new(PROBLEM_UNAVAILABLE, "cannot queue the study", r->path);
-        goto fail;
-    }
-    tsup_wake(a->sup);
-    reply_created(r, a, q, study.id);
-    json_decref(prob);
-    prob = NULL;
-fail:
-    if (prob)
-        http_reply_problem_json(r, prob);
-    if (rows)
-        for (i = 0; i < nk; i++) {
-            free(rows[i].input);
-            free(rows[i].params);
-        }
-    free(rows);
-    free(study_text);
-    tstudy_children_free(kids, nk);
-    json_decref(root);
+    submit(r, app, ctx, true);
 }
 
 static void execute(struct hreq *r, const char *pid)
@@ -772,7 +566,7 @@ static void list_jobs(struct hreq *r, struct tapp *a)
     json_t *arr = json_array();
     for (size_t i = 0; i < n; i++)
         json_array_append_new(arr, status_info(a, a->q, &jobs[i], 0));
-    free_jobs(jobs, n);
+    tq_jobs_free(jobs, n);
     json_t *links = json_array();
     char q[256];
     snprintf(q, sizeof q, "%s%s%s%s%s%s", status && *status ? "&status=" : "",
@@ -846,13 +640,13 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
         tq_job_free(&j);
         return;
     }
+    const struct jobs_env env = jobs_env(a, a->q);
     if (!tq_status_final(j.status)) {
-        if (tq_request_cancel(a->q, j.id) < 0) {
+        if (jobs_cancel(&env, j.id) != JOBS_OK) {
             tq_job_free(&j);
             http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
             return;
         }
-        tsup_wake(a->sup);
         tq_job_free(&j);
         if (load_job(r, a, a->q, id, &j) != 0)
             return;
@@ -867,29 +661,21 @@ static void delete_job(struct hreq *r, struct tapp *a, const char *id)
         return;
     }
     /* final: remove the record and the files (a study: its children too) */
-    struct tq_job *kids = NULL;
-    size_t nk = 0;
-    if (!strcmp(j.process, "study") && study_children(a, a->q, j.id, &kids, &nk) != 0) {
-        tq_job_free(&j);
-        http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
-        return;
-    }
-    int rc = tq_delete(a->q, j.id);
-    if (rc == 0) {
-        for (size_t i = 0; i < nk; i++)
-            if (job_id_valid(kids[i].id))
-                jobdir_remove(a->cfg->jobs_dir, kids[i].id);
-        jobdir_remove(a->cfg->jobs_dir, j.id);
+    switch (jobs_remove(&env, &j)) {
+    case JOBS_OK:
         http_reply_json(r, 200, json_pack("{s:s}", "removed", j.id));
-    } else if (rc == 1) {
+        break;
+    case JOBS_NO_SUCH_JOB:
         http_reply_problem(r, PROBLEM_NO_SUCH_JOB, "no job with this id");
-    } else if (rc == 2) {
+        break;
+    case JOBS_NOT_FINAL:
         http_reply_problem(r, PROBLEM_CONFLICT,
                            "the job (or its study) is not in a final state; cancel it first");
-    } else {
+        break;
+    default:
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
+        break;
     }
-    free_jobs(kids, nk);
     tq_job_free(&j);
 }
 
@@ -1209,7 +995,7 @@ static void task_summary(struct hreq *r, void *app, void *ctx)
     free(owned);
     free(paths);
     free(rows);
-    free_jobs(kids, nk);
+    tq_jobs_free(kids, nk);
     json_decref(study);
     tq_job_free(&j);
 }
@@ -1465,7 +1251,7 @@ void *troutes_thread_init(void *app)
     struct tq *q = NULL;
     char err[256];
     if (tq_open(a->cfg->db_path, &q, err, sizeof err) != 0) {
-        fprintf(stderr, "tlsphd: helper thread cannot open the queue: %s\n", err);
+        tlog("helper thread cannot open the queue: %s", err);
         return NULL;
     }
     return q;
