@@ -54,13 +54,7 @@ struct hreq {
     int resumed;           /* route re-run after a long-poll wait */
     int has_reply;
     struct hreply reply;
-    /* route scratch space, filled on the MHD thread for deferred tasks */
-    char id[40];
-    char arg[512];
-    char arg2[64];
-    long num;
-    int flags;
-    void *data;            /* freed with free() at completion */
+    void *data;            /* the route layer's (struct route_call), freed with free() at completion */
     /* internal */
     int phase;
     unsigned logged_status;

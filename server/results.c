@@ -541,7 +541,7 @@ static int series_load(const char *h5path, const char *name, struct series *s, c
 {
     memset(s, 0, sizeof *s);
     if (!tres_series_name_ok(name)) {
-        seterr(err, errsize, "no series named \"%.60s\"", name ? name : "");
+        seterr(err, errsize, TRES_NO_SERIES, name ? name : "");
         return 1;
     }
     hid_t f = open_file(h5path, err, errsize);
@@ -637,8 +637,9 @@ char *tres_series_csv(const char *h5path, const char *name, int *not_found, char
     return csv;
 }
 
-int tres_series_reduce(const char *h5path, const char *name, int component, double *final,
-                       double *max, double *min, char *err, size_t errsize)
+enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
+                                double *final, double *max, double *min, char *err,
+                                size_t errsize)
 {
     double fv = NAN, mx = NAN, mn = NAN;
     struct series s;
@@ -720,15 +721,15 @@ void tres_field_free(struct tres_field *f)
     f->bytes = 0;
 }
 
-int tres_field(const char *h5path, const char *name, long frame, struct tres_field *out,
-               char *err, size_t errsize)
+enum tres_rc tres_field(const char *h5path, const char *name, long frame,
+                        struct tres_field *out, char *err, size_t errsize)
 {
     memset(out, 0, sizeof *out);
     out->dtype = "<f8";
     out->time = NAN;
     out->step = -1;
     if (!tres_field_name_ok(name)) {
-        seterr(err, errsize, "no field named \"%.60s\"", name ? name : "");
+        seterr(err, errsize, TRES_NO_FIELD, name ? name : "");
         return 1;
     }
     hid_t f = open_file(h5path, err, errsize);

@@ -646,7 +646,8 @@ json_t *tstudy_summary(const json_t *study, const struct tstudy_row *rows, size_
             char err[256];
             json_t *cell = json_null();
             if (row->h5path && series &&
-                tres_series_reduce(row->h5path, series, comp, &fin, &mx, &mn, err, sizeof err) == 0) {
+                tres_series_reduce(row->h5path, series, comp, &fin, &mx, &mn, err,
+                                   sizeof err) == TRES_OK) {
                 json_decref(cell);
                 if (reduce && strcmp(reduce, "max") == 0)
                     cell = real_or_null(mx);
