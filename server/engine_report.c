@@ -1,17 +1,17 @@
 /* What one engine run tells the daemon, see engine_report.h. */
 #ifndef _GNU_SOURCE
-#define _GNU_SOURCE /* vasprintf, sigabbrev_np */
+#define _GNU_SOURCE /* sigabbrev_np */
 #endif
 #include "engine_report.h"
 
 #include <jansson.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/wait.h>
 
+#include "errmsg.h"
 #include "queue.h"
 #include "run/protocol.h"
 
@@ -32,18 +32,6 @@ void engine_report_free(struct engine_report *r)
     free(r->errors);
     strbuf_free(&r->line);
     memset(r, 0, sizeof *r);
-}
-
-static char *fmt_msg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static char *fmt_msg(const char *fmt, ...)
-{
-    char *out = NULL;
-    va_list ap;
-    va_start(ap, fmt);
-    if (vasprintf(&out, fmt, ap) < 0)
-        out = NULL;
-    va_end(ap);
-    return out;
 }
 
 static void set_text(char **dst, char *text)
@@ -186,7 +174,7 @@ void engine_outcome(const struct engine_report *r, int wstatus, enum engine_stop
         out->requeue = true;
     } else if (why == ENGINE_STOP_TIMEOUT) {
         out->outcome = "timed_out";
-        out->message = fmt_msg("wall-clock limit of %g s exceeded", wall_limit);
+        out->message = errmsg_format("wall-clock limit of %g s exceeded", wall_limit);
     } else if (code == TLSPH_EXIT_INVALID) {
         out->outcome = "invalid";
         out->message = strdup(r->errors ? r->errors : "invalid scene");
@@ -195,7 +183,7 @@ void engine_outcome(const struct engine_report *r, int wstatus, enum engine_stop
         out->message = strdup(r->diagnostic ? r->diagnostic : "numerically unstable");
     } else if (code == TLSPH_EXIT_IO) {
         out->outcome = "io_error";
-        out->message = r->errors ? fmt_msg("I/O failure: %s", r->errors) : strdup("I/O failure");
+        out->message = r->errors ? errmsg_format("I/O failure: %s", r->errors) : strdup("I/O failure");
     } else if (code == TLSPH_EXIT_CANCELLED) {
         out->status = TQ_DISMISSED;
         out->outcome = "cancelled";
@@ -203,9 +191,9 @@ void engine_outcome(const struct engine_report *r, int wstatus, enum engine_stop
     } else if (lost) {
         out->message = strdup("engine ended, but its exit status was lost (reaped elsewhere)");
     } else if (sig) {
-        out->message = fmt_msg("killed by signal %d (SIG%s)%s", sig, signal_name(sig),
+        out->message = errmsg_format("killed by signal %d (SIG%s)%s", sig, signal_name(sig),
                                sig == SIGKILL ? ": killed externally or out of memory" : "");
     } else {
-        out->message = fmt_msg("engine exited with unexpected status %d (see the job log)", code);
+        out->message = errmsg_format("engine exited with unexpected status %d (see the job log)", code);
     }
 }

@@ -1,4 +1,7 @@
 /* The daemon's error convention, see errmsg.h. */
+#ifndef _GNU_SOURCE
+#define _GNU_SOURCE /* vasprintf */
+#endif
 #include "errmsg.h"
 
 #include <stdarg.h>
@@ -14,13 +17,26 @@ void errmsg_set(char *err, size_t errsize, const char *fmt, ...)
     va_end(ap);
 }
 
-void tlog(const char *fmt, ...)
+char *errmsg_format(const char *fmt, ...)
 {
-    /* one fprintf per line so that lines of concurrent threads do not mix */
-    char line[1024];
+    char *out = NULL;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
+    if (vasprintf(&out, fmt, ap) < 0)
+        out = NULL;
     va_end(ap);
-    fprintf(stderr, "tlsphd: %s\n", line);
+    return out;
+}
+
+void tlog(const char *fmt, ...)
+{
+    /* the stream lock keeps lines of concurrent threads whole */
+    flockfile(stderr);
+    fputs("tlsphd: ", stderr);
+    va_list ap;
+    va_start(ap, fmt);
+    vfprintf(stderr, fmt, ap);
+    va_end(ap);
+    fputc('\n', stderr);
+    funlockfile(stderr);
 }

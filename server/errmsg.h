@@ -19,6 +19,8 @@
 /* printf into err[errsize] (nothing when err is NULL or errsize is 0). */
 void errmsg_set(char *err, size_t errsize, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
+/* The same, malloc'ed (NULL when out of memory): for messages kept longer. */
+char *errmsg_format(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* One log line on stderr: "tlsphd: " + the message + "\n". */
 void tlog(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 

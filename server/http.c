@@ -13,6 +13,7 @@
 
 #include <microhttpd.h>
 
+#include "errmsg.h"
 #include "util/clock.h"
 
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
@@ -483,7 +484,7 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
-        fprintf(stderr, "tlsphd: cannot start the HTTP server (address in use?)\n");
+        tlog("cannot start the HTTP server (address in use?)");
         goto fail;
     }
     return h;

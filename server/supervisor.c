@@ -35,6 +35,7 @@
 #include <unistd.h>
 
 #include "engine_report.h"
+#include "errmsg.h"
 #include "jobdir.h"
 #include "queue.h"
 #include "util/clock.h"
@@ -84,31 +85,6 @@ struct tsup {
     pid_t self;
 };
 
-/* ------------------------------------------------------------------ helpers */
-
-static void set_err(char *err, size_t errsize, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void set_err(char *err, size_t errsize, const char *fmt, ...)
-{
-    if (!err || errsize == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errsize, fmt, ap);
-    va_end(ap);
-}
-
-static void logmsg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static void logmsg(const char *fmt, ...)
-{
-    char buf[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    fprintf(stderr, "tlsphd: supervisor: %s\n", buf);
-}
-
 /* ------------------------------------------------------------------ children */
 
 static void child_clear(struct child *c)
@@ -128,8 +104,9 @@ static void flush_progress(struct tsup *s, struct child *c, double now)
         p = 0;
     if (p > 100)
         p = 100;
-    if (tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) < 0)
-        logmsg("job %s: cannot update progress", c->id);
+    if (tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) ==
+        TQ_ERROR)
+        tlog("supervisor: job %s: cannot update progress", c->id);
     c->pending = false;
     c->t_update = now;
 }
@@ -145,7 +122,7 @@ static void read_progress(struct tsup *s, struct child *c)
                 continue;
             if (errno == EAGAIN || errno == EWOULDBLOCK)
                 return;
-            logmsg("job %s: progress pipe: %s", c->id, strerror(errno));
+            tlog("supervisor: job %s: progress pipe: %s", c->id, strerror(errno));
             n = 0;
         }
         if (n == 0) {
@@ -161,18 +138,6 @@ static void read_progress(struct tsup *s, struct child *c)
                 flush_progress(s, c, now);
         }
     }
-}
-
-static char *fmt_msg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static char *fmt_msg(const char *fmt, ...)
-{
-    char *out = NULL;
-    va_list ap;
-    va_start(ap, fmt);
-    if (vasprintf(&out, fmt, ap) < 0)
-        out = NULL;
-    va_end(ap);
-    return out;
 }
 
 /* The leader has exited (zombie, not yet reaped): finish the job. */
@@ -202,8 +167,8 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
     struct engine_outcome out;
     engine_outcome(&c->report, wstatus, c->reason, c->wall_limit, &out);
     if (out.requeue) {
-        if (tq_requeue(s->q, c->id, "interrupted by daemon shutdown") < 0)
-            logmsg("job %s: cannot requeue", c->id);
+        if (tq_requeue(s->q, c->id, "interrupted by daemon shutdown") == TQ_ERROR)
+            tlog("supervisor: job %s: cannot requeue", c->id);
     } else {
         struct engine_report *r = &c->report;
         if (!strcmp(out.status, TQ_SUCCESSFUL)) {
@@ -213,14 +178,14 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
             if (r->end_time > 0) {
                 flush_progress(s, c, tlsph_monotonic_seconds());
             } else if (tq_update_progress(s->q, c->id, 100.0, r->sim_time, r->end_time, r->step,
-                                          0.0) < 0) {
-                logmsg("job %s: cannot update progress", c->id);
+                                          0.0) == TQ_ERROR) {
+                tlog("supervisor: job %s: cannot update progress", c->id);
             }
         } else {
             flush_progress(s, c, tlsph_monotonic_seconds());
         }
-        if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) < 0)
-            logmsg("job %s: cannot record the final state", c->id);
+        if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) == TQ_ERROR)
+            tlog("supervisor: job %s: cannot record the final state", c->id);
     }
     free(out.message);
     child_clear(c);
@@ -235,7 +200,7 @@ static int check_child(struct tsup *s, struct child *c)
     if (waitid(P_PID, (id_t)c->pid, &si, WEXITED | WNOHANG | WNOWAIT) < 0) {
         if (errno == EINTR)
             return 0;
-        logmsg("job %s: waitid(%ld): %s", c->id, (long)c->pid, strerror(errno));
+        tlog("supervisor: job %s: waitid(%ld): %s", c->id, (long)c->pid, strerror(errno));
         /* ECHILD: reaped elsewhere (waitpid(-1) or SIGCHLD ignored) */
         if (errno == ECHILD) {
             finish_child(s, c, -1);
@@ -247,14 +212,14 @@ static int check_child(struct tsup *s, struct child *c)
         return 0; /* still running */
     /* the leader is a zombie: the pgid cannot be reused yet, so take the group down */
     if (kill(-c->pid, SIGKILL) < 0 && errno != ESRCH)
-        logmsg("job %s: kill(-%ld): %s", c->id, (long)c->pid, strerror(errno));
+        tlog("supervisor: job %s: kill(-%ld): %s", c->id, (long)c->pid, strerror(errno));
     int st = 0;
     pid_t r;
     do {
         r = waitpid(c->pid, &st, 0);
     } while (r < 0 && errno == EINTR);
     if (r < 0) {
-        logmsg("job %s: waitpid: %s", c->id, strerror(errno));
+        tlog("supervisor: job %s: waitpid: %s", c->id, strerror(errno));
         st = -1; /* status unknown */
     }
     finish_child(s, c, st);
@@ -264,7 +229,7 @@ static int check_child(struct tsup *s, struct child *c)
 static void signal_group(struct child *c, int sig)
 {
     if (kill(-c->pid, sig) < 0 && errno != ESRCH)
-        logmsg("job %s: kill(-%ld, %d): %s", c->id, (long)c->pid, sig, strerror(errno));
+        tlog("supervisor: job %s: kill(-%ld, %d): %s", c->id, (long)c->pid, sig, strerror(errno));
 }
 
 static void request_stop(struct child *c, enum engine_stop why, double now)
@@ -382,36 +347,45 @@ static void run_child(const struct spawn_args *a)
     child_fail(2, "execv failed");
 }
 
+/* A claimed job that could not be started ends as failed with outcome and a
+ * message for its user. */
+static void fail_start(struct tsup *s, const char *id, const char *outcome, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void fail_start(struct tsup *s, const char *id, const char *outcome, const char *fmt, ...)
+{
+    char message[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof message, fmt, ap);
+    va_end(ap);
+    if (tq_finish(s->q, id, TQ_FAILED, outcome, message, NULL) == TQ_ERROR)
+        tlog("supervisor: job %s: cannot record the final state", id);
+}
+
 /* Starts a claimed job in slot c. On failure the job is finished as failed. */
 static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 {
     char dir[PATH_MAX], scene[PATH_MAX], logp[PATH_MAX];
     const char *id = j->id;
     if (!job_id_valid(id)) {
-        logmsg("refusing job with invalid id");
-        tq_finish(s->q, id, TQ_FAILED, "crashed", "invalid job id", NULL);
+        tlog("supervisor: refusing job with invalid id");
+        fail_start(s, id, "crashed", "invalid job id");
         return;
     }
     if (jobdir_path(dir, sizeof dir, s->jobs_dir, id, JOBDIR_FILES) < 0 ||
         jobdir_path(scene, sizeof scene, s->jobs_dir, id, JOBDIR_SCENE) < 0 ||
         jobdir_path(logp, sizeof logp, s->jobs_dir, id, JOBDIR_LOG) < 0) {
-        tq_finish(s->q, id, TQ_FAILED, "crashed", "job directory path too long", NULL);
+        fail_start(s, id, "crashed", "job directory path too long");
         return;
     }
     struct stat st;
     int serr = stat(scene, &st) < 0 ? errno : (!S_ISREG(st.st_mode) ? EINVAL : 0);
     if (serr) {
-        char *m = fmt_msg("job directory or scene.json missing (%s)", strerror(serr));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m ? m : "scene.json missing", NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "job directory or scene.json missing (%s)", strerror(serr));
         return;
     }
     if (jobdir_clear_outputs(s->jobs_dir, id) < 0) {
-        char *m = fmt_msg("cannot remove stale results: %s", strerror(errno));
-        if (tq_finish(s->q, id, TQ_FAILED, "io_error", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "io_error", "cannot remove stale results: %s", strerror(errno));
         return;
     }
 
@@ -425,10 +399,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 
     int pfd[2];
     if (pipe2(pfd, O_CLOEXEC) < 0) {
-        char *m = fmt_msg("cannot create the progress pipe: %s", strerror(errno));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "cannot create the progress pipe: %s", strerror(errno));
         return;
     }
     struct spawn_args a = {.parent = s->self,
@@ -444,10 +415,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         int e = errno;
         close(pfd[0]);
         close(pfd[1]);
-        char *m = fmt_msg("cannot fork the engine: %s", strerror(e));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "cannot fork the engine: %s", strerror(e));
         return;
     }
     if (pid == 0)
@@ -456,10 +424,10 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
     /* parent */
     close(pfd[1]);
     if (setpgid(pid, pid) < 0 && errno != EACCES && errno != ESRCH)
-        logmsg("job %s: setpgid: %s", id, strerror(errno));
+        tlog("supervisor: job %s: setpgid: %s", id, strerror(errno));
     int fl = fcntl(pfd[0], F_GETFL);
     if (fl < 0 || fcntl(pfd[0], F_SETFL, fl | O_NONBLOCK) < 0)
-        logmsg("job %s: cannot make the pipe non-blocking: %s", id, strerror(errno));
+        tlog("supervisor: job %s: cannot make the pipe non-blocking: %s", id, strerror(errno));
 
     child_clear(c);
     c->used = true;
@@ -470,8 +438,8 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
     c->wall_limit = j->wall_limit > 0 ? j->wall_limit : s->wall_limit;
     engine_report_init(&c->report, j->end_time);
     s->nrunning++;
-    if (tq_set_pid(s->q, id, (long)pid) < 0)
-        logmsg("job %s: cannot record pid", id);
+    if (tq_set_pid(s->q, id, (long)pid) == TQ_ERROR)
+        tlog("supervisor: job %s: cannot record pid", id);
 }
 
 static void claim_jobs(struct tsup *s)
@@ -487,10 +455,10 @@ static void claim_jobs(struct tsup *s)
             return;
         struct tq_job j;
         memset(&j, 0, sizeof j);
-        int rc = tq_claim_next(s->q, &j);
-        if (rc != 0) {
-            if (rc < 0)
-                logmsg("cannot claim a job");
+        enum tq_rc rc = tq_claim_next(s->q, &j);
+        if (rc != TQ_OK) {
+            if (rc == TQ_ERROR)
+                tlog("supervisor: cannot claim a job");
             return;
         }
         start_job(s, slot, &j);
@@ -504,8 +472,8 @@ static void check_cancels(struct tsup *s, double now)
         return;
     char (*ids)[TQ_ID_LEN + 1] = NULL;
     size_t n = 0;
-    if (tq_cancel_requests(s->q, &ids, &n) < 0) {
-        logmsg("cannot read cancel requests");
+    if (tq_cancel_requests(s->q, &ids, &n) == TQ_ERROR) {
+        tlog("supervisor: cannot read cancel requests");
         return;
     }
     for (size_t k = 0; k < n; k++)
@@ -538,7 +506,7 @@ static void *sup_main(void *arg)
 
     int rc = tq_open(s->db_path, &s->q, err, sizeof err);
     if (rc == 0 && tq_recover(s->q, s->max_attempts) < 0)
-        logmsg("start-up recovery failed");
+        tlog("supervisor: start-up recovery failed");
     pthread_mutex_lock(&s->mu);
     s->init_done = 1;
     s->init_rc = rc;
@@ -552,7 +520,7 @@ static void *sup_main(void *arg)
     struct pollfd *pfds = calloc((size_t)s->max_jobs + 1, sizeof *pfds);
     int *idx = calloc((size_t)s->max_jobs + 1, sizeof *idx);
     if (!pfds || !idx) {
-        logmsg("out of memory");
+        tlog("supervisor: out of memory");
         free(pfds);
         free(idx);
         tq_close(s->q);
@@ -590,7 +558,7 @@ static void *sup_main(void *arg)
             }
         int pr = poll(pfds, n, TSUP_TICK_MS);
         if (pr < 0 && errno != EINTR)
-            logmsg("poll: %s", strerror(errno));
+            tlog("supervisor: poll: %s", strerror(errno));
         if (pr > 0) {
             for (nfds_t k = 0; k < n; k++) {
                 if (!pfds[k].revents)
@@ -663,7 +631,7 @@ static char *absolute_path(const char *p)
     char *cwd = getcwd(NULL, 0);
     if (!cwd)
         return NULL;
-    char *out = fmt_msg("%s/%s", cwd, p);
+    char *out = errmsg_format("%s/%s", cwd, p);
     free(cwd);
     return out;
 }
@@ -672,17 +640,17 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
 {
     if (!cfg || !out || !cfg->db_path || !cfg->engine_path || !cfg->jobs_dir ||
         !*cfg->jobs_dir || !*cfg->engine_path) {
-        set_err(err, errsize, "incomplete supervisor configuration");
+        errmsg_set(err, errsize, "incomplete supervisor configuration");
         return -1;
     }
     if (cfg->max_jobs < 1 || cfg->threads_per_job < 1) {
-        set_err(err, errsize, "max_jobs and threads_per_job must be >= 1");
+        errmsg_set(err, errsize, "max_jobs and threads_per_job must be >= 1");
         return -1;
     }
     *out = NULL;
     struct tsup *s = calloc(1, sizeof *s);
     if (!s) {
-        set_err(err, errsize, "out of memory");
+        errmsg_set(err, errsize, "out of memory");
         return -1;
     }
     s->wake_rd = s->wake_wr = -1;
@@ -703,19 +671,19 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->jobs_dir = absolute_path(cfg->jobs_dir);
     s->kids = calloc((size_t)cfg->max_jobs, sizeof *s->kids);
     if (!s->db_path || !s->engine_path || !s->jobs_dir || !s->kids) {
-        set_err(err, errsize, "out of memory");
+        errmsg_set(err, errsize, "out of memory");
         tsup_free(s);
         return -1;
     }
     for (int i = 0; i < s->max_jobs; i++)
         s->kids[i].fd = -1;
     if (access(s->engine_path, X_OK) < 0) {
-        set_err(err, errsize, "engine %s is not executable: %s", s->engine_path, strerror(errno));
+        errmsg_set(err, errsize, "engine %s is not executable: %s", s->engine_path, strerror(errno));
         tsup_free(s);
         return -1;
     }
     if (mkdir(s->jobs_dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", s->jobs_dir, strerror(errno));
+        errmsg_set(err, errsize, "cannot create %s: %s", s->jobs_dir, strerror(errno));
         tsup_free(s);
         return -1;
     }
@@ -729,11 +697,11 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
         dfl.sa_handler = SIG_DFL;
         sigemptyset(&dfl.sa_mask);
         if (sigaction(SIGCHLD, &dfl, NULL) == 0)
-            logmsg("SIGCHLD was ignored; restored the default so engines can be reaped");
+            tlog("supervisor: SIGCHLD was ignored; restored the default so engines can be reaped");
     }
     int wp[2];
     if (pipe2(wp, O_CLOEXEC | O_NONBLOCK) < 0) {
-        set_err(err, errsize, "pipe: %s", strerror(errno));
+        errmsg_set(err, errsize, "pipe: %s", strerror(errno));
         tsup_free(s);
         return -1;
     }
@@ -741,7 +709,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->wake_wr = wp[1];
     int e = pthread_create(&s->thread, NULL, sup_main, s);
     if (e != 0) {
-        set_err(err, errsize, "pthread_create: %s", strerror(e));
+        errmsg_set(err, errsize, "pthread_create: %s", strerror(e));
         tsup_free(s);
         return -1;
     }
@@ -751,7 +719,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     int rc = s->init_rc;
     pthread_mutex_unlock(&s->mu);
     if (rc < 0) {
-        set_err(err, errsize, "%s", s->init_err);
+        errmsg_set(err, errsize, "%s", s->init_err);
         pthread_join(s->thread, NULL);
         tsup_free(s);
         return -1;
