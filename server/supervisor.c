@@ -192,24 +192,25 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
     s->nrunning--;
 }
 
-/* Checks one child for exit; kills the rest of its group and reaps it. */
-static int check_child(struct tsup *s, struct child *c)
+/* Checks one child for exit; kills the rest of its group and reaps it.
+ * True when the slot became free. */
+static bool check_child(struct tsup *s, struct child *c)
 {
     siginfo_t si;
     memset(&si, 0, sizeof si);
     if (waitid(P_PID, (id_t)c->pid, &si, WEXITED | WNOHANG | WNOWAIT) < 0) {
         if (errno == EINTR)
-            return 0;
+            return false;
         tlog("supervisor: job %s: waitid(%ld): %s", c->id, (long)c->pid, strerror(errno));
         /* ECHILD: reaped elsewhere (waitpid(-1) or SIGCHLD ignored) */
         if (errno == ECHILD) {
             finish_child(s, c, -1);
-            return 1;
+            return true;
         }
-        return 0;
+        return false;
     }
     if (si.si_pid == 0)
-        return 0; /* still running */
+        return false; /* still running */
     /* the leader is a zombie: the pgid cannot be reused yet, so take the group down */
     if (kill(-c->pid, SIGKILL) < 0 && errno != ESRCH)
         tlog("supervisor: job %s: kill(-%ld): %s", c->id, (long)c->pid, strerror(errno));
@@ -223,7 +224,7 @@ static int check_child(struct tsup *s, struct child *c)
         st = -1; /* status unknown */
     }
     finish_child(s, c, st);
-    return 1;
+    return true;
 }
 
 static void signal_group(struct child *c, int sig)
