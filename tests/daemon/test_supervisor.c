@@ -231,7 +231,7 @@ static void add_job(char id[TQ_ID_LEN + 1], const char *scene, double wall_limit
     if (write_dir) {
         char err[256] = "";
         int rc = jobdir_create(jobs_dir, id, scene, err, sizeof err);
-        ck_assert_msg(rc == 0, "tsup_prepare_job_dir: %s", err);
+        ck_assert_msg(rc == 0, "jobdir_create: %s", err);
     }
     struct tq_job j;
     memset(&j, 0, sizeof j);
