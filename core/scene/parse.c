@@ -464,7 +464,7 @@ static void set_defaults(struct tlsph_scene *s)
     s->check_every = 10;
     s->energy_tolerance = 0.05;
     s->speed_limit_factor = 1.0;
-    s->max_particles = 2000000;
+    s->max_particles = TLSPH_DEFAULT_MAX_PARTICLES;
     s->frames = 20;
     s->series_every = 10;
 }

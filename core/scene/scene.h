@@ -15,6 +15,7 @@
 
 #define TLSPH_NAME_MAX 64
 #define TLSPH_MAX_PARTICLES 50000000L /* absolute ceiling; the scene may set a lower one */
+#define TLSPH_DEFAULT_MAX_PARTICLES 2000000L /* /limits/max_particles when the scene sets none */
 
 struct tlsph_eos_model;      /* core/material/eos/eos.h */
 struct tlsph_strength_model; /* core/material/strength/strength.h */
