@@ -11,6 +11,7 @@
 #include "queue.h"
 #include "run/protocol.h"
 #include "strbuf.h"
+#include "support/check_main.h"
 
 #define EXITED(code) ((code) << 8) /* a wait status as waitpid reports it (Linux) */
 
@@ -198,9 +199,5 @@ static Suite *report_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(report_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(report_suite());
 }

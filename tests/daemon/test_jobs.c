@@ -13,6 +13,7 @@
 #include "jobdir.h"
 #include "jobs.h"
 #include "queue.h"
+#include "support/check_main.h"
 
 static char g_dir[] = "/tmp/test_jobs.XXXXXX";
 static char g_jobs[256];
@@ -221,9 +222,5 @@ static Suite *jobs_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(jobs_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(jobs_suite());
 }
