@@ -9,6 +9,7 @@
 
 #include "bc/boundary.h"
 #include "sph/correction.h"
+#include "sph/crack_treatment.h"
 #include "material/eos/eos.h"
 #include "run/integrate.h"
 #include "sph/kernel.h"
@@ -122,8 +123,7 @@ static void select_modules(struct tlsph_model *m)
     if (evolution)
         add_module(m, "damage:evolution_linear");
     if (damage) {
-        add_module(m, s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? "approximation:pseudo_spring"
-                                                                       : "approximation:damage_aware");
+        add_module(m, m->crack->module);
         add_module(m, s->failed_motion == TLSPH_FAILED_ARREST ? "failure:arrest" : "failure:free");
     }
     add_module(m, "force:pk1_pair");
@@ -183,7 +183,7 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     if (damage && (!(p->damage = tlsph_alloc(m, n, sizeof(double))) ||
                    !(p->damage_init = tlsph_alloc(m, n, sizeof(double)))))
         return -1;
-    if (damage && m->scene.crack_treatment == TLSPH_CRACK_DAMAGE_AWARE &&
+    if ((m->crack->fields & TLSPH_CRACK_FIELD_GRADIENT) &&
         !(p->crack_gradient = tlsph_alloc(m, 9 * n, sizeof(double))))
         return -1;
     if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
@@ -314,6 +314,7 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     m->scene = *scene;
     memset(scene, 0, sizeof *scene);
     m->dim = m->scene.dimension;
+    m->crack = tlsph_crack_select(&m->scene);
 
     if (generate(m, err) != 0)
         goto fail;
