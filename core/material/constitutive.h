@@ -16,4 +16,9 @@
  * estimate m->dt_cfl and m->max_wave_speed. */
 void tlsph_constitutive(struct tlsph_model *m, double dt);
 
+/* The material state of particle i at t = 0 (its body is set): temperature
+ * (NaN where the material has none) and the damage model's initial point state
+ * (point_init, material/damage/damage.h).  The rest of the history starts at 0. */
+void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i);
+
 #endif
