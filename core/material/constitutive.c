@@ -101,12 +101,11 @@ void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i)
 void tlsph_constitutive(struct tlsph_model *m, double dt)
 {
     struct tlsph_particles *p = &m->p;
-    size_t inverted = 0, failures = 0, failed = 0;
+    size_t inverted = 0, failures = 0;
     long long flowing = 0, iterations = 0;
     int64_t first_bad = INT64_MAX, first_failure = INT64_MAX;
     double min_detF = INFINITY, dt_min = INFINITY, cmax = 0.0, plastic_work = 0.0;
-    double damage_work = 0.0, arrested = 0.0;
-    const int arrest = m->scene.failed_motion == TLSPH_FAILED_ARREST;
+    double damage_work = 0.0;
 
     for (size_t b = 0; b < m->scene.nbodies; b++) {
         const struct tlsph_body *body = &m->scene.bodies[b];
@@ -117,8 +116,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
         const double spacing = body->spacing;
 
 #pragma omp parallel for schedule(static)                                                         \
-    reduction(+ : inverted, failures, plastic_work, flowing, iterations, failed, damage_work,       \
-                  arrested)                                                                        \
+    reduction(+ : inverted, failures, plastic_work, flowing, iterations, damage_work)              \
     reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)              \
     if (m->body_end[b] - m->body_begin[b] >= TLSPH_PARALLEL_MIN_ITEMS)
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
@@ -127,7 +125,6 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
                 load_state(p, i, arrays, &st);
                 sp = &st;
             }
-            const int was_failed = damaging && st.damage >= 1.0;
             struct tlsph_point_result r;
             tlsph_point_update(mat, p->F + 9 * i, p->e[i], dt, sp, &r);
             if (plastic) {
@@ -149,17 +146,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
             if (damaging && st.damage >= 1.0) {
                 /* failed: no stress, no interaction (kinematics.c, forces.c); its F
                  * is no strain of material any more, so it is not checked, and it
-                 * does not limit the step */
-                failed++;
-                for (int c = 0; c < 6; c++)
-                    p->sigma[6 * i + c] = 0.0;
-                for (int c = 0; c < 9; c++)
-                    p->P_tilde[9 * i + c] = 0.0;
-                if (!was_failed && arrest) {
-                    double *v = p->v + 3 * i;
-                    arrested += 0.5 * p->mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                    v[0] = v[1] = v[2] = 0.0;
-                }
+                 * does not limit the step.  The failure phase (failure.c)
+                 * releases the stress it carried. */
                 continue;
             }
             const double J = r.J;
@@ -200,8 +188,6 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
     m->first_return_failure_id = failures ? first_failure : -1;
     m->energy.plastic_work += plastic_work;
     m->energy.damage_work += damage_work;
-    m->energy.external_work -= arrested; /* kinetic energy taken out by arresting failed particles */
-    m->failed = failed;
     m->plastic_point_steps += flowing;
     m->return_iterations += iterations;
     m->dt_cfl = dt_min;

@@ -334,18 +334,7 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
         goto fail;
     select_modules(m);
 
-    /* t = 0: constraints first (they define the initial state, not work), then
-     * the initial forces for the first half kick. */
-    tlsph_boundary_constrain(m, 0.0, 0.0);
-    for (size_t k = 0; k < m->scene.nbcs; k++)
-        memset(m->groups[k].impulse, 0, sizeof m->groups[k].impulse);
-    m->energy.external_work = 0.0;
-    tlsph_evaluate(m, 0.0);
-    m->energy.kinetic = tlsph_kinetic_energy(m);
-    m->energy.internal = tlsph_internal_energy(m);
-    m->energy.initial = m->energy.kinetic + m->energy.internal;
-    m->energy.scale = fabs(m->energy.initial);
-    m->dt = tlsph_next_dt(m);
+    tlsph_start(m);
     *out = m;
     return 0;
 fail:
