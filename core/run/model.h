@@ -56,8 +56,9 @@ struct tlsph_particles {
      * scene has a damage model (NULL otherwise), zero for the others. */
     double *damage;         /* D in [0, 1]; 1 = failed, 1 */
     double *damage_init;    /* damage-initiation variable D_init, 1 (GTN: f / f_c) */
-    /* GTN void volume fraction f, 1; allocated only when some material is GTN
-     * (material/damage/gtn.h), zero for the others. */
+    /* Void volume fraction f, 1; allocated only when some material's damage model
+     * needs it (TLSPH_DAMAGE_FIELD_VOID_FRACTION, material/damage/damage.h: GTN),
+     * zero for the others. */
     double *void_fraction;
     /* Damage-aware treatment only (sph/damage_aware.h): sum_j V_j sum_steps D_j
      * (du_j - du_i) (x) grad W_i, the part of the displacement gradient (before

@@ -69,7 +69,8 @@ struct tlsph_damage_model {
      * constants, thermal block and strength are already parsed.  Returns 0 or -1. */
     int (*parse)(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err);
-    /* Increment of D_init over one step of plastic flow, >= 0 (NULL when porous). */
+    /* Increment of D_init over one step of plastic flow, >= 0; eq. 45 then gives
+     * D (the run reports damage:evolution_linear).  NULL when porous. */
     double (*initiation)(const struct tlsph_material *m, const struct tlsph_damage_step *step);
     /* Porous models: the whole update of a point that has not failed, in place
      * of the J2 return and the (1 - D) scaling (as tlsph_point_update, with the
