@@ -82,35 +82,35 @@ double tlsph_internal_energy(const struct tlsph_model *m)
 /* One step, phase by phase: what each reads, writes, and books into the
  * energy account (m->energy; the balance is tlsph_energy_balance).
  *
- *   kick        v += dt/2 f/m                       reads f, mass; writes v
- *   constrain   BC velocities at t + dt/2            writes v of the groups; books the
- *               (bc/boundary.h)                      supports' work (impulse x prescribed
- *                                                    mid-step velocity) into external_work
- *   walls       velocities into a wall limited       reads f; writes v; books the kinetic
- *                                                    energy of arrival into external_work
- *   drift       x += dt v, t += dt                   reads v; writes x
+ *   kick          v += dt/2 f/m                    reads f, mass; writes v
+ *   constrain     BC velocities at t + dt/2        writes v of the groups; books the
+ *                 (bc/boundary.h)                  supports' work (impulse x prescribed
+ *                                                  mid-step velocity) into external_work
+ *   walls         velocities into a wall limited   reads f; writes v; books the kinetic
+ *                                                  energy of arrival into external_work
+ *   drift         x += dt v, t += dt               reads v; writes x
  *   evaluate (tlsph_evaluate), at the new positions with the half-step velocities:
- *     kinematics  F, Fdot by the crack treatment     reads x, v, D, P_tilde (old); writes F,
- *                 (sph/kinematics.h)                 Fdot, crack_gradient (pseudo-spring:
- *                                                    Linv); e += first half of dt P:Fdot/rho0
- *     stress      the point update of every          reads F, Fdot, e, history; writes sigma,
- *                 particle (material/constitutive.h) P_tilde, history (eps_p, D, T, ...), e +=
- *                                                    second half; books plastic_work and
- *                                                    damage_work; records dt_cfl, the wave
- *                                                    speed, inverted and non-converged points
- *     failure     failed particles                   reads D, Fdot, P_tilde; writes sigma,
- *                 (material/failure.h)               P_tilde, v of those just failed; books
- *                                                    their arrested kinetic energy into
- *                                                    external_work; records m->failed
- *     forces      pair forces (sph/forces.h)         reads x, v, F, P_tilde, D; writes f,
- *                                                    f_hourglass, f_viscous; books the work
- *                                                    against them into hourglass, viscous
- *     body forces (bc/boundary.h)                    writes f; books their work into
- *                                                    external_work
- *   kick        v += dt/2 f/m                       as above
- *   constrain   BC velocities at t + dt              as above
- *   end step    reactions from the impulses          writes the groups' reactions
- *   energies    kinetic and internal energy          writes energy.kinetic, .internal, .scale
+ *     kinematics  F, Fdot by the crack treatment   reads x, v, D, P_tilde (old); writes F,
+ *                 (sph/kinematics.h)               Fdot, crack_gradient (pseudo-spring:
+ *                                                  Linv); e += first half of dt P:Fdot/rho0
+ *     stress      the point update of every        reads F, Fdot, e, history; writes sigma,
+ *                 particle                         P_tilde, history (eps_p, D, T, ...), e +=
+ *                 (material/constitutive.h)        second half; books plastic_work and
+ *                                                  damage_work; records dt_cfl, the wave
+ *                                                  speed, inverted and non-converged points
+ *     failure     failed particles                 reads D, Fdot, P_tilde; writes sigma,
+ *                 (material/failure.h)             P_tilde, v of those just failed; books
+ *                                                  their arrested kinetic energy into
+ *                                                  external_work; records m->failed
+ *     forces      pair forces (sph/forces.h)       reads x, v, F, P_tilde, D; writes f,
+ *                                                  f_hourglass, f_viscous; books the work
+ *                                                  against them into hourglass, viscous
+ *     body forces (bc/boundary.h)                  writes f; books their work into
+ *                                                  external_work
+ *   kick          v += dt/2 f/m                    as above
+ *   constrain     BC velocities at t + dt          as above
+ *   end step      reactions from the impulses      writes the groups' reactions
+ *   energies      kinetic and internal energy      writes energy.kinetic, .internal, .scale
  *
  * Step 0 (tlsph_start) is constrain at t = 0 (no work: it defines the initial
  * state), evaluate with dt = 0 and the energies. */
