@@ -30,63 +30,107 @@ static double hourglass_scale(const struct tlsph_material *mat,
     return isfinite(H) ? fmin(previous, H / (E + H)) : previous;
 }
 
+/* Which of the particle arrays the point updates of one body read and write. */
+struct point_arrays {
+    int plastic, thermal, damaging, voids;
+};
+
+static struct point_arrays point_arrays_of(const struct tlsph_material *mat)
+{
+    const struct tlsph_damage_model *dm = mat->damage.model;
+    return (struct point_arrays){
+        .plastic = tlsph_material_is_plastic(mat),
+        .thermal = mat->thermal.enabled,
+        .damaging = dm != NULL,
+        .voids = dm && (dm->fields & TLSPH_DAMAGE_FIELD_VOID_FRACTION),
+    };
+}
+
+/* The history of a plastic point (damage needs plasticity). */
+static inline void load_state(const struct tlsph_particles *p, size_t i, struct point_arrays a,
+                              struct tlsph_point_state *st)
+{
+    st->eps_p = p->eps_p[i];
+    for (int c = 0; c < 6; c++)
+        st->plastic_strain[c] = p->plastic_strain[6 * i + c];
+    st->rate = p->eps_p_rate[i];
+    st->yield = p->yield_stress[i];
+    st->T = a.thermal ? p->T[i] : 0.0;
+    st->damage = a.damaging ? p->damage[i] : 0.0;
+    st->damage_init = a.damaging ? p->damage_init[i] : 0.0;
+    st->void_fraction = a.voids ? p->void_fraction[i] : 0.0;
+}
+
+static inline void store_damage(struct tlsph_particles *p, size_t i, struct point_arrays a,
+                                const struct tlsph_point_state *st)
+{
+    p->damage[i] = st->damage;
+    p->damage_init[i] = st->damage_init;
+    if (a.voids)
+        p->void_fraction[i] = st->void_fraction;
+}
+
+static inline void store_state(struct tlsph_particles *p, size_t i, struct point_arrays a,
+                               const struct tlsph_point_state *st)
+{
+    p->eps_p[i] = st->eps_p;
+    for (int c = 0; c < 6; c++)
+        p->plastic_strain[6 * i + c] = st->plastic_strain[c];
+    p->eps_p_rate[i] = st->rate;
+    p->yield_stress[i] = st->yield;
+    if (a.thermal)
+        p->T[i] = st->T;
+    if (a.damaging)
+        store_damage(p, i, a, st);
+}
+
+void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i)
+{
+    struct tlsph_particles *p = &m->p;
+    const struct tlsph_material *mat = &m->scene.materials[m->scene.bodies[p->body[i]].material];
+    if (p->T)
+        p->T[i] = mat->thermal.enabled ? mat->thermal.initial_temperature : NAN;
+    const struct tlsph_damage_model *dm = mat->damage.model;
+    if (dm && dm->point_init) {
+        struct tlsph_point_state st = {0};
+        dm->point_init(mat, &st);
+        store_damage(p, i, point_arrays_of(mat), &st);
+    }
+}
+
 void tlsph_constitutive(struct tlsph_model *m, double dt)
 {
     struct tlsph_particles *p = &m->p;
-    size_t inverted = 0, failures = 0, failed = 0;
+    size_t inverted = 0, failures = 0;
     long long flowing = 0, iterations = 0;
     int64_t first_bad = INT64_MAX, first_failure = INT64_MAX;
     double min_detF = INFINITY, dt_min = INFINITY, cmax = 0.0, plastic_work = 0.0;
-    double damage_work = 0.0, arrested = 0.0;
-    const int arrest = m->scene.failed_motion == TLSPH_FAILED_ARREST;
+    double damage_work = 0.0;
 
     for (size_t b = 0; b < m->scene.nbodies; b++) {
         const struct tlsph_body *body = &m->scene.bodies[b];
         const struct tlsph_material *mat = &m->scene.materials[body->material];
-        const int plastic = tlsph_material_is_plastic(mat);
-        const int thermal = mat->thermal.enabled;
-        const int damaging = mat->damage.model != NULL;
-        const int porous = damaging && mat->damage.model->porous;
+        const struct point_arrays arrays = point_arrays_of(mat);
+        const int plastic = arrays.plastic, damaging = arrays.damaging;
         const double G43 = 4.0 / 3.0 * mat->shear_modulus, rho0 = mat->density;
         const double spacing = body->spacing;
 
 #pragma omp parallel for schedule(static)                                                         \
-    reduction(+ : inverted, failures, plastic_work, flowing, iterations, failed, damage_work,       \
-                  arrested)                                                                        \
+    reduction(+ : inverted, failures, plastic_work, flowing, iterations, damage_work)              \
     reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)              \
     if (m->body_end[b] - m->body_begin[b] >= TLSPH_PARALLEL_MIN_ITEMS)
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
             struct tlsph_point_state st = {0}, *sp = NULL;
             if (plastic) {
-                st.eps_p = p->eps_p[i];
-                for (int c = 0; c < 6; c++)
-                    st.plastic_strain[c] = p->plastic_strain[6 * i + c];
-                st.rate = p->eps_p_rate[i];
-                st.yield = p->yield_stress[i];
-                st.T = thermal ? p->T[i] : 0.0;
-                st.damage = damaging ? p->damage[i] : 0.0;
-                st.damage_init = damaging ? p->damage_init[i] : 0.0;
-                st.void_fraction = porous ? p->void_fraction[i] : 0.0;
+                load_state(p, i, arrays, &st);
                 sp = &st;
             }
-            const int was_failed = damaging && st.damage >= 1.0;
             struct tlsph_point_result r;
             tlsph_point_update(mat, p->F + 9 * i, p->e[i], dt, sp, &r);
             if (plastic) {
-                p->eps_p[i] = st.eps_p;
-                for (int c = 0; c < 6; c++)
-                    p->plastic_strain[6 * i + c] = st.plastic_strain[c];
-                p->eps_p_rate[i] = st.rate;
-                p->yield_stress[i] = st.yield;
-                if (thermal)
-                    p->T[i] = st.T;
-                if (damaging) {
-                    p->damage[i] = st.damage;
-                    p->damage_init[i] = st.damage_init;
-                    if (porous)
-                        p->void_fraction[i] = st.void_fraction;
+                store_state(p, i, arrays, &st);
+                if (damaging)
                     damage_work += r.damage_work * p->vol0[i];
-                }
                 plastic_work += r.plastic_work * p->vol0[i];
                 if (p->hg_scale)
                     p->hg_scale[i] = hourglass_scale(mat, &st, p->hg_scale[i]);
@@ -102,17 +146,8 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
             if (damaging && st.damage >= 1.0) {
                 /* failed: no stress, no interaction (kinematics.c, forces.c); its F
                  * is no strain of material any more, so it is not checked, and it
-                 * does not limit the step */
-                failed++;
-                for (int c = 0; c < 6; c++)
-                    p->sigma[6 * i + c] = 0.0;
-                for (int c = 0; c < 9; c++)
-                    p->P_tilde[9 * i + c] = 0.0;
-                if (!was_failed && arrest) {
-                    double *v = p->v + 3 * i;
-                    arrested += 0.5 * p->mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
-                    v[0] = v[1] = v[2] = 0.0;
-                }
+                 * does not limit the step.  The failure phase (failure.c)
+                 * releases the stress it carried. */
                 continue;
             }
             const double J = r.J;
@@ -153,8 +188,6 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
     m->first_return_failure_id = failures ? first_failure : -1;
     m->energy.plastic_work += plastic_work;
     m->energy.damage_work += damage_work;
-    m->energy.external_work -= arrested; /* kinetic energy taken out by arresting failed particles */
-    m->failed = failed;
     m->plastic_point_steps += flowing;
     m->return_iterations += iterations;
     m->dt_cfl = dt_min;

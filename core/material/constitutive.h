@@ -13,7 +13,14 @@
  * adds the step's plastic work to m->energy.plastic_work, records det F problems
  * (m->inverted, m->first_inverted_id, m->min_detF), return-mapping failures
  * (m->return_failures, m->first_return_failure_id) and the stable time step
- * estimate m->dt_cfl and m->max_wave_speed. */
+ * estimate m->dt_cfl and m->max_wave_speed.  A particle failed (D = 1) after
+ * its update gets no new stress here: the failure phase that follows
+ * (material/failure.h) releases what it carried. */
 void tlsph_constitutive(struct tlsph_model *m, double dt);
+
+/* The material state of particle i at t = 0 (its body is set): temperature
+ * (NaN where the material has none) and the damage model's initial point state
+ * (point_init, material/damage/damage.h).  The rest of the history starts at 0. */
+void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i);
 
 #endif

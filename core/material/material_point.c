@@ -1,12 +1,11 @@
 #include "material/material_point.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "material/eos/eos.h"
 #include "util/mat3.h"
 #include "material/damage/damage.h"
-#include "material/damage/gtn.h"
-#include "material/damage/gtn_return.h"
 #include "material/strength/j2_return.h"
 #include "material/strength/strength.h"
 
@@ -83,16 +82,6 @@ static double largest_eigenvalue(const double A[9])
     return fmax(lam[0], fmax(lam[1], lam[2]));
 }
 
-/* Stored elastic energy per unit reference volume (J/m^3) of a stress state:
- * deviatoric G |dev He|^2 = q^2/(6G) (q the Kirchhoff von Mises value);
- * volumetric by the secant p (1 - J_e)/2 (exact for a linear EOS) per unit
- * intermediate volume, times the plastic volume ratio J_p. */
-static double deviatoric_energy(double G, double q) { return q * q / (6.0 * G); }
-static double volumetric_energy(double p, double Je, double Jp)
-{
-    return 0.5 * fmax(p * (1.0 - Je), 0.0) * Jp;
-}
-
 /* Grows the damage of a point that flowed plastically by dgamma this step and
  * returns the energy released (J/m^3).  tau_dev: effective deviatoric Kirchhoff
  * stress after the return (any basis); p: effective pressure (Pa). */
@@ -114,8 +103,8 @@ static double damage_growth(const struct tlsph_material *mat, double dgamma, dou
         t2 += tau_dev[k] * tau_dev[k];
     /* effective stored energy; its volumetric part splits into the tensile part,
      * which damage degrades, and the compressive part, which only failure removes */
-    const double psi_dev = deviatoric_energy(mat->shear_modulus, sqrt(1.5 * t2));
-    const double psi_vol = volumetric_energy(p, J, 1.0);
+    const double psi_dev = tlsph_deviatoric_energy(mat->shear_modulus, sqrt(1.5 * t2));
+    const double psi_vol = tlsph_volumetric_energy(p, J, 1.0);
     const double tensile = p < 0.0 ? psi_vol : 0.0;
     double released = (psi_dev + tensile) * (D1 - D0);
     if (D1 >= 1.0 && p >= 0.0)
@@ -123,8 +112,7 @@ static double damage_growth(const struct tlsph_material *mat, double dgamma, dou
     return released;
 }
 
-/* The result of a failed point: no stress at all. */
-static void no_stress(struct tlsph_point_result *r, double J, double min_stretch, double K_t)
+void tlsph_point_no_stress(struct tlsph_point_result *r, double J, double min_stretch, double K_t)
 {
     for (int k = 0; k < 9; k++)
         r->P[k] = 0.0;
@@ -135,9 +123,6 @@ static void no_stress(struct tlsph_point_result *r, double J, double min_stretch
     r->K_t = K_t;
 }
 
-/* Stress output from the total Kirchhoff-type stress tau (conjugate to the
- * Hencky strain, in the eigenbasis of C): S by the derivative of the matrix
- * logarithm, P = F S, Cauchy sigma = P F^T / J. */
 static void assemble(const double F[9], const double tau[9], const double lam[3],
                      const double lns[3], const double Q[9], int general, double J, double smin,
                      double K_t, struct tlsph_point_result *r)
@@ -175,95 +160,10 @@ static void assemble(const double F[9], const double tau[9], const double lam[3]
     r->K_t = K_t;
 }
 
-/* GTN (material/damage/gtn.h, material/damage/gtn_return.h): the point carries the macroscopic
- * stress of the porous material, on or inside the GTN surface.  No (1 - D)
- * factor on top: the voids act through the yield surface and D = q1 f* only
- * enters the approximation (eqs. 33-35).  The elastic moduli are not degraded
- * either (Algorithm 2's 2G(1 - D) would count the voids twice).  The plastic
- * strain has a trace, the plastic volume change of void growth, so the EOS
- * sees the elastic volume ratio J exp(-tr Ep). */
-static void gtn_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
-                       const double lam[3], const double lns[3], const double Q[9], double J,
-                       double smin, struct tlsph_point_state *s, struct tlsph_point_result *r)
+void tlsph_point_assemble(const struct tlsph_point_kinematics *k, const double tau[9], int general,
+                          double K_t, struct tlsph_point_result *r)
 {
-    const double *g = mat->damage.params;
-    const double G = mat->shear_modulus, G2 = 2.0 * G;
-    double Ep[9], Epb[9];
-    sym6_to_mat3(s->plastic_strain, Ep);
-    mat3_to_basis(Q, Ep, Epb);
-    const double lnJp = Epb[0] + Epb[4] + Epb[8], lnJ = lns[0] + lns[1] + lns[2];
-    double tau[9]; /* trial deviator 2G dev(H - Ep) */
-    for (int k = 0; k < 9; k++)
-        tau[k] = -G2 * Epb[k];
-    for (int a = 0; a < 3; a++)
-        tau[4 * a] += G2 * (lns[a] - lnJ / 3.0 + lnJp / 3.0);
-    double t2 = 0.0;
-    for (int k = 0; k < 9; k++)
-        t2 += tau[k] * tau[k];
-    const double q_tr = sqrt(1.5 * t2);
-    double omega = 0.0;
-    if (g[GTN_KW] > 0.0 && q_tr > 0.0) {
-        const double xi = 13.5 * mat3_det(tau) / (q_tr * q_tr * q_tr);
-        omega = fmin(fmax(1.0 - xi * xi, 0.0), 1.0); /* |xi| <= 1 up to round-off */
-    }
-    const struct tlsph_gtn_input in = {
-        .q_trial = q_tr,
-        .omega = omega,
-        .J = J,
-        .lnJp = lnJp,
-        .e = e,
-        .G = G,
-        .eps_M = s->eps_p,
-        .f = s->void_fraction,
-        .T = s->T,
-        .dt = dt,
-        .heating = mat->thermal.enabled
-                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
-                       : 0.0,
-        .yield = s->yield,
-    };
-    struct tlsph_gtn_result out;
-    const int plastic = tlsph_gtn_return(mat, &in, &out);
-    s->yield = out.yield;
-    s->rate = 0.0;
-    double tau_q = q_tr;
-    if (plastic) {
-        r->iterations = out.iterations;
-        r->converged = out.converged;
-        const double flow = q_tr > 0.0 ? 1.5 * out.dq / q_tr : 0.0;
-        const double shrink = q_tr > 0.0 ? 1.0 - 3.0 * G * out.dq / q_tr : 1.0;
-        for (int k = 0; k < 9; k++) {
-            Epb[k] += flow * tau[k];
-            tau[k] *= shrink;
-        }
-        for (int a = 0; a < 3; a++)
-            Epb[4 * a] += out.dv / 3.0;
-        mat3_from_basis(Q, Epb, Ep);
-        mat3_to_sym6(Ep, s->plastic_strain);
-        s->eps_p += out.dM;
-        s->rate = dt > 0.0 ? out.dM / dt : 0.0;
-        if (mat->thermal.enabled)
-            s->T = out.T;
-        s->void_fraction = out.f;
-        r->plastic_work = out.work;
-        tau_q = q_tr - 3.0 * G * out.dq;
-    }
-    s->damage = tlsph_gtn_damage(g, s->void_fraction);
-    s->damage_init = s->void_fraction / g[GTN_FC];
-    if (tau_q > 0.0)
-        r->triaxiality = -out.p * J / tau_q;
-    if (s->damage >= 1.0) {
-        /* the surface has shrunk to the origin: what elastic energy is left is
-         * released with the failure */
-        const double Je = J * exp(-(lnJp + out.dv));
-        r->damage_work =
-            deviatoric_energy(G, tau_q) + volumetric_energy(out.p, Je, exp(lnJp + out.dv));
-        no_stress(r, J, smin, out.K_t);
-        return;
-    }
-    for (int a = 0; a < 3; a++)
-        tau[4 * a] -= J * out.p;
-    assemble(F, tau, lam, lns, Q, 1, J, smin, out.K_t, r);
+    assemble(k->F, tau, k->lam, k->lns, k->Q, general, k->J, k->min_stretch, K_t, r);
 }
 
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
@@ -277,7 +177,7 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     r->triaxiality = NAN;
     if (damaging && s->damage >= 1.0) {
         /* failed: no stress; its F is no longer a strain of material (see kinematics.c) */
-        no_stress(r, 1.0, 1.0, 0.0);
+        tlsph_point_no_stress(r, 1.0, 1.0, 0.0);
         return;
     }
     double C[9], lam[3], Q[9];
@@ -292,8 +192,13 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     const double J = mat3_det(F);
     const double lnJ = lns[0] + lns[1] + lns[2];
     const double G2 = 2.0 * mat->shear_modulus;
-    if (damaging && mat->damage.model->porous) {
-        gtn_update(mat, F, e, dt, lam, lns, Q, J, smin, s, r);
+    if (damaging && mat->damage.model->point_update) {
+        /* a porous model: its own yield surface and damage */
+        struct tlsph_point_kinematics k = {.F = F, .J = J, .min_stretch = smin};
+        memcpy(k.lam, lam, sizeof lam);
+        memcpy(k.lns, lns, sizeof lns);
+        memcpy(k.Q, Q, sizeof Q);
+        mat->damage.model->point_update(mat, &k, e, dt, s, r);
         return;
     }
     const double intact = damaging ? 1.0 - s->damage : 1.0;
@@ -307,8 +212,8 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
         double Ep[9], Epb[9];
         sym6_to_mat3(s->plastic_strain, Ep);
         mat3_to_basis(Q, Ep, Epb);
-        for (int k = 0; k < 9; k++)
-            tau[k] -= G2 * Epb[k];
+        for (int c = 0; c < 9; c++)
+            tau[c] -= G2 * Epb[c];
         r->plastic_work = plastic_correction(mat, Q, J, dt, intact, s, tau, Epb, r, &dgamma);
     }
 
@@ -317,23 +222,23 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     double scale = 1.0, p_carried = p;
     if (damaging) {
         double t2 = 0.0;
-        for (int k = 0; k < 9; k++)
-            t2 += tau[k] * tau[k];
+        for (int c = 0; c < 9; c++)
+            t2 += tau[c] * tau[c];
         const double q = sqrt(1.5 * t2) / J; /* Cauchy von Mises */
         if (q > 0.0)
             r->triaxiality = -p / q;
         if (dgamma > 0.0)
             r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality, s);
         if (s->damage >= 1.0) {
-            no_stress(r, J, smin, K_t);
+            tlsph_point_no_stress(r, J, smin, K_t);
             return;
         }
         scale = 1.0 - s->damage;
         if (p < 0.0)
             p_carried = scale * p;
         if (scale < 1.0)
-            for (int k = 0; k < 9; k++)
-                tau[k] *= scale;
+            for (int c = 0; c < 9; c++)
+                tau[c] *= scale;
     }
     for (int a = 0; a < 3; a++)
         tau[4 * a] -= J * p_carried;

@@ -38,14 +38,18 @@
  * G |dev(H - Ep)|^2 + the tensile volumetric energy, is the damage dissipation.
  * At D = 1 the point has failed: it carries no stress at all.
  *
- * GTN (material/damage/gtn.h) replaces the J2 return and the (1 - D) scaling: the point
- * carries the macroscopic stress of the porous material on the GTN surface
- * (material/damage/gtn_return.h), its plastic strain has a trace (void growth), and
- * the EOS sees the elastic volume ratio J exp(-tr Ep).
+ * A porous damage model (GTN, material/damage/gtn_point.c) replaces the J2 return and
+ * the (1 - D) scaling by its own point update (the damage model's point_update
+ * hook, material/damage/damage.h), built from the shared pieces declared at the
+ * end of this header: the point carries the macroscopic stress of the porous
+ * material, its plastic strain has a trace (void growth), and the EOS sees the
+ * elastic volume ratio J exp(-tr Ep).
  *
  * Units: SI (Pa, K, J/kg, s). */
 #ifndef TLSPH_MATERIAL_POINT_H
 #define TLSPH_MATERIAL_POINT_H
+
+#include <math.h>
 
 #include "scene/scene.h"
 
@@ -59,7 +63,7 @@ struct tlsph_point_state {
                                  states are valid) */
     double damage;            /* D in [0, 1], 1 (read and written only with a damage model) */
     double damage_init;       /* damage-initiation variable D_init >= 0, 1 (idem; GTN: f/f_c) */
-    double void_fraction;     /* void volume fraction f, 1 (GTN only) */
+    double void_fraction;     /* void volume fraction f, 1 (porous damage models only) */
 };
 
 struct tlsph_point_result {
@@ -82,5 +86,36 @@ struct tlsph_point_result {
  * mapping).  Requires det F > 0 for meaningful output (the caller checks). */
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r);
+
+/* Shared pieces for the point updates of damage models (damage.h: point_update). */
+
+/* The kinematics of one point: C = F^T F = Q diag(lam) Q^T. */
+struct tlsph_point_kinematics {
+    const double *F;    /* deformation gradient [9], 1 */
+    double lam[3];      /* eigenvalues of C, 1 */
+    double lns[3];      /* logarithmic principal stretches ln sqrt(lam), 1 */
+    double Q[9];        /* eigenvectors of C (columns), row-major */
+    double J;           /* det F, 1 */
+    double min_stretch; /* smallest principal stretch, 1 */
+};
+
+/* Fills r's stresses from the total Kirchhoff-type stress tau conjugate to the
+ * Hencky strain, in the eigenbasis of C: S by the derivative of the matrix
+ * logarithm (general != 0; general = 0 when tau is diagonal there, as in
+ * elasticity), P = F S, sigma = P F^T / J; and r->J, r->min_stretch, r->K_t. */
+void tlsph_point_assemble(const struct tlsph_point_kinematics *k, const double tau[9], int general,
+                          double K_t, struct tlsph_point_result *r);
+/* The result of a failed point: no stress at all. */
+void tlsph_point_no_stress(struct tlsph_point_result *r, double J, double min_stretch, double K_t);
+
+/* Stored elastic energy per unit reference volume (J/m^3) of a stress state:
+ * deviatoric G |dev He|^2 = q^2/(6G) (q the Kirchhoff von Mises value, Pa);
+ * volumetric by the secant p (1 - J_e)/2 (exact for a linear EOS) per unit
+ * intermediate volume, times the plastic volume ratio J_p. */
+static inline double tlsph_deviatoric_energy(double G, double q) { return q * q / (6.0 * G); }
+static inline double tlsph_volumetric_energy(double p, double Je, double Jp)
+{
+    return 0.5 * fmax(p * (1.0 - Je), 0.0) * Jp;
+}
 
 #endif

@@ -1,17 +1,22 @@
 #include "run/integrate.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "bc/boundary.h"
 #include "material/constitutive.h"
+#include "material/failure.h"
 #include "sph/forces.h"
 #include "sph/kinematics.h"
 #include "util/parallel.h"
 
+/* The phases of a force evaluation, in order (the contract of each is above
+ * tlsph_model_step). */
 void tlsph_evaluate(struct tlsph_model *m, double dt)
 {
     tlsph_kinematics(m, dt);
     tlsph_constitutive(m, dt);
+    tlsph_failure(m);
     const struct tlsph_force_power pw = tlsph_forces(m);
     const double body_power = tlsph_boundary_forces(m);
     /* Work of the optional forces and body forces over the step, at the
@@ -74,6 +79,41 @@ double tlsph_internal_energy(const struct tlsph_model *m)
     return ei;
 }
 
+/* One step, phase by phase: what each reads, writes, and books into the
+ * energy account (m->energy; the balance is tlsph_energy_balance).
+ *
+ *   kick          v += dt/2 f/m                    reads f, mass; writes v
+ *   constrain     BC velocities at t + dt/2        writes v of the groups; books the
+ *                 (bc/boundary.h)                  supports' work (impulse x prescribed
+ *                                                  mid-step velocity) into external_work
+ *   walls         velocities into a wall limited   reads f; writes v; books the kinetic
+ *                                                  energy of arrival into external_work
+ *   drift         x += dt v, t += dt               reads v; writes x
+ *   evaluate (tlsph_evaluate), at the new positions with the half-step velocities:
+ *     kinematics  F, Fdot by the crack treatment   reads x, v, D, P_tilde (old); writes F,
+ *                 (sph/kinematics.h)               Fdot, crack_gradient (pseudo-spring:
+ *                                                  Linv); e += first half of dt P:Fdot/rho0
+ *     stress      the point update of every        reads F, Fdot, e, history; writes sigma,
+ *                 particle                         P_tilde, history (eps_p, D, T, ...), e +=
+ *                 (material/constitutive.h)        second half; books plastic_work and
+ *                                                  damage_work; records dt_cfl, the wave
+ *                                                  speed, inverted and non-converged points
+ *     failure     failed particles                 reads D, Fdot, P_tilde; writes sigma,
+ *                 (material/failure.h)             P_tilde, v of those just failed; books
+ *                                                  their arrested kinetic energy into
+ *                                                  external_work; records m->failed
+ *     forces      pair forces (sph/forces.h)       reads x, v, F, P_tilde, D; writes f,
+ *                                                  f_hourglass, f_viscous; books the work
+ *                                                  against them into hourglass, viscous
+ *     body forces (bc/boundary.h)                  writes f; books their work into
+ *                                                  external_work
+ *   kick          v += dt/2 f/m                    as above
+ *   constrain     BC velocities at t + dt          as above
+ *   end step      reactions from the impulses      writes the groups' reactions
+ *   energies      kinetic and internal energy      writes energy.kinetic, .internal, .scale
+ *
+ * Step 0 (tlsph_start) is constrain at t = 0 (no work: it defines the initial
+ * state), evaluate with dt = 0 and the energies. */
 void tlsph_model_step(struct tlsph_model *m)
 {
     const double dt = tlsph_next_dt(m);
@@ -96,4 +136,20 @@ void tlsph_model_step(struct tlsph_model *m)
                         fabs(e->hourglass) + fabs(e->viscous);
     if (size > e->scale)
         e->scale = size;
+}
+
+void tlsph_start(struct tlsph_model *m)
+{
+    /* constraints first: they define the initial state, their impulses are no work */
+    tlsph_boundary_constrain(m, 0.0, 0.0);
+    for (size_t k = 0; k < m->scene.nbcs; k++)
+        memset(m->groups[k].impulse, 0, sizeof m->groups[k].impulse);
+    m->energy.external_work = 0.0;
+    tlsph_evaluate(m, 0.0); /* the forces of the first half kick */
+    struct tlsph_energy *e = &m->energy;
+    e->kinetic = tlsph_kinetic_energy(m);
+    e->internal = tlsph_internal_energy(m);
+    e->initial = e->kinetic + e->internal;
+    e->scale = fabs(e->initial);
+    m->dt = tlsph_next_dt(m);
 }

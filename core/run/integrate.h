@@ -12,8 +12,12 @@
 
 #include "run/model.h"
 
-/* Kinematics, constitutive update, pair forces, body forces for the current
- * positions; dt is the step that led here (0 at setup). Updates energy terms. */
+/* Step 0, at setup: constraints at t = 0, the first evaluation (dt = 0), the
+ * initial energies and the first time step. */
+void tlsph_start(struct tlsph_model *m);
+/* Kinematics, stress update, failure, pair forces, body forces for the current
+ * positions; dt is the step that led here (0 at setup). Updates energy terms
+ * (the phase contract is in integrate.c, above tlsph_model_step). */
 void tlsph_evaluate(struct tlsph_model *m, double dt);
 /* Time step for the next step: fixed, or cfl times the stable estimate, never
  * past the end time. */

@@ -8,15 +8,16 @@
 #include <string.h>
 
 #include "bc/boundary.h"
-#include "sph/correction.h"
+#include "material/constitutive.h"
+#include "material/damage/damage.h"
 #include "material/eos/eos.h"
+#include "material/strength/strength.h"
 #include "run/integrate.h"
+#include "sph/correction.h"
+#include "sph/crack_treatment.h"
 #include "sph/kernel.h"
 #include "sph/neighbors.h"
-#include "material/strength/strength.h"
 #include "util/parallel.h"
-#include "material/damage/damage.h"
-#include "material/damage/gtn.h"
 
 void *tlsph_alloc(struct tlsph_model *m, size_t count, size_t size)
 {
@@ -90,23 +91,20 @@ static void select_modules(struct tlsph_model *m)
     int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0, evolution = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
-        add_module(m, strcmp(mat->eos->name, "linear") == 0 ? "eos:linear" : "eos:mie_gruneisen");
+        add_module(m, mat->eos->module);
         add_module(m, mat->strength->module);
         plastic |= tlsph_material_is_plastic(mat);
         rate |= (mat->strength_terms & TLSPH_FLOW_RATE) != 0;
         softening |= (mat->strength_terms & TLSPH_FLOW_THERMAL) != 0;
         heating |= mat->thermal.enabled;
-        if (mat->damage.model) {
-            add_module(m, mat->damage.model->module);
-            if (mat->damage.model->porous) {
-                const double *g = mat->damage.params;
-                if (g[GTN_FN] > 0.0)
-                    add_module(m, "damage:gtn_nucleation");
-                if (g[GTN_KW] > 0.0)
-                    add_module(m, "damage:gtn_shear");
-            } else {
-                evolution = 1;
-            }
+        const struct tlsph_damage_model *dm = mat->damage.model;
+        if (dm) {
+            add_module(m, dm->module);
+            const char *extra[TLSPH_DAMAGE_MAX_MODULES];
+            const int nextra = dm->modules ? dm->modules(mat, extra) : 0;
+            for (int k = 0; k < nextra; k++)
+                add_module(m, extra[k]);
+            evolution |= dm->initiation != NULL; /* criteria grow D by eq. 45 */
             damage = 1;
         }
     }
@@ -122,8 +120,7 @@ static void select_modules(struct tlsph_model *m)
     if (evolution)
         add_module(m, "damage:evolution_linear");
     if (damage) {
-        add_module(m, s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? "approximation:pseudo_spring"
-                                                                       : "approximation:damage_aware");
+        add_module(m, m->crack->module);
         add_module(m, s->failed_motion == TLSPH_FAILED_ARREST ? "failure:arrest" : "failure:free");
     }
     add_module(m, "force:pk1_pair");
@@ -163,20 +160,22 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
         return -1;
     if (m->scene.viscosity && !(p->f_viscous = tlsph_alloc(m, 3 * n, sizeof(double))))
         return -1;
-    int plastic = 0, thermal = 0, damage = 0, porous = 0;
+    int plastic = 0, thermal = 0, damage = 0;
+    unsigned damage_fields = 0;
     for (size_t k = 0; k < m->scene.nmaterials; k++) {
         const struct tlsph_material *mat = &m->scene.materials[k];
         plastic |= tlsph_material_is_plastic(mat);
         thermal |= mat->thermal.enabled;
         damage |= mat->damage.model != NULL;
-        porous |= mat->damage.model && mat->damage.model->porous;
+        damage_fields |= mat->damage.model ? mat->damage.model->fields : 0;
     }
-    if (porous && !(p->void_fraction = tlsph_alloc(m, n, sizeof(double))))
+    if ((damage_fields & TLSPH_DAMAGE_FIELD_VOID_FRACTION) &&
+        !(p->void_fraction = tlsph_alloc(m, n, sizeof(double))))
         return -1;
     if (damage && (!(p->damage = tlsph_alloc(m, n, sizeof(double))) ||
                    !(p->damage_init = tlsph_alloc(m, n, sizeof(double)))))
         return -1;
-    if (damage && m->scene.crack_treatment == TLSPH_CRACK_DAMAGE_AWARE &&
+    if ((m->crack->fields & TLSPH_CRACK_FIELD_GRADIENT) &&
         !(p->crack_gradient = tlsph_alloc(m, 9 * n, sizeof(double))))
         return -1;
     if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
@@ -271,15 +270,7 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
         }
         for (int c = 0; c < 9; c++)
             p->F[9 * k + c] = (c % 4 == 0);
-        if (p->T)
-            p->T[k] = mat->thermal.enabled ? mat->thermal.initial_temperature : NAN;
-        if (mat->damage.model && mat->damage.model->porous) {
-            /* GTN starts from its initial voids: D = q1 f0 > 0 already */
-            const double *g = mat->damage.params;
-            p->void_fraction[k] = g[GTN_F0];
-            p->damage[k] = tlsph_gtn_damage(g, g[GTN_F0]);
-            p->damage_init[k] = g[GTN_F0] / g[GTN_FC];
-        }
+        tlsph_constitutive_init_particle(m, k);
     }
     rc = 0;
 done:
@@ -307,6 +298,7 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     m->scene = *scene;
     memset(scene, 0, sizeof *scene);
     m->dim = m->scene.dimension;
+    m->crack = tlsph_crack_select(&m->scene);
 
     if (generate(m, err) != 0)
         goto fail;
@@ -335,18 +327,7 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
         goto fail;
     select_modules(m);
 
-    /* t = 0: constraints first (they define the initial state, not work), then
-     * the initial forces for the first half kick. */
-    tlsph_boundary_constrain(m, 0.0, 0.0);
-    for (size_t k = 0; k < m->scene.nbcs; k++)
-        memset(m->groups[k].impulse, 0, sizeof m->groups[k].impulse);
-    m->energy.external_work = 0.0;
-    tlsph_evaluate(m, 0.0);
-    m->energy.kinetic = tlsph_kinetic_energy(m);
-    m->energy.internal = tlsph_internal_energy(m);
-    m->energy.initial = m->energy.kinetic + m->energy.internal;
-    m->energy.scale = fabs(m->energy.initial);
-    m->dt = tlsph_next_dt(m);
+    tlsph_start(m);
     *out = m;
     return 0;
 fail:

@@ -18,6 +18,8 @@
 #include "io/measures.h"
 #include "scene/scene.h"
 
+struct tlsph_crack_model; /* sph/crack_treatment.h */
+
 struct tlsph_particles {
     size_t n;
     int64_t *id;      /* stable id: order of generation, body by body */
@@ -54,12 +56,13 @@ struct tlsph_particles {
      * scene has a damage model (NULL otherwise), zero for the others. */
     double *damage;         /* D in [0, 1]; 1 = failed, 1 */
     double *damage_init;    /* damage-initiation variable D_init, 1 (GTN: f / f_c) */
-    /* GTN void volume fraction f, 1; allocated only when some material is GTN
-     * (material/damage/gtn.h), zero for the others. */
+    /* Void volume fraction f, 1; allocated only when some material's damage model
+     * needs it (TLSPH_DAMAGE_FIELD_VOID_FRACTION, material/damage/damage.h: GTN),
+     * zero for the others. */
     double *void_fraction;
-    /* Damage-aware treatment only: sum_j V_j sum_steps D_j (du_j - du_i) (x) grad W_i,
-     * the part of the displacement gradient (before L_i^-1) that damaged
-     * neighbours did not transmit, so that F follows eq. 34 [9n]. */
+    /* Damage-aware treatment only (sph/damage_aware.h): sum_j V_j sum_steps D_j
+     * (du_j - du_i) (x) grad W_i, the part of the displacement gradient (before
+     * L_i^-1) that damaged neighbours did not transmit, so that F follows eq. 34 [9n]. */
     double *crack_gradient;
 };
 
@@ -117,6 +120,8 @@ struct tlsph_model {
     size_t *body_begin, *body_end; /* particle ranges per body */
     struct tlsph_group *groups;    /* one per scene->bcs entry (empty for walls/body forces) */
     struct tlsph_measures measures; /* gauges and sections of scene.output */
+    const struct tlsph_crack_model *crack; /* how damage enters the approximation, chosen
+                                              once at setup (intact without damage) */
 
     /* run state */
     long step;

@@ -1,6 +1,9 @@
 #include "sph/forces.h"
 
+#include "sph/crack_treatment.h"
+#include "sph/damage_aware.h"
 #include "sph/hourglass.h"
+#include "sph/pseudo_spring.h"
 #include "sph/viscosity.h"
 #include "util/parallel.h"
 
@@ -11,15 +14,32 @@ struct body_constants {
     double beta1, beta2;
 };
 
+/* The weights of a pair's forces under each crack treatment (crack_treatment.h),
+ * called with a constant variant: the switch folds away. */
+static inline __attribute__((always_inline)) struct tlsph_pair_weights
+pair_weights(const enum tlsph_approximation variant, double Di, double Dj)
+{
+    switch (variant) {
+    case TLSPH_APPROX_DAMAGE_AWARE:
+        return tlsph_damage_aware_force_weights(Di, Dj);
+    case TLSPH_APPROX_PSEUDO_SPRING:
+        return tlsph_pseudo_spring_force_weights(Di, Dj);
+    default:
+        return (struct tlsph_pair_weights){.wi = 1.0, .wj = 1.0, .stab = 1.0};
+    }
+}
+
 /* The forces on particle i.  Always inlined into the variant loops below with
- * constant with_hg / with_visc / with_damage, so each variant's pair loop
- * carries no branch on the scene's choices (the OpenMP region must sit in the
- * variant itself: a parallel loop is outlined before inlining, and flags
- * passed into it would stay run-time values). */
+ * constant with_hg / with_visc / variant, so each variant's pair loop carries
+ * no branch on the scene's choices (the OpenMP region must sit in the variant
+ * itself: a parallel loop is outlined before inlining, and flags passed into
+ * it would stay run-time values). */
 static inline __attribute__((always_inline)) void
 force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc, const int with_hg,
-               const int with_visc, const int with_damage, double *power_hg, double *power_visc)
+               const int with_visc, const enum tlsph_approximation variant, double *power_hg,
+               double *power_visc)
 {
+    const int with_damage = variant != TLSPH_APPROX_INTACT;
     const double *restrict D = m->p.damage;
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
@@ -45,13 +65,10 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
         const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
         const double s = vol0[j] * dw[k];
         const double *Pj = Pt + 9 * j;
-        /* weights of P_i and P_j: 1 and 1 without damage; eq. 35 (1 - D_j) and
-         * (1 - D_i), the force conjugate to the damage-aware Fdot of eq. 33 and
-         * antisymmetric in i, j (momentum exact); the pseudo-spring scales the
-         * pair's kernel by (1 - D_i)(1 - D_j) */
-        const double pair = with_damage ? (1.0 - Di) * (1.0 - D[j]) : 1.0;
-        const double wi = with_damage == 1 ? 1.0 - D[j] : pair;
-        const double wj = with_damage == 1 ? 1.0 - Di : pair;
+        /* weights of P_i and P_j, and of the stabilisation: the treatment's
+         * (1 without damage); symmetric or swapped in i, j, so f_ij = -f_ji */
+        const struct tlsph_pair_weights wt = pair_weights(variant, Di, with_damage ? D[j] : 0.0);
+        const double wi = wt.wi, wj = wt.wj, pair = wt.stab;
         f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
                    (wi * Pi[2] + wj * Pj[2]) * d2);
         f1 += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
@@ -108,38 +125,36 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     }
 }
 
-/* One parallel loop per combination of the optional terms; with_damage: 0 none,
- * 1 damage-aware (eq. 35), 2 pseudo-spring. */
+/* One parallel loop per combination of the optional terms and crack treatment. */
 typedef void (*force_loop)(struct tlsph_model *, size_t, size_t, const struct body_constants *,
                            double *, double *);
-#define FORCE_LOOP(NAME, HG, VISC, DMG)                                                           \
+#define FORCE_LOOP(NAME, HG, VISC, VARIANT)                                                       \
     static void NAME(struct tlsph_model *m, size_t lo, size_t hi,                                 \
                      const struct body_constants *bc, double *p_hg, double *p_visc)               \
     {                                                                                             \
         double hg = 0.0, visc = 0.0;                                                              \
         _Pragma("omp parallel for schedule(static) reduction(+ : hg, visc) if (hi - lo >= TLSPH_PARALLEL_MIN_ITEMS)") \
         for (size_t i = lo; i < hi; i++)                                                          \
-            force_particle(m, i, bc, HG, VISC, DMG, &hg, &visc);                                  \
+            force_particle(m, i, bc, HG, VISC, VARIANT, &hg, &visc);                              \
         *p_hg += hg;                                                                              \
         *p_visc += visc;                                                                          \
     }
-FORCE_LOOP(loop_000, 0, 0, 0)
-FORCE_LOOP(loop_010, 0, 1, 0)
-FORCE_LOOP(loop_100, 1, 0, 0)
-FORCE_LOOP(loop_110, 1, 1, 0)
-FORCE_LOOP(loop_001, 0, 0, 1)
-FORCE_LOOP(loop_011, 0, 1, 1)
-FORCE_LOOP(loop_101, 1, 0, 1)
-FORCE_LOOP(loop_111, 1, 1, 1)
-FORCE_LOOP(loop_002, 0, 0, 2)
-FORCE_LOOP(loop_012, 0, 1, 2)
-FORCE_LOOP(loop_102, 1, 0, 2)
-FORCE_LOOP(loop_112, 1, 1, 2)
-/* [damage treatment][hourglass][viscosity] */
-static const force_loop force_loops[3][2][2] = {
-    {{loop_000, loop_010}, {loop_100, loop_110}},
-    {{loop_001, loop_011}, {loop_101, loop_111}},
-    {{loop_002, loop_012}, {loop_102, loop_112}},
+#define FORCE_LOOPS(SUFFIX, VARIANT)                                                              \
+    FORCE_LOOP(loop_00_##SUFFIX, 0, 0, VARIANT)                                                   \
+    FORCE_LOOP(loop_01_##SUFFIX, 0, 1, VARIANT)                                                   \
+    FORCE_LOOP(loop_10_##SUFFIX, 1, 0, VARIANT)                                                   \
+    FORCE_LOOP(loop_11_##SUFFIX, 1, 1, VARIANT)
+/* [hourglass][viscosity] of one treatment */
+#define FORCE_ROW(SUFFIX)                                                                         \
+    {{loop_00_##SUFFIX, loop_01_##SUFFIX}, {loop_10_##SUFFIX, loop_11_##SUFFIX}}
+FORCE_LOOPS(intact, TLSPH_APPROX_INTACT)
+FORCE_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
+FORCE_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
+/* [crack treatment][hourglass][viscosity] */
+static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
+    [TLSPH_APPROX_INTACT] = FORCE_ROW(intact),
+    [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(damage_aware),
+    [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(pseudo_spring),
 };
 
 struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
@@ -158,9 +173,8 @@ struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
             .beta2 = s->viscosity_quadratic,
         };
         const size_t lo = m->body_begin[b], hi = m->body_end[b];
-        const int dmg = !m->p.damage ? 0 : s->crack_treatment == TLSPH_CRACK_PSEUDO_SPRING ? 2 : 1;
-        force_loops[dmg][s->hourglass != 0][s->viscosity != 0](m, lo, hi, &bc, &pw.hourglass,
-                                                              &pw.viscous);
+        force_loops[m->crack->variant][s->hourglass != 0][s->viscosity != 0](
+            m, lo, hi, &bc, &pw.hourglass, &pw.viscous);
     }
     return pw;
 }

@@ -1,21 +1,24 @@
 #include "sph/kinematics.h"
-#include "util/parallel.h"
-#include "sph/pseudo_spring.h"
 
-/* The gather of particle i, inlined with a constant with_damage into the two
- * loops below (each with its own parallel region: a parallel loop is outlined
- * before inlining), so undamaged scenes carry no per-pair damage branch. */
+#include "sph/crack_treatment.h"
+#include "sph/damage_aware.h"
+#include "sph/pseudo_spring.h"
+#include "util/parallel.h"
+
+/* The gather of particle i, inlined with a constant variant into the loops
+ * below (each with its own parallel region: a parallel loop is outlined before
+ * inlining), so a scene without damage carries no per-pair damage branch. */
 static inline __attribute__((always_inline)) void
-gather_particle(struct tlsph_model *m, size_t i, double dt, const int with_damage)
+gather_particle(struct tlsph_model *m, size_t i, double dt, const enum tlsph_approximation variant)
 {
+    const int damage_aware = variant == TLSPH_APPROX_DAMAGE_AWARE;
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict D = m->p.damage;
-    double *restrict crack = m->p.crack_gradient;
     const int64_t *restrict start = m->pairs.start;
     const int32_t *restrict nbr = m->pairs.j;
     const double *restrict dw = m->pairs.dw;
     const double *restrict vol0 = m->p.vol0;
-    if (with_damage && D[i] >= 1.0) {
+    if (damage_aware && D[i] >= 1.0) {
         /* failed: carries no stress, so its gradients serve nothing */
         for (int a = 0; a < 9; a++)
             m->p.Fdot[9 * i + a] = 0.0;
@@ -29,47 +32,30 @@ gather_particle(struct tlsph_model *m, size_t i, double dt, const int with_damag
         const size_t j = (size_t)nbr[k];
         const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
         const double s = vol0[j] * dw[k];
-        const double g0 = s * d0, g1 = s * d1, g2 = s * d2;
+        const double g[3] = {s * d0, s * d1, s * d2};
         const double du0 = x[3 * j] - X[3 * j] - ui0, du1 = x[3 * j + 1] - X[3 * j + 1] - ui1,
                      du2 = x[3 * j + 2] - X[3 * j + 2] - ui2;
-        double dv0 = v[3 * j] - vi0, dv1 = v[3 * j + 1] - vi1, dv2 = v[3 * j + 2] - vi2;
-        G[0] += du0 * g0; G[1] += du0 * g1; G[2] += du0 * g2;
-        G[3] += du1 * g0; G[4] += du1 * g1; G[5] += du1 * g2;
-        G[6] += du2 * g0; G[7] += du2 * g1; G[8] += du2 * g2;
-        if (with_damage && D[j] > 0.0) {
-            /* eq. 33: j transmits (1 - D_j) of the velocity difference; the
-             * rest of this step's displacement difference, dt D_j dv (the
-             * drift moved every particle by dt v), is the crack's opening */
-            const double c = dt * D[j];
-            Gc[0] += c * dv0 * g0; Gc[1] += c * dv0 * g1; Gc[2] += c * dv0 * g2;
-            Gc[3] += c * dv1 * g0; Gc[4] += c * dv1 * g1; Gc[5] += c * dv1 * g2;
-            Gc[6] += c * dv2 * g0; Gc[7] += c * dv2 * g1; Gc[8] += c * dv2 * g2;
-            const double w = 1.0 - D[j];
-            dv0 *= w;
-            dv1 *= w;
-            dv2 *= w;
-        }
-        Gd[0] += dv0 * g0; Gd[1] += dv0 * g1; Gd[2] += dv0 * g2;
-        Gd[3] += dv1 * g0; Gd[4] += dv1 * g1; Gd[5] += dv1 * g2;
-        Gd[6] += dv2 * g0; Gd[7] += dv2 * g1; Gd[8] += dv2 * g2;
+        double dv[3] = {v[3 * j] - vi0, v[3 * j + 1] - vi1, v[3 * j + 2] - vi2};
+        G[0] += du0 * g[0]; G[1] += du0 * g[1]; G[2] += du0 * g[2];
+        G[3] += du1 * g[0]; G[4] += du1 * g[1]; G[5] += du1 * g[2];
+        G[6] += du2 * g[0]; G[7] += du2 * g[1]; G[8] += du2 * g[2];
+        if (damage_aware)
+            tlsph_damage_aware_transmit(dt, D[j], g, dv, Gc);
+        Gd[0] += dv[0] * g[0]; Gd[1] += dv[0] * g[1]; Gd[2] += dv[0] * g[2];
+        Gd[3] += dv[1] * g[0]; Gd[4] += dv[1] * g[1]; Gd[5] += dv[1] * g[2];
+        Gd[6] += dv[2] * g[0]; Gd[7] += dv[2] * g[1]; Gd[8] += dv[2] * g[2];
     }
-    if (with_damage && crack) {
-        /* eq. 34: F = I + (sum of transmitted displacement increments) L^-1 */
-        double *ci = crack + 9 * i;
-        for (int a = 0; a < 9; a++) {
-            ci[a] += Gc[a];
-            G[a] -= ci[a];
-        }
-    }
+    if (damage_aware)
+        tlsph_damage_aware_close(m->p.crack_gradient + 9 * i, Gc, G);
     tlsph_kinematics_finish(&m->p, i, dt, G, Gd);
 }
 
-static void gather_undamaged(struct tlsph_model *m, double dt)
+static void gather_intact(struct tlsph_model *m, double dt)
 {
     const size_t n = m->p.n;
 #pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++)
-        gather_particle(m, i, dt, 0);
+        gather_particle(m, i, dt, TLSPH_APPROX_INTACT);
 }
 
 static void gather_damage_aware(struct tlsph_model *m, double dt)
@@ -77,15 +63,18 @@ static void gather_damage_aware(struct tlsph_model *m, double dt)
     const size_t n = m->p.n;
 #pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < n; i++)
-        gather_particle(m, i, dt, 1);
+        gather_particle(m, i, dt, TLSPH_APPROX_DAMAGE_AWARE);
 }
+
+/* One pass per crack treatment (sph/crack_treatment.h); the pseudo-spring
+ * recomputes the correction matrices and has a pass of its own. */
+static void (*const passes[TLSPH_APPROX_COUNT])(struct tlsph_model *, double) = {
+    [TLSPH_APPROX_INTACT] = gather_intact,
+    [TLSPH_APPROX_DAMAGE_AWARE] = gather_damage_aware,
+    [TLSPH_APPROX_PSEUDO_SPRING] = tlsph_pseudo_spring_kinematics,
+};
 
 void tlsph_kinematics(struct tlsph_model *m, double dt)
 {
-    if (m->p.damage && m->scene.crack_treatment == TLSPH_CRACK_PSEUDO_SPRING)
-        tlsph_pseudo_spring_kinematics(m, dt);
-    else if (m->p.damage)
-        gather_damage_aware(m, dt);
-    else
-        gather_undamaged(m, dt);
+    passes[m->crack->variant](m, dt);
 }

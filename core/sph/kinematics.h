@@ -11,11 +11,10 @@
  * e_i += dt/2 / rho0 * P_i(old) : Fdot_i, using P_tilde of the previous step
  * (P:Fdot = P_tilde : G_dot, so L_i never has to be re-applied).
  *
- * With damage (damage-aware treatment, paper 000 eqs. 33-34) neighbour j
- * transmits (1 - D_j) of the velocity difference, and F integrates exactly
- * those transmitted increments: F_i = I + [G_i - C_i] L_i^-1 with C_i the
- * accumulated untransmitted part (model.h: crack_gradient).  A failed particle
- * (D = 1) gets Fdot = 0 and no update. */
+ * With damage the model's crack treatment (m->crack, sph/crack_treatment.h)
+ * chooses the pass: damage-aware (eqs. 33-34, sph/damage_aware.h) or
+ * pseudo-spring (sph/pseudo_spring.c).  A failed particle (D = 1) gets
+ * Fdot = 0 and no update. */
 void tlsph_kinematics(struct tlsph_model *m, double dt);
 
 /* The end of particle i's gather, shared by every treatment: G and Gd are the

@@ -41,7 +41,7 @@ void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
         double G[9] = {0}, Gd[9] = {0}, L[9] = {0};
         for (int64_t k = start[i]; k < start[i + 1]; k++) {
             const size_t j = (size_t)nbr[k];
-            const double sij = (1.0 - D[i]) * (1.0 - D[j]);
+            const double sij = tlsph_pseudo_spring_scale(D[i], D[j]);
             if (sij <= 0.0)
                 continue;
             const double d[3] = {X[3 * j] - Xi0, X[3 * j + 1] - Xi1, X[3 * j + 2] - Xi2};
@@ -63,3 +63,11 @@ void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
         tlsph_kinematics_finish(&m->p, i, dt, G, Gd);
     }
 }
+
+const struct tlsph_crack_model tlsph_crack_pseudo_spring = {
+    .name = "pseudo_spring",
+    .module = "approximation:pseudo_spring",
+    .scene = TLSPH_CRACK_PSEUDO_SPRING,
+    .variant = TLSPH_APPROX_PSEUDO_SPRING,
+    .fields = 0, /* its F comes from the total displacements: no history */
+};

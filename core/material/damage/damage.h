@@ -12,7 +12,18 @@
  * deviatoric stress and the flow stress carry (1 - D) (eq. 38, 2G(1 - D)),
  * the tensile pressure carries (1 - D) (eq. 37), and the criteria read the
  * effective (undamaged-matrix) stress.  It couples into the approximation
- * through core/sph/kinematics.c and core/sph/forces.c (eqs. 33-35).
+ * through the crack treatment (core/sph/crack_treatment.h; eqs. 33-35 in
+ * core/sph/damage_aware.h).
+ *
+ * A porous-plasticity model (GTN) is a yield surface rather than a
+ * criterion: it brings its own point update, initial state and per-particle
+ * fields through the hooks below, and sets D itself.
+ *
+ * A new model provides, in its own file(s), a descriptor tlsph_damage_<name>
+ * with name, module, parse, and either initiation (a criterion) or
+ * point_update (porous, with porous = 1), plus the optional hooks; and one row
+ * ROW(<name>) in registry.c's DAMAGE_MODELS (which also makes the list of
+ * accepted names).  Nothing outside this folder names a model.
  *
  * Units: SI (Pa, 1/s, K). */
 #ifndef TLSPH_DAMAGE_H
@@ -22,6 +33,16 @@
 
 #include "util/errors.h"
 #include "scene/scene.h"
+
+struct tlsph_point_kinematics; /* material/material_point.h */
+struct tlsph_point_state;
+struct tlsph_point_result;
+
+/* Per-particle arrays a model needs beyond D and D_init (run/model.h). */
+#define TLSPH_DAMAGE_FIELD_VOID_FRACTION 1u /* p.void_fraction: the state's void_fraction */
+
+/* Most extra module labels one material's damage model reports. */
+#define TLSPH_DAMAGE_MAX_MODULES 4
 
 /* What an initiation criterion sees of one step of plastic flow at a point. */
 struct tlsph_damage_step {
@@ -38,16 +59,33 @@ struct tlsph_damage_model {
     const char *module; /* "damage:<name>", for the run's list of active modules */
     int needs_sigma1;   /* the criterion reads the largest principal stress */
     /* 1 for a porous-plasticity model (GTN, material/damage/gtn.h): it replaces the J2
-     * return by its own yield surface and sets D itself, so it has no
-     * initiation criterion and no eq. 45 evolution. */
+     * return by its own yield surface (point_update) and sets D itself, so it
+     * has no initiation criterion and no eq. 45 evolution (the scene parser
+     * refuses an "evolution" block). */
     int porous;
+    unsigned fields;    /* TLSPH_DAMAGE_FIELD_* arrays it needs allocated */
     /* Reads the model's parameters (its "type" and "evolution" keys are handled
      * by the caller) into m->damage.params / m->damage.terms.  m's elastic
      * constants, thermal block and strength are already parsed.  Returns 0 or -1. */
     int (*parse)(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err);
-    /* Increment of D_init over one step of plastic flow, >= 0 (NULL when porous). */
+    /* Increment of D_init over one step of plastic flow, >= 0; eq. 45 then gives
+     * D (the run reports damage:evolution_linear).  NULL when porous. */
     double (*initiation)(const struct tlsph_material *m, const struct tlsph_damage_step *step);
+    /* Porous models: the whole update of a point that has not failed, in place
+     * of the J2 return and the (1 - D) scaling (as tlsph_point_update, with the
+     * kinematics of C done; material_point.h has the shared pieces).  It
+     * updates the whole state s, D and D_init included.  NULL for criteria. */
+    void (*point_update)(const struct tlsph_material *m, const struct tlsph_point_kinematics *k,
+                         double e, double dt, struct tlsph_point_state *s,
+                         struct tlsph_point_result *r);
+    /* Sets the damage part of a point's state at t = 0 (D, D_init and the
+     * model's fields) in s, which holds zeros.  NULL: all zero. */
+    void (*point_init)(const struct tlsph_material *m, struct tlsph_point_state *s);
+    /* Writes the labels of the optional mechanisms m's parameters switch on
+     * ("damage:<name>_<mechanism>", static strings) to out and returns how
+     * many.  NULL: none. */
+    int (*modules)(const struct tlsph_material *m, const char *out[TLSPH_DAMAGE_MAX_MODULES]);
 };
 
 const struct tlsph_damage_model *tlsph_damage_find(const char *name);
@@ -68,9 +106,5 @@ static inline double tlsph_damage_evolution(const struct tlsph_damage *d, double
 /* Parses "evolution": {"factor": >0} (optional; default 10, the paper's value). */
 int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, const char *pointer,
                                  struct tlsph_errors *err);
-
-extern const struct tlsph_damage_model tlsph_damage_cockcroft_latham;
-extern const struct tlsph_damage_model tlsph_damage_johnson_cook;
-extern const struct tlsph_damage_model tlsph_damage_gtn;
 
 #endif

@@ -90,11 +90,27 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
     return bad ? -1 : 0;
 }
 
+/* The optional mechanisms the parameters switch on. */
+static int modules(const struct tlsph_material *m, const char *out[TLSPH_DAMAGE_MAX_MODULES])
+{
+    const double *g = m->damage.params;
+    int n = 0;
+    if (g[GTN_FN] > 0.0)
+        out[n++] = "damage:gtn_nucleation";
+    if (g[GTN_KW] > 0.0)
+        out[n++] = "damage:gtn_shear";
+    return n;
+}
+
 const struct tlsph_damage_model tlsph_damage_gtn = {
     .name = "gtn",
     .module = "damage:gtn",
     .needs_sigma1 = 0,
     .porous = 1,
+    .fields = TLSPH_DAMAGE_FIELD_VOID_FRACTION,
     .parse = parse,
     .initiation = NULL,
+    .point_update = tlsph_gtn_point_update,
+    .point_init = tlsph_gtn_point_init,
+    .modules = modules,
 };

@@ -11,7 +11,8 @@
  * (eq. 48): D = 1 when f reaches the failure void fraction f_F, where the
  * surface has shrunk to the origin and the point fails (in practice at
  * 1 - D = TLSPH_GTN_FAILURE_RESIDUAL, below).  The return mapping is
- * in material/damage/gtn_return.h.
+ * in material/damage/gtn_return.h, the point update around it in
+ * material/damage/gtn_point.c, the parameters and the row in gtn.c.
  *
  * Parameters (scene key, index in m->damage.params):
  *   q1, q2                        Tvergaard's factors (defaults 1.5, 1.0)
@@ -28,6 +29,7 @@
 
 #include <math.h>
 
+#include "material/material_point.h"
 #include "scene/scene.h"
 
 enum { GTN_Q1, GTN_Q2, GTN_F0, GTN_FC, GTN_FF, GTN_KW, GTN_FN, GTN_EN, GTN_SN };
@@ -67,5 +69,11 @@ static inline double tlsph_gtn_nucleated(const double *g, double e0, double e1)
     const double k = 1.0 / (g[GTN_SN] * sqrt(2.0));
     return 0.5 * g[GTN_FN] * (erf((e1 - g[GTN_EN]) * k) - erf((e0 - g[GTN_EN]) * k));
 }
+
+/* The damage-model hooks of GTN (damage.h), gtn_point.c. */
+void tlsph_gtn_point_update(const struct tlsph_material *mat, const struct tlsph_point_kinematics *k,
+                            double e, double dt, struct tlsph_point_state *s,
+                            struct tlsph_point_result *r);
+void tlsph_gtn_point_init(const struct tlsph_material *mat, struct tlsph_point_state *s);
 
 #endif

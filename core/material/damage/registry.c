@@ -1,12 +1,17 @@
+/* The table of damage models (damage.h). */
 #include <string.h>
 
 #include "material/damage/damage.h"
 
-static const struct tlsph_damage_model *const models[] = {
-    &tlsph_damage_cockcroft_latham,
-    &tlsph_damage_johnson_cook,
-    &tlsph_damage_gtn,
-};
+/* One row per model, in the order of the scene's list of accepted names:
+ * ROW(name) stands for the descriptor tlsph_damage_<name>, whose .name is "name". */
+#define DAMAGE_MODELS(ROW) ROW(cockcroft_latham) ROW(johnson_cook) ROW(gtn)
+
+#define DECLARE(id) extern const struct tlsph_damage_model tlsph_damage_##id;
+DAMAGE_MODELS(DECLARE)
+
+#define ENTRY(id) &tlsph_damage_##id,
+static const struct tlsph_damage_model *const models[] = {DAMAGE_MODELS(ENTRY)};
 
 const struct tlsph_damage_model *tlsph_damage_find(const char *name)
 {
@@ -16,4 +21,6 @@ const struct tlsph_damage_model *tlsph_damage_find(const char *name)
     return NULL;
 }
 
-const char *tlsph_damage_names(void) { return "cockcroft_latham, johnson_cook, gtn"; }
+/* ", cockcroft_latham, johnson_cook, gtn" without its first separator */
+#define LISTED(id) ", " #id
+const char *tlsph_damage_names(void) { return DAMAGE_MODELS(LISTED) + 2; }

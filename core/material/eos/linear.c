@@ -28,6 +28,7 @@ static void pressure(const struct tlsph_material *m, double J, double e, double 
 
 const struct tlsph_eos_model tlsph_eos_linear = {
     .name = "linear",
+    .module = "eos:linear",
     .parse = parse,
     .pressure = pressure,
 };

@@ -49,6 +49,7 @@ static void pressure(const struct tlsph_material *m, double J, double e, double 
 
 const struct tlsph_eos_model tlsph_eos_mie_gruneisen = {
     .name = "mie_gruneisen",
+    .module = "eos:mie_gruneisen",
     .parse = parse,
     .pressure = pressure,
 };

@@ -1,11 +1,17 @@
+/* The table of equations of state (eos.h). */
 #include <string.h>
 
 #include "material/eos/eos.h"
 
-static const struct tlsph_eos_model *const models[] = {
-    &tlsph_eos_linear,
-    &tlsph_eos_mie_gruneisen,
-};
+/* One row per model, in the order of the scene's list of accepted names:
+ * ROW(name) stands for the descriptor tlsph_eos_<name>, whose .name is "name". */
+#define EOS_MODELS(ROW) ROW(linear) ROW(mie_gruneisen)
+
+#define DECLARE(id) extern const struct tlsph_eos_model tlsph_eos_##id;
+EOS_MODELS(DECLARE)
+
+#define ENTRY(id) &tlsph_eos_##id,
+static const struct tlsph_eos_model *const models[] = {EOS_MODELS(ENTRY)};
 
 const struct tlsph_eos_model *tlsph_eos_find(const char *name)
 {
@@ -15,7 +21,6 @@ const struct tlsph_eos_model *tlsph_eos_find(const char *name)
     return NULL;
 }
 
-const char *tlsph_eos_names(void)
-{
-    return "linear, mie_gruneisen";
-}
+/* ", linear, mie_gruneisen" without its first separator */
+#define LISTED(id) ", " #id
+const char *tlsph_eos_names(void) { return EOS_MODELS(LISTED) + 2; }

@@ -7,6 +7,12 @@
  * by every law.  The elastic model has no flow law: no plastic state is
  * allocated and no return mapping runs for its particles.
  *
+ * A new flow law provides, in its own file, a descriptor tlsph_strength_<name>
+ * with every member below (flow non-NULL), and one row ROW(<name>) in
+ * registry.c's FLOW_LAWS (which also makes the lists of accepted names).
+ * Nothing outside this folder names a model, except the scene parser's
+ * default (tlsph_strength_elastic).
+ *
  * Stress convention: symmetric tensors are stored as 6 components in the order
  * xx xy xz yy yz zz.  The deviatoric response is computed in the unrotated frame
  * (rotation R of the polar decomposition F = R U), see core/material/material_point.h. */
@@ -53,10 +59,8 @@ static inline int tlsph_material_is_plastic(const struct tlsph_material *m)
     return m->strength->flow != 0;
 }
 
+/* The model without a flow law, the default when a material names no strength
+ * (core/scene/parse.c). */
 extern const struct tlsph_strength_model tlsph_strength_elastic;
-extern const struct tlsph_strength_model tlsph_strength_linear_hardening;
-extern const struct tlsph_strength_model tlsph_strength_johnson_cook;
-extern const struct tlsph_strength_model tlsph_strength_swift;
-extern const struct tlsph_strength_model tlsph_strength_voce;
 
 #endif
