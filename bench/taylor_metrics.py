@@ -13,40 +13,37 @@ frame (h = the body's lattice spacing):
 Energies are fractions of the initial kinetic energy.
 """
 import json
+import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "support"))
+from tlsph_result import Result  # noqa: E402
 
 
 def metrics(path):
-    with h5py.File(path + "/result.h5", "r") as f:
-        scene = json.loads(f["parameters/scene"][()].decode() if isinstance(
-            f["parameters/scene"][()], bytes) else f["parameters/scene"][()])
-        h = scene["bodies"][0]["spacing"]
-        x = f["particles/solid/position/value"][-1]
-        t_end = float(f["particles/solid/position/time"][-1])
-        ps = f["particles/solid"]
-        obs = f["observables"]
-
-        def last(name):
-            return float(obs[name]["value"][-1]) if name in obs else float("nan")
-
-        ke0 = float(obs["kinetic_energy"]["value"][0])
+    with Result(path) as f:
+        h = f.spacing()
+        x = f.field("position")
+        t_end = float(f.frame_times()[-1])
+        last = f.last
+        cost = f.cost
+        ke0 = float(f.series("kinetic_energy")[1][0])
         r = np.hypot(x[:, 0], x[:, 1])
         foot = x[:, 2] < 0.5 * h
         out = {
             "spacing_mm": h * 1e3,
-            "particles": int(f["cost"].attrs["particles"]),
-            "steps": int(f["cost"].attrs["steps"]),
-            "wall_seconds": float(f["cost"].attrs["wall_seconds"]),
-            "particle_steps_per_second": float(f["cost"].attrs["particle_steps_per_second"]),
-            "bytes_per_particle": float(f["cost"].attrs["bytes_per_particle"]),
+            "particles": int(cost["particles"]),
+            "steps": int(cost["steps"]),
+            "wall_seconds": float(cost["wall_seconds"]),
+            "particle_steps_per_second": float(cost["particle_steps_per_second"]),
+            "bytes_per_particle": float(cost["bytes_per_particle"]),
             "t_end_us": t_end * 1e6,
             "length_mm": (x[:, 2].max() + 0.5 * h) * 1e3,
             "foot_diameter_mm": 2e3 * r[foot].max() if foot.any() else float("nan"),
-            "max_plastic_strain": float(ps["plastic_strain/value"][-1].max())
-            if "plastic_strain" in ps else 0.0,
+            "max_plastic_strain": float(f.field("plastic_strain").max())
+            if f.has_field("plastic_strain") else 0.0,
             "max_temperature_K": last("max_temperature"),
             "kinetic_left": last("kinetic_energy") / ke0,
             "plastic_work": last("plastic_work") / ke0,
@@ -55,7 +52,7 @@ def metrics(path):
             "viscous": last("viscous_energy") / ke0,
             "wall_loss": -last("external_work") / ke0,
             "balance": last("energy_balance") / ke0,
-            "min_det_F": float(ps["det_F/value"][-1].min()),
+            "min_det_F": float(f.field("det_F").min()),
         }
     return out
 

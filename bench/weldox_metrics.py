@@ -22,11 +22,13 @@ row:
   particles, steps, wall time (whole run loop, 1 thread; the cost in steps does
   not depend on what else the machine runs) and the run's final status.
 """
-import json
+import os
 import sys
 
-import h5py
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "support"))
+from tlsph_result import Result  # noqa: E402
 
 C0 = 5166.0  # m/s, bulk sound speed of the Weldox steels (paper 000 Table 1)
 
@@ -60,20 +62,19 @@ def first(mask, values):
 def gauge_length(f):
     """The gauge's default length: the distance between the centroids of the
     end groups, here the bottom and top particle layers of the bar."""
-    z = f["particles/solid/reference_position"][:, 2]
-    h = json.loads(f["parameters/scene"][()])["bodies"][0]["spacing"]
+    z = f.field("reference_position")[:, 2]
+    h = f.spacing()
     return z[z >= z.max() - 0.5 * h].mean() - z[z <= z.min() + 0.5 * h].mean()
 
 
 def row(path, label):
-    f = h5py.File(path, "r")
-    o = f["observables"]
-    stress = o["gauges/bar/engineering_stress/value"][:]
-    strain = o["gauges/bar/engineering_strain/value"][:]
-    s1 = o["sections/middle/max_principal_stress/value"][:]
-    eps = o["sections/middle/plastic_strain/value"][:]
-    initiated = o["initiated_particles/value"][:]
-    failed = o["failed_particles/value"][:]
+    f = Result(path)
+    t, stress = f.series("gauges/bar/engineering_stress")
+    strain = f.series("gauges/bar/engineering_strain")[1]
+    s1 = f.series("sections/middle/max_principal_stress")[1]
+    eps = f.series("sections/middle/plastic_strain")[1]
+    initiated = f.series("initiated_particles")[1]
+    failed = f.series("failed_particles")[1]
     k = int(np.argmax(stress))
     peak = stress[k]
     after = np.arange(len(stress)) > k
@@ -90,13 +91,11 @@ def row(path, label):
         end = sep_idx[0] + 1 if len(sep_idx) else len(stress)
         end = max(end, fidx[0] + 1)
         rise = largest_rise(stress[fidx[0]:end], peak)
-        t = o["gauges/bar/engineering_stress/time"][:]
         tu, su = averaged(t, stress, 2.0 * gauge_length(f) / C0)
         sel = (tu >= t[fidx[0]]) & (tu <= t[end - 1])
         rise_avg = largest_rise(su[sel], peak)
-    cost = f["cost"].attrs
-    status = f["diagnostics"].attrs["status"]
-    status = status.decode() if isinstance(status, bytes) else str(status)
+    cost, status = f.cost, f.status
+    f.close()
     cells = [label, f"{peak / 1e6:.0f}", f"{strain[k]:.3f}",
              f"{first(initiated > 0, strain):.3f}", f"{first(failed > 0, strain):.3f}",
              f"{sep:.3f}", f"{np.max(s1) / 1e6:.0f}", f"{first(failed > 0, eps):.3f}",

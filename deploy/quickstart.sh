@@ -46,17 +46,18 @@ curl -sSf "$url/jobs/$job/results/result.h5" -o "$out/result.h5"
 curl -sSf "$url/jobs/$job/results/result.xmf" -o "$out/result.xmf"
 curl -sSf "$url/jobs/$job/results/series/kinetic_energy?format=csv" -o "$out/kinetic_energy.csv"
 
-/usr/bin/python3 - "$out/result.h5" results/status.json <<'PY'
-import json, sys, h5py
-f = h5py.File(sys.argv[1], "r")
+PYTHONPATH=tests/support /usr/bin/python3 - "$out/result.h5" results/status.json <<'PY'
+import json, sys
+from tlsph_result import Result
+r = Result(sys.argv[1])
 st = json.load(open(sys.argv[2]))
 print("summary of", sys.argv[1])
-print("  modules:", f["/parameters/modules"][()].decode())
-print("  frames: %d, particles: %d" % f["/particles/solid/position/value"].shape[:2])
+print("  modules:", ", ".join(r.modules))
+print("  frames: %d, particles: %d" % (len(r.frame_times()), len(r.field("id"))))
 for k in ("kinetic_energy", "internal_energy", "external_work", "energy_balance"):
-    print("  final %-16s %.6g J" % (k, f["/observables/%s/value" % k][-1]))
-for g, grp in f["/observables/groups"].items() if "groups" in f["/observables"] else []:
-    print("  group %-8s reaction force [%.4g, %.4g, %.4g] N" % (g, *grp["reaction_force/value"][-1]))
+    print("  final %-16s %.6g J" % (k, r.last(k)))
+for g in r.file["observables/groups"] if r.has_series("groups") else []:
+    print("  group %-8s reaction force [%.4g, %.4g, %.4g] N" % (g, *r.series("groups/%s/reaction_force" % g)[1][-1]))
 for k, v in st.get("cost", {}).items():
     print("  cost %-26s %s" % (k, v))
 PY

@@ -5,6 +5,7 @@
 #include <math.h>
 #include <string.h>
 
+#include "bc/kind.h"
 #include "util/mat3.h"
 
 static void ex_id(const struct tlsph_model *m, void *out)
@@ -303,8 +304,7 @@ static size_t section_count(const struct tlsph_model *m) { return m->scene.nsect
 /* Only conditions that carry load (fixed, velocity) have a reaction to report. */
 static const char *group_item(const struct tlsph_model *m, size_t k)
 {
-    const enum tlsph_bc_type t = m->scene.bcs[k].type;
-    return t == TLSPH_BC_FIXED || t == TLSPH_BC_VELOCITY ? m->scene.bcs[k].name : NULL;
+    return m->scene.bcs[k].kind->carries_load ? m->scene.bcs[k].name : NULL;
 }
 
 static const char *gauge_item(const struct tlsph_model *m, size_t k)

@@ -13,7 +13,7 @@ void tlsph_evaluate(struct tlsph_model *m, double dt)
     tlsph_kinematics(m, dt);
     tlsph_constitutive(m, dt);
     const struct tlsph_force_power pw = tlsph_forces(m);
-    const double body_power = tlsph_boundary_body_forces(m);
+    const double body_power = tlsph_boundary_forces(m);
     /* Work of the optional forces and body forces over the step, at the
      * half-step velocities: first order in dt, and these terms are small. */
     m->energy.hourglass -= dt * pw.hourglass;
@@ -80,7 +80,7 @@ void tlsph_model_step(struct tlsph_model *m)
     m->dt = dt;
     kick(m, 0.5 * dt);
     tlsph_boundary_constrain(m, m->t + 0.5 * dt, m->t + 0.5 * dt);
-    tlsph_boundary_walls(m, dt);
+    tlsph_boundary_before_drift(m, dt);
     drift(m, dt);
     m->t += dt;
     tlsph_evaluate(m, dt);

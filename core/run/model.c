@@ -133,15 +133,8 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "hourglass:tangent_stiffness");
     if (s->viscosity)
         add_module(m, "viscosity:monaghan");
-    for (size_t k = 0; k < s->nbcs; k++) {
-        switch (s->bcs[k].type) {
-        case TLSPH_BC_FIXED: add_module(m, "bc:fixed"); break;
-        case TLSPH_BC_VELOCITY: add_module(m, "bc:velocity"); break;
-        case TLSPH_BC_WALL: add_module(m, "bc:wall"); break;
-        case TLSPH_BC_SYMMETRY: add_module(m, "bc:symmetry"); break;
-        case TLSPH_BC_BODY_FORCE: add_module(m, "bc:body_force"); break;
-        }
-    }
+    for (size_t k = 0; k < s->nbcs; k++)
+        add_module(m, s->bcs[k].kind->module);
     add_module(m, "integrator:velocity_verlet");
     add_module(m, "stability:checks");
 }

@@ -5,6 +5,7 @@
  * velocity), since the gauge reads their reactions. */
 #include <string.h>
 
+#include "bc/kind.h"
 #include "scene/parse_internal.h"
 
 /* The array at out[key] (absent = empty): its size, or -1 with an error. */
@@ -68,11 +69,13 @@ static int find_load_group(const struct tlsph_scene *s, const json_t *v, const c
     for (size_t k = 0; k < s->nbcs; k++) {
         if (strcmp(s->bcs[k].name, name) != 0)
             continue;
-        if (s->bcs[k].type != TLSPH_BC_FIXED && s->bcs[k].type != TLSPH_BC_VELOCITY) {
+        if (!s->bcs[k].kind->carries_load) {
+            char kinds[256];
+            tlsph_bc_names(kinds, sizeof kinds, 1, "'", " or ");
             tlsph_errors_add(err, p,
                              "boundary condition '%s' carries no reaction: a gauge needs a "
-                             "'fixed' or 'velocity' condition",
-                             name);
+                             "%s condition",
+                             name, kinds);
             return -1;
         }
         return (int)k;

@@ -116,23 +116,28 @@ struct tlsph_selector {
     struct tlsph_expr expression;  /* of x, y, z; evaluator NULL = none */
 };
 
-enum tlsph_bc_type {
-    TLSPH_BC_FIXED,      /* v = 0 in every component */
-    TLSPH_BC_VELOCITY,   /* v_k = expression of t for each given component */
-    TLSPH_BC_WALL,       /* rigid frictionless impenetrable plane, normal points into the solid */
-    TLSPH_BC_SYMMETRY,   /* particles on the plane keep zero normal velocity; see bc.c */
-    TLSPH_BC_BODY_FORCE  /* uniform acceleration, m/s^2 */
-};
+struct tlsph_bc_kind; /* core/bc/kind.h */
 
+/* One boundary condition.  Its kind (core/bc/<type>.c) reads and uses the
+ * fields below; a new kind keeps its numbers in params and its expressions in
+ * expr unless it adds a named view to the unions. */
 struct tlsph_bc {
-    enum tlsph_bc_type type;
+    const struct tlsph_bc_kind *kind; /* what the condition does: the scene's "type" */
     char name[TLSPH_NAME_MAX];      /* used for output series names */
-    struct tlsph_selector select;   /* fixed, velocity, symmetry, body_force */
-    struct tlsph_expr velocity[3];  /* velocity: expressions of t (s) -> m/s; NULL = free */
-    int velocity_set[3];
-    double point[3];                /* wall, symmetry: a point of the plane, m */
-    double normal[3];               /* wall, symmetry: unit normal (into the solid for walls) */
-    double acceleration[3];         /* body force, m/s^2 */
+    struct tlsph_selector select;   /* kinds with a particle group (all but wall) */
+    union {                         /* expressions, freed with the scene */
+        struct tlsph_expr velocity[3]; /* velocity: m/s; evaluator NULL = free component */
+        struct tlsph_expr expr[3];
+    };
+    int velocity_set[3];            /* velocity: the component is prescribed */
+    union {                         /* numbers, meaning fixed by the kind */
+        struct {
+            double point[3];        /* wall, symmetry: a point of the plane, m */
+            double normal[3];       /* wall, symmetry: unit normal (into the solid for walls) */
+        };
+        double acceleration[3];     /* body_force, m/s^2 */
+        double params[12];
+    };
 };
 
 /* An engineering stress-strain gauge between two load-carrying groups (fixed or

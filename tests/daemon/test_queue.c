@@ -14,6 +14,7 @@
 #include <unistd.h>
 
 #include "queue.h"
+#include "support/check_main.h"
 
 static char g_dir[64];
 static char g_db[128];
@@ -931,9 +932,5 @@ static Suite *queue_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(queue_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return tlsph_check_run(queue_suite());
 }

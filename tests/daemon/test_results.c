@@ -17,6 +17,7 @@
 #include <unistd.h>
 
 #include "results.h"
+#include "support/check_main.h"
 
 static char tmpdir[256];
 static char h5[512];     /* the finished elastic-strip run (2-D, 400 particles) */
@@ -659,9 +660,5 @@ int main(void)
 {
     creator = getpid();
     atexit(remove_tmpdir);
-    SRunner *sr = srunner_create(results_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(results_suite());
 }

@@ -10,6 +10,7 @@
 
 #include "results.h"
 #include "study.h"
+#include "support/check_main.h"
 
 static json_t *load(const char *text)
 {
@@ -511,9 +512,5 @@ static Suite *study_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(study_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(study_suite());
 }

@@ -23,6 +23,7 @@
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
+#include "support/check_main.h"
 
 #define WAIT_LIMIT 60.0 /* s for any job to reach a state */
 
@@ -971,9 +972,5 @@ int main(void)
         fprintf(stderr, "test_supervisor: %s not built, skipping\n", engine_path);
         return 77;
     }
-    SRunner *sr = srunner_create(supervisor_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(supervisor_suite());
 }

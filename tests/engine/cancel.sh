@@ -25,16 +25,16 @@ code=$?
 cat "$tmp/err"
 [ $code -eq 5 ] || { echo "FAIL: exit code $code, expected 5 (cancelled)"; exit 1; }
 tail -n 1 "$tmp/progress.jsonl"
-"$PY" - "$tmp/out/result.h5" "$tmp/progress.jsonl" <<'PYEOF' || exit 1
-import sys, json, h5py, numpy as np
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$tmp/out/result.h5" "$tmp/progress.jsonl" <<'PYEOF' || exit 1
+import sys, json, numpy as np
+from tlsph_result import Result
 last = json.loads(open(sys.argv[2]).read().strip().splitlines()[-1])
 assert last["event"] == "finished" and last["status"] == "cancelled", last
-f = h5py.File(sys.argv[1], "r")   # plain open: only works if the writer closed the file
-st = f["/diagnostics"].attrs["status"]
-st = st.decode() if isinstance(st, bytes) else str(st)
-assert st.strip("\x00 ") == "cancelled", st
-pos = f["/particles/solid/position/value"]
-t = f["/particles/solid/position/time"][()]
+f = Result(sys.argv[1])   # plain open: only works if the writer closed the file
+st = f.status
+assert st.strip() == "cancelled", st
+pos = f.file["particles/solid/position/value"]
+t = f.frame_times()
 assert pos.shape[0] >= 2 and np.all(np.isfinite(pos[()])), pos.shape
 assert t[-1] < 2e-3 * 0.99, t[-1]
 print("cancelled file: %d frames, last at t = %.3g s, status %s" % (pos.shape[0], t[-1], st))

@@ -79,27 +79,26 @@ PSCENE=$top_srcdir/tests/scenes/good/plastic_thermal.json
 echo "== plastic + thermal scene $PSCENE"
 "$RUN" "$PSCENE" -o "$TMP/plastic" --quiet || fail "tlsph-run on the plastic scene"
 "$PY" "$CHECK" final "$DOCS" "$TMP/plastic" "$PSCENE" || fail "final checks (plastic scene)"
-"$PY" - "$TMP/out/result.h5" "$TMP/plastic/result.h5" <<'EOF' || fail "module-dependent output"
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$TMP/out/result.h5" "$TMP/plastic/result.h5" <<'EOF' || fail "module-dependent output"
 import sys
-import h5py
 import numpy as np
+from tlsph_result import Result
 optional_fields = ("plastic_strain", "plastic_strain_rate", "temperature")
 optional_series = ("plastic_work", "max_temperature")
-with h5py.File(sys.argv[1], "r") as f:
+with Result(sys.argv[1]) as r:
     for name in optional_fields:
-        assert name not in f["particles/solid"], "elastic run wrote %s" % name
+        assert not r.has_field(name), "elastic run wrote %s" % name
     for name in optional_series:
-        assert name not in f["observables"], "elastic run wrote %s" % name
-with h5py.File(sys.argv[2], "r") as f:
-    ps, obs = f["particles/solid"], f["observables"]
+        assert not r.has_series(name), "elastic run wrote %s" % name
+with Result(sys.argv[2]) as r:
     for name in optional_fields:
-        assert name in ps, "plastic run lacks %s" % name
+        assert r.has_field(name), "plastic run lacks %s" % name
     for name in optional_series:
-        assert name in obs, "plastic run lacks %s" % name
-    eps = ps["plastic_strain/value"][-1]
-    T = ps["temperature/value"][-1]
-    work = obs["plastic_work/value"][:]
-    tmax = obs["max_temperature/value"][:]
+        assert r.has_series(name), "plastic run lacks %s" % name
+    eps = r.field("plastic_strain")
+    T = r.field("temperature")
+    work = r.series("plastic_work")[1]
+    tmax = r.series("max_temperature")[1]
     assert eps.max() > 0.01, "no plastic flow (max eps_p %g)" % eps.max()
     assert np.all(np.diff(work) >= 0) and work[-1] > 0, "plastic work not growing"
     assert np.isclose(tmax[-1], np.nanmax(T), rtol=1e-6), "max_temperature %g vs field %g" % (tmax[-1], np.nanmax(T))
@@ -113,24 +112,23 @@ DSCENE=$top_srcdir/tests/scenes/good/damage_jc_thermal.json
 echo "== damage scene $DSCENE"
 "$RUN" "$DSCENE" -o "$TMP/damage" --quiet || fail "tlsph-run on the damage scene"
 "$PY" "$CHECK" final "$DOCS" "$TMP/damage" "$DSCENE" || fail "final checks (damage scene)"
-"$PY" - "$TMP/plastic/result.h5" "$TMP/damage/result.h5" <<'EOF' || fail "damage output"
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$TMP/plastic/result.h5" "$TMP/damage/result.h5" <<'EOF' || fail "damage output"
 import sys
-import h5py
 import numpy as np
+from tlsph_result import Result
 fields = ("damage", "damage_initiation", "triaxiality")
 series = ("failed_particles", "damage_energy")
-with h5py.File(sys.argv[1], "r") as f:
+with Result(sys.argv[1]) as r:
     for name in fields:
-        assert name not in f["particles/solid"], "undamaged run wrote %s" % name
+        assert not r.has_field(name), "undamaged run wrote %s" % name
     for name in series:
-        assert name not in f["observables"], "undamaged run wrote %s" % name
-with h5py.File(sys.argv[2], "r") as f:
-    ps, obs = f["particles/solid"], f["observables"]
-    assert "void_fraction" not in ps, "Johnson-Cook damage run wrote the GTN void_fraction"
-    D = ps["damage/value"][-1]
-    Di = ps["damage_initiation/value"][-1]
-    nf = obs["failed_particles/value"][:]
-    ed = obs["damage_energy/value"][:]
+        assert not r.has_series(name), "undamaged run wrote %s" % name
+with Result(sys.argv[2]) as r:
+    assert not r.has_field("void_fraction"), "Johnson-Cook damage run wrote the GTN void_fraction"
+    D = r.field("damage")
+    Di = r.field("damage_initiation")
+    nf = r.series("failed_particles")[1]
+    ed = r.series("damage_energy")[1]
     assert D.min() >= 0 and D.max() <= 1, "damage outside [0, 1]"
     assert not np.any((Di < 1) & (D > 0)), "damage without initiation"
     assert np.all(np.diff(ed) >= 0) and ed[-1] > 0, "damage energy not growing"
@@ -139,28 +137,30 @@ with h5py.File(sys.argv[2], "r") as f:
     print("damage output: %d failed, damage energy %.4g J" % (nf[-1], ed[-1]))
     # gauge and section (docs/output.md), recomputed here from the group series
     # and the fields of the last frame, which is also a series sample
-    gs, sec = obs["gauges/strip"], obs["sections/notch"]
-    rc = obs["groups/clamp/reaction_force/value"][:, 0]
-    rp = obs["groups/pull/reaction_force/value"][:, 0]
-    uc = obs["groups/clamp/displacement/value"][:, 0]
-    up = obs["groups/pull/displacement/value"][:, 0]
-    X = ps["reference_position"][:]
-    V = ps["volume"][:]
+    gstress = r.series("gauges/strip/engineering_stress")[1]
+    gstrain = r.series("gauges/strip/engineering_strain")[1]
+    rc = r.series("groups/clamp/reaction_force")[1][:, 0]
+    rp = r.series("groups/pull/reaction_force")[1][:, 0]
+    uc = r.series("groups/clamp/displacement")[1][:, 0]
+    up = r.series("groups/pull/displacement")[1][:, 0]
+    X = r.field("reference_position")
+    V = r.field("volume")
     clamp, pull = X[:, 0] < 0.0006, X[:, 0] > 0.0094
     L0 = X[pull, 0].mean() - X[clamp, 0].mean()
-    assert np.allclose(gs["engineering_stress/value"][:], 0.5 * (rp - rc) / 0.002, rtol=1e-12, atol=1e-3), "gauge stress"
-    assert np.allclose(gs["engineering_strain/value"][:], (up - uc) / L0, rtol=1e-9, atol=1e-15), "gauge strain"
+    assert np.allclose(gstress, 0.5 * (rp - rc) / 0.002, rtol=1e-12, atol=1e-3), "gauge stress"
+    assert np.allclose(gstrain, (up - uc) / L0, rtol=1e-9, atol=1e-15), "gauge strain"
     inside = np.abs(X[:, 0] - 0.005) <= 0.5 * 0.000375
     w = V[inside] / V[inside].sum()
-    k = list(sec["damage/step"][:]).index(ps["damage/step"][-1])
+    sec = r.file["observables/sections/notch"]
+    k = list(sec["damage/step"][:]).index(r.file["particles/solid/damage/step"][-1])
     assert np.isclose(sec["damage/value"][k], (w * D[inside]).sum(), rtol=1e-6, atol=1e-7), "section damage"
-    s = ps["stress/value"][-1][inside]  # float32: xx xy xz yy yz zz
+    s = r.field("stress")[inside]  # float32: xx xy xz yy yz zz
     assert np.isclose(sec["normal_stress/value"][k], (w * s[:, 0]).sum(), rtol=1e-5, atol=1e3), "section normal stress"
     A = np.stack([s[:, [0, 1, 2]], s[:, [1, 3, 4]], s[:, [2, 4, 5]]], axis=1).astype(float)
     s1 = np.linalg.eigvalsh(A)[:, -1]
     assert np.isclose(sec["max_principal_stress/value"][k], (w * s1).sum(), rtol=1e-5, atol=1e3), "section sigma_1"
     print("gauge: peak %.4g MPa; notch section: %d particles, mean D %.3f at the end" % (
-        gs["engineering_stress/value"][:].max() / 1e6, inside.sum(), sec["damage/value"][k]))
+        gstress.max() / 1e6, inside.sum(), sec["damage/value"][k]))
 EOF
 
 factor=8

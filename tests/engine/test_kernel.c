@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "sph/kernel.h"
+#include "support/check_main.h"
 
 static double integral(enum tlsph_kernel_type t, int dim, double h)
 {
@@ -61,16 +62,4 @@ START_TEST(support_and_gradient)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("kernel");
-    TCase *tc = tcase_create("core");
-    tcase_add_test(tc, normalisation);
-    tcase_add_test(tc, support_and_gradient);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("kernel", 0, normalisation, support_and_gradient)

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 
 #include "util/mat3.h"
+#include "support/check_main.h"
 
 static void check_eigen(const double *A)
 {
@@ -54,16 +55,4 @@ START_TEST(inverse)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("mat3");
-    TCase *tc = tcase_create("core");
-    tcase_add_test(tc, eigen);
-    tcase_add_test(tc, inverse);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("mat3", 0, eigen, inverse)

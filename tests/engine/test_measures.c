@@ -26,6 +26,7 @@
 #include "bc/boundary.h"
 #include "io/fields.h"
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *bar_scene =
     "{\"dimension\":3,\"parameters\":{\"v0\":0.1,\"tau\":2e-5},"
@@ -117,18 +118,4 @@ START_TEST(elastic_bar_follows_hooke)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *su = suite_create("measures");
-    TCase *tc = tcase_create("measures");
-    tcase_set_timeout(tc, 300);
-    tcase_add_test(tc, section_means_are_exact);
-    tcase_add_test(tc, gauge_length_and_axis);
-    tcase_add_test(tc, elastic_bar_follows_hooke);
-    suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("measures", 300, section_means_are_exact, gauge_length_and_axis, elastic_bar_follows_hooke)

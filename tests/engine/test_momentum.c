@@ -8,6 +8,7 @@
 #include <stdlib.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *scene =
     "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000},"
@@ -38,16 +39,4 @@ START_TEST(free_body_momentum)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("momentum");
-    TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 120);
-    tcase_add_test(tc, free_body_momentum);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("momentum", 120, free_body_momentum)

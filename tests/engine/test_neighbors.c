@@ -6,6 +6,7 @@
 #include <stdlib.h>
 
 #include "sph/neighbors.h"
+#include "support/check_main.h"
 
 static int has_pair(const int64_t *start, const int32_t *nbr, size_t i, size_t j)
 {
@@ -74,17 +75,4 @@ START_TEST(cell_order_is_permutation)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("neighbors");
-    TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 60);
-    tcase_add_test(tc, matches_brute_force);
-    tcase_add_test(tc, cell_order_is_permutation);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("neighbors", 60, matches_brute_force, cell_order_is_permutation)

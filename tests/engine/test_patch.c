@@ -16,6 +16,7 @@
 #include "sph/kinematics.h"
 #include "material/constitutive.h"
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *block3d =
     "{\"dimension\":3,\"time\":{\"end\":1e-6},"
@@ -124,17 +125,4 @@ START_TEST(forces_match_brute_force)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("patch");
-    TCase *tc = tcase_create("core");
-    tcase_add_test(tc, patch_3d);
-    tcase_add_test(tc, patch_2d);
-    tcase_add_test(tc, forces_match_brute_force);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("patch", 0, patch_3d, patch_2d, forces_match_brute_force)

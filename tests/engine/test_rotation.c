@@ -14,6 +14,7 @@
 #include "sph/kinematics.h"
 #include "util/mat3.h"
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *block =
     "{\"dimension\":3,\"time\":{\"end\":1e-6},"
@@ -107,16 +108,4 @@ START_TEST(rotated_stretch_rotates_stress)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("rotation");
-    TCase *tc = tcase_create("core");
-    tcase_add_test(tc, rigid_rotation_is_stress_free);
-    tcase_add_test(tc, rotated_stretch_rotates_stress);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("rotation", 0, rigid_rotation_is_stress_free, rotated_stretch_rotates_stress)

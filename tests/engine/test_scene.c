@@ -18,8 +18,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bc/kind.h"
 #include "material/eos/eos.h"
 #include "scene/scene.h"
+#include "support/check_main.h"
 
 #define BASE_HEAD                                                                            \
     "{\"dimension\": 3, \"time\": {\"end\": 1e-4},"                                          \
@@ -176,7 +178,7 @@ START_TEST(test_full_scene)
 
     ck_assert_uint_eq(s.nbcs, 5);
     ck_assert_str_eq(s.bcs[0].name, "bc0");
-    ck_assert(s.bcs[0].type == TLSPH_BC_FIXED && s.bcs[0].select.body == 0);
+    ck_assert(strcmp(s.bcs[0].kind->name, "fixed") == 0 && s.bcs[0].select.body == 0);
     ck_assert(s.bcs[0].select.has_box && s.bcs[0].select.box_max[0] == 0.001);
     ck_assert(s.bcs[0].select.expression.evaluator == NULL);
 
@@ -194,12 +196,12 @@ START_TEST(test_full_scene)
     ck_assert(tlsph_expr_eval(&v->select.expression, out2) == 0.0);
     ck_assert(tlsph_expr_eval(&v->select.expression, edge) == 1.0); /* >= is inclusive */
 
-    ck_assert(s.bcs[2].type == TLSPH_BC_WALL && s.bcs[2].normal[2] == 1.0);
-    ck_assert(s.bcs[3].type == TLSPH_BC_SYMMETRY);
+    ck_assert(strcmp(s.bcs[2].kind->name, "wall") == 0 && s.bcs[2].normal[2] == 1.0);
+    ck_assert_str_eq(s.bcs[3].kind->name, "symmetry");
     ck_assert(fabs(s.bcs[3].normal[1] - 0.6) < 1e-15 && fabs(s.bcs[3].normal[2] - 0.8) < 1e-15);
     ck_assert(s.bcs[3].select.body == -1 && !s.bcs[3].select.has_box &&
               s.bcs[3].select.expression.evaluator == NULL);
-    ck_assert(s.bcs[4].type == TLSPH_BC_BODY_FORCE && s.bcs[4].acceleration[2] == -9.81);
+    ck_assert(strcmp(s.bcs[4].kind->name, "body_force") == 0 && s.bcs[4].acceleration[2] == -9.81);
     ck_assert(s.bcs[4].select.body == -1);
     tlsph_scene_free(&s);
     tlsph_errors_free(&e);
@@ -595,9 +597,5 @@ static Suite *scene_suite(void)
 
 int main(void)
 {
-    SRunner *sr = srunner_create(scene_suite());
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    return tlsph_check_run(scene_suite());
 }

@@ -19,6 +19,7 @@
 #include "material/strength/strength.h"
 #include "scene/keys.h"
 #include "scene/scene.h"
+#include "support/check_main.h"
 
 #define MAX_TABLES 64
 
@@ -322,16 +323,7 @@ int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--json") == 0)
         return print_json();
-    Suite *s = suite_create("scene_keys");
-    TCase *tc = tcase_create("tables");
-    tcase_add_test(tc, test_tables_well_formed);
-    tcase_add_test(tc, test_models);
-    tcase_add_test(tc, test_offsets);
-    tcase_add_test(tc, test_parser_defaults);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+    const TTest *const tests[] = {test_tables_well_formed, test_models, test_offsets,
+                                  test_parser_defaults};
+    return tlsph_check_run_tests("scene_keys", 0, tests, sizeof tests / sizeof *tests);
 }

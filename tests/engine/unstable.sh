@@ -16,23 +16,19 @@ cat "$tmp/err"
 if [ $code -ne 3 ]; then echo "FAIL: exit code $code, expected 3 (unstable)"; exit 1; fi
 grep -q "numerically unstable at step" "$tmp/err" || { echo "FAIL: no diagnostic on stderr"; exit 1; }
 grep -q "particles \[[0-9]" "$tmp/err" || { echo "FAIL: diagnostic names no particle id"; exit 1; }
-"$PY" - "$tmp/out/result.h5" <<'PYEOF' || exit 1
-import sys, h5py, numpy as np
-f = h5py.File(sys.argv[1], "r")
-def attr(name):
-    v = f["/diagnostics"].attrs.get(name) if name in f["/diagnostics"].attrs else f["/diagnostics/" + name][()]
-    return v.decode() if isinstance(v, bytes) else v
-status = attr("status")
-assert str(status) == "unstable", status
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$tmp/out/result.h5" <<'PYEOF' || exit 1
+import sys, numpy as np
+from tlsph_result import Result
+f = Result(sys.argv[1])
+d = f.diagnostics
+assert f.status == "unstable", f.status
 for q in ("step", "time", "quantity", "message"):
-    v = attr(q)
-    print("diagnostic", q, "=", v)
+    print("diagnostic", q, "=", d[q])
 frames = 0
-for name, g in f["/particles/solid"].items():
-    if isinstance(g, h5py.Group) and "value" in g:
-        v = g["value"][()]
-        frames = v.shape[0]
-        assert np.all(np.isfinite(v)), "non-finite values in frame field " + name
+for name in f.frame_fields():
+    v = f.file["particles/solid"][name]["value"][()]
+    frames = v.shape[0]
+    assert np.all(np.isfinite(v)), "non-finite values in frame field " + name
 print("frames written:", frames, "- all finite")
 PYEOF
 echo "PASS: unstable scene stopped with exit 3 and a diagnostic"

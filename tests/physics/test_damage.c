@@ -1,4 +1,4 @@
-/* Single-material-point tests of the damage models (issue 4, paper 000 §5),
+/* Single-material-point tests of the damage models (paper 000 §5),
  * driving the engine's own tlsph_point_update under uniaxial stress (lateral
  * Cauchy stress solved to zero, tests/support/point_driver.c), with the Weldox
  * parameters of the paper's Tables 1-3.
@@ -7,7 +7,7 @@
  *  1. Johnson-Cook initiation under proportional uniaxial stress (triaxiality
  *     1/3, no rate or thermal term): D_init reaches 1 at
  *     eps_p = D1 + D2 exp(D3/3) = 1.3556 (460E), 1.2300 (700E), 1.0948 (900E),
- *     within 0.5 % (issue 4); the triaxiality the point sees is 1/3 within 1e-6.
+ *     within 0.5 %; the triaxiality the point sees is 1/3 within 1e-6.
  *  2. Cockcroft-Latham initiation: D_init reaches 1 where int <sigma_1> d eps_p
  *     = W_cr; under uniaxial stress sigma_1 = sigma_y(eps_p) = A + B eps^n, so
  *     the reference strain solves A e + B e^(n+1)/(n+1) = W_cr (bisection to
@@ -27,13 +27,14 @@
 #include <string.h>
 
 #include "support/point_driver.h"
+#include "support/check_main.h"
 
 struct alloy {
     const char *name;
     double A, B, n;      /* JC strength, Pa, Pa, 1 (Table 2) */
     double wcr;          /* CL critical work, Pa (Table 3) */
     double d1, d2, d3;   /* JC failure (Table 3) */
-    double eps_f;        /* issue 4's stated value of d1 + d2 exp(d3/3) */
+    double eps_f;        /* d1 + d2 exp(d3/3), the uniaxial failure strain */
 };
 
 static const struct alloy alloys[] = {
@@ -212,9 +213,5 @@ int main(void)
     tcase_add_test(tc, work_is_plastic_plus_damage_dissipation);
     tcase_add_test(tc, damage_needs_plastic_flow_to_grow);
     suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(su);
 }

@@ -2,13 +2,14 @@
  * (40 x 4 x 4 mm) started in its first longitudinal mode, v_x = v0 cos(pi x/L),
  * with hourglass control on and no artificial viscosity.
  * Reference: kinetic + internal energy at t = 0 (no dissipation, no external
- * work).  Tolerance (issue 2): drift < 0.5 % of the initial energy at every
+ * work).  Tolerance: drift < 0.5 % of the initial energy at every
  * step over 5 oscillation periods T = 2L/sqrt(E/rho). */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *bar =
     "{\"dimension\":3,\"time\":{\"end\":1.0,\"cfl\":0.3},"
@@ -44,16 +45,4 @@ START_TEST(vibrating_bar_conserves_energy)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("energy");
-    TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 300);
-    tcase_add_test(tc, vibrating_bar_conserves_energy);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("energy", 300, vibrating_bar_conserves_energy)

@@ -1,4 +1,4 @@
-/* Particles failing in a running engine (issue 4, paper 000 §3.1).
+/* Particles failing in a running engine (paper 000 §3.1).
  *
  * A free steel bar (no boundary condition) is torn apart by an initial velocity
  * field v_x = 5e4/s (x - x_mid) (ends at +-300 m/s) plus a drift and a shear;
@@ -35,6 +35,7 @@
 #include <string.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 #define JC_DAMAGE "{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}"
 /* voids grow from 2 % under the tearing's tension; coalescence at 3 %, failure at 6 % */
@@ -219,20 +220,4 @@ START_TEST(only_damaging_scenes_pay_for_damage)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *su = suite_create("failure");
-    TCase *tc = tcase_create("engine");
-    tcase_set_timeout(tc, 600);
-    tcase_add_test(tc, damage_aware_conserves_momentum_while_failing);
-    tcase_add_test(tc, gtn_conserves_momentum_while_failing);
-    tcase_add_test(tc, pseudo_spring_conserves_momentum_while_failing);
-    tcase_add_test(tc, arrested_particles_stop_and_their_energy_is_booked);
-    tcase_add_test(tc, only_damaging_scenes_pay_for_damage);
-    suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("failure", 600, damage_aware_conserves_momentum_while_failing, gtn_conserves_momentum_while_failing, pseudo_spring_conserves_momentum_while_failing, arrested_particles_stop_and_their_energy_is_booked, only_damaging_scenes_pay_for_damage)

@@ -1,4 +1,4 @@
-/* Single-material-point tests of GTN porous plasticity (issue 4, paper 000
+/* Single-material-point tests of GTN porous plasticity (paper 000
  * §5.4), through the engine's own tlsph_point_update.  The checks read only
  * the point's outputs (Cauchy stress, plastic strain, void fraction) and
  * recompute every reference here, independently of core/material/damage/gtn_return.c.
@@ -11,7 +11,7 @@
  *  1. f0 = 0, no nucleation: GTN is J2.  Along uniaxial stress to eps 0.4 the
  *     stress and plastic strain equal those of the same material without
  *     damage (the J2 radial return) within 1e-10 relative, and f stays 0.
- *  2. Yield condition (issue 4): after every plastic step the stress the
+ *  2. Yield condition: after every plastic step the stress the
  *     point returns satisfies |Phi| <= 1e-8, with Phi = eq. 46 evaluated from
  *     the returned Cauchy stress, sigma_M = A + B eps_M^n and the returned f,
  *     for one-step returns from trial triaxialities -0.5 .. 3 (trial strains
@@ -44,6 +44,7 @@
 #include <string.h>
 
 #include "support/point_driver.h"
+#include "support/check_main.h"
 
 static const double A = 859e6, B = 329e6, N = 0.579, Q1 = 1.5, Q2 = 1.0;
 
@@ -333,22 +334,4 @@ START_TEST(voids_grow_to_failure)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("gtn");
-    TCase *t = tcase_create("point");
-    tcase_add_test(t, without_voids_it_is_j2);
-    tcase_add_test(t, one_step_returns_satisfy_the_yield_condition);
-    tcase_add_test(t, paths_stay_on_the_surface_with_normal_flow_and_equal_work);
-    tcase_add_test(t, matrix_volume_is_conserved);
-    tcase_add_test(t, nucleation_follows_the_normal_distribution);
-    tcase_add_test(t, shear_term_grows_voids_in_pure_shear);
-    tcase_add_test(t, voids_grow_to_failure);
-    tcase_set_timeout(t, 120);
-    suite_add_tcase(s, t);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("gtn", 120, without_voids_it_is_j2, one_step_returns_satisfy_the_yield_condition, paths_stay_on_the_surface_with_normal_flow_and_equal_work, matrix_volume_is_conserved, nucleation_follows_the_normal_distribution, shear_term_grows_voids_in_pure_shear, voids_grow_to_failure)

@@ -23,6 +23,7 @@
 #include <string.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static char *bar(const char *stiffness, double v_scale)
 {
@@ -110,17 +111,4 @@ START_TEST(plastic_tearing_conserves_and_relaxes_the_spring)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *su = suite_create("hourglass_tangent");
-    TCase *tc = tcase_create("engine");
-    tcase_set_timeout(tc, 600);
-    tcase_add_test(tc, elastic_regions_are_unchanged);
-    tcase_add_test(tc, plastic_tearing_conserves_and_relaxes_the_spring);
-    suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("hourglass_tangent", 600, elastic_regions_are_unchanged, plastic_tearing_conserves_and_relaxes_the_spring)

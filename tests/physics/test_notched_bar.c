@@ -1,6 +1,6 @@
 /* A notched round bar of Weldox 460E pulled to complete separation with the
- * Johnson-Cook failure criterion and the damage-aware approximation (issue 4:
- * the representative case of paper 000 §6 that fits the test suite's time;
+ * Johnson-Cook failure criterion and the damage-aware approximation
+ * (the representative case of paper 000 §6 that fits the test suite's time;
  * the nine cases at finer resolution are in bench/weldox.sh).
  *
  * Scene: examples/weldox-notched-r2.json, notch radius R = 2 mm, root radius
@@ -33,6 +33,7 @@
 
 #include "bc/boundary.h"
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 
 static int group_named(const struct tlsph_model *m, const char *name)
@@ -117,16 +118,4 @@ START_TEST(notched_bar_separates_with_a_steady_load_drop)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *su = suite_create("notched_bar");
-    TCase *tc = tcase_create("engine");
-    tcase_set_timeout(tc, 900);
-    tcase_add_test(tc, notched_bar_separates_with_a_steady_load_drop);
-    suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("notched_bar", 900, notched_bar_separates_with_a_steady_load_drop)

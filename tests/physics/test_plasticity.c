@@ -1,4 +1,4 @@
-/* Single-material-point tests of J2 plasticity (issue 3), driving the engine's
+/* Single-material-point tests of J2 plasticity, driving the engine's
  * own per-particle update, tlsph_point_update (core/material/material_point.c), with
  * prescribed deformation gradients.  Materials come from scene JSON through the
  * scene parser, so the parameter names tested are the ones users write.
@@ -10,7 +10,7 @@
  * follows from kinematics alone, eps_p,kin = eps_a - J sigma/E, independently of
  * the return mapping; the reference is the analytic flow curve at that strain.
  *
- * References and tolerances (issue 3):
+ * References and tolerances:
  *  1. flow curves of linear, Johnson-Cook, Swift and Voce hardening up to
  *     eps_p = 1: sigma_xx = sigma_y(eps_p,kin) within 0.5 %, and the stored
  *     eps_p equals eps_p,kin within 1e-6;
@@ -45,6 +45,7 @@
 #include "scene/scene.h"
 #include "material/strength/j2_return.h"
 #include "material/strength/strength.h"
+#include "support/check_main.h"
 
 /* ------------------------------------------------------------------ laws */
 
@@ -451,9 +452,5 @@ int main(void)
     tcase_add_test(tc, return_mapping_converges_far_outside);
     tcase_add_test(tc, elastic_step_has_no_plastic_flow);
     suite_add_tcase(su, tc);
-    SRunner *sr = srunner_create(su);
-    srunner_run_all(sr, CK_NORMAL);
-    const int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
+    return tlsph_check_run(su);
 }

@@ -4,12 +4,13 @@
  * strain: sigma_yy = 0, eps_zz = 0, so sigma_xx = E/(1-nu^2) eps_xx.
  * Measured: mean sigma_xx of the gauge particles against the gauge strain
  * from the mean x positions of two particle bands at x = L/4 and 3L/4.
- * Reference: E/(1-nu^2).  Tolerance (issue 2): 1 %. */
+ * Reference: E/(1-nu^2).  Tolerance: 1 %. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *strip =
     "{\"dimension\":2,\"time\":{\"end\":4e-4,\"cfl\":0.3},"
@@ -63,16 +64,4 @@ START_TEST(plane_strain_modulus)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("strip");
-    TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 300);
-    tcase_add_test(tc, plane_strain_modulus);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("strip", 300, plane_strain_modulus)

@@ -3,12 +3,13 @@
  * T = 2 L / c with c = sqrt(E/rho) (1-D bar theory; the Rayleigh-Love lateral
  * inertia correction is ~nu^2 pi^2 r^2 / (2 L^2) ~ 1e-4 here).  The period is
  * measured from successive zero crossings of the mean axial velocity of the
- * left quarter of the bar.  Tolerance (issue 2): 3 %. */
+ * left quarter of the bar.  Tolerance: 3 %. */
 #include <check.h>
 #include <math.h>
 #include <stdlib.h>
 
 #include "support/scene_builder.h"
+#include "support/check_main.h"
 
 static const char *bar =
     "{\"dimension\":3,\"time\":{\"end\":1.0,\"cfl\":0.3},"
@@ -57,16 +58,4 @@ START_TEST(bar_wave_speed)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *s = suite_create("wave");
-    TCase *tc = tcase_create("core");
-    tcase_set_timeout(tc, 300);
-    tcase_add_test(tc, bar_wave_speed);
-    suite_add_tcase(s, tc);
-    SRunner *sr = srunner_create(s);
-    srunner_run_all(sr, CK_NORMAL);
-    int failed = srunner_ntests_failed(sr);
-    srunner_free(sr);
-    return failed ? EXIT_FAILURE : EXIT_SUCCESS;
-}
+TLSPH_CHECK_MAIN("wave", 300, bar_wave_speed)

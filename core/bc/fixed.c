@@ -1,0 +1,35 @@
+/* "fixed": the selected particles are held at rest, v = 0 in every component.
+ * The support does not move, so its impulse does no work; its reaction is a
+ * support load. */
+#include "bc/impulse.h"
+#include "bc/kind.h"
+#include "bc/selector.h"
+
+static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                 const char *pointer, struct tlsph_errors *err)
+{
+    return tlsph_selector_parse(obj, 1, s, &bc->select, pointer, err);
+}
+
+static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                      double t, double t_mid, double *work)
+{
+    (void)bc, (void)t, (void)t_mid;
+    double w = *work; /* a local: the velocity stores cannot alias it */
+    for (size_t a = 0; a < g->n; a++)
+        for (int c = 0; c < 3; c++)
+            tlsph_bc_impose(m, g, (size_t)g->index[a], c, 0.0, 0.0, &w);
+    *work = w;
+}
+
+static const char *const keys[] = {"type", "name", "select", NULL};
+
+const struct tlsph_bc_kind tlsph_bc_fixed = {
+    .name = "fixed",
+    .module = "bc:fixed",
+    .carries_load = 1,
+    .keys = keys,
+    .parse = parse,
+    .select = tlsph_selector_select,
+    .constrain = constrain,
+};

@@ -1,0 +1,104 @@
+/* Boundary-condition kinds as a table of descriptors.
+ *
+ * A kind (fixed, velocity, wall, symmetry, body_force) lives whole in one file,
+ * core/bc/<name>.c, which defines its descriptor; core/bc/registry.c lists the
+ * descriptors, one row each.  The scene names a row by its "type"; the scene
+ * parser (core/scene/parse_bcs.c), the step (core/bc/boundary.c), the module
+ * list, the output and the gauges read only the descriptor, so adding a kind is
+ * its file, its row, its schema entry (schemas/scene.schema.json) and its docs.
+ *
+ * Machinery shared by the kinds: selectors (core/bc/selector.h), planes
+ * (core/bc/plane.h), velocity constraints and their impulses
+ * (core/bc/impulse.h), particle groups and reactions (core/bc/groups.c).
+ *
+ * Energy account.  The work of the conditions on the bodies is booked in
+ * m->energy.external_work (J), so that kinetic + internal + dissipated -
+ * external work stays constant; each hook below says what it books.
+ *
+ * Hot loops: the step calls a hook once per condition; the hook runs its own
+ * plain loop over its particles (no dispatch per particle). */
+#ifndef TLSPH_BC_KIND_H
+#define TLSPH_BC_KIND_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <jansson.h>
+
+#include "scene/scene.h"
+#include "util/errors.h"
+
+struct tlsph_model; /* core/run/model.h */
+struct tlsph_group;
+
+struct tlsph_bc_kind {
+    const char *name;        /* as written in the scene: {"type": name, ...} */
+    const char *module;      /* its entry in the result's module list, "bc:<name>" */
+    int carries_load;        /* its group's reaction is a support load: written as a time
+                                series (core/io/fields.c) and usable by gauges */
+    const char *const *keys; /* every key its scene object accepts, "type" and "name"
+                                included, NULL-terminated (listed in "unknown field" errors) */
+
+    /* Reads the kind's fields from obj ("type" and "name" are done, unknown keys
+     * reported) into bc, reporting every problem under pointer.  In 2-D the z
+     * components of points and normals are ignored (zeroed), and a z velocity or
+     * acceleration must be 0.  Returns 0 or -1. */
+    int (*parse)(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                 const char *pointer, struct tlsph_errors *err);
+
+    /* Setup.  Writes the indices of the condition's particles, in increasing
+     * order, to index (NULL: count only) and returns their number; called twice
+     * (count, then fill).  NULL: the kind has no particle group (a wall acts on
+     * whichever particle reaches it); otherwise selecting no particle is a scene
+     * error. */
+    size_t (*select)(const struct tlsph_model *m, struct tlsph_bc *bc, int32_t *index);
+
+    /* The step's phases, in the order they come (core/run/integrate.c); NULL =
+     * the kind does not act then.  Within a phase the conditions act in scene
+     * order.  g is the condition's group; g->impulse (N s) collects the momentum
+     * the support gives the bodies during the step. */
+
+    /* After each half kick (and once at setup): imposes the kind's constraint on
+     * the velocities, with prescribed values taken at time t (s).  Books the
+     * constraint's momentum change in g->impulse and adds its work to *work (J),
+     * which the caller adds to the external work once, after every condition:
+     * the work of an impulse is the impulse times the prescribed velocity at the
+     * middle of the step, t_mid (s) (counting the kinetic energy the reset
+     * removes instead would book as external work the dt^2 |f|^2 / 4m each half
+     * kick adds to a held particle).  A support that does not move (fixed,
+     * symmetry, a wall holding a resting particle) does no work. */
+    void (*constrain)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                      double t, double t_mid, double *work);
+
+    /* After the first kick's constraints, before the drift x += dt v (dt in s);
+     * m->p.f still holds the forces of that kick.  Changes velocities so the
+     * drift respects the condition (a wall stops particles on its plane), books
+     * the change in g->impulse and its own work directly in
+     * m->energy.external_work (a wall: the kinetic energy an arriving particle
+     * loses, booked as negative work). */
+    void (*before_drift)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                         double dt);
+
+    /* During force evaluation, after the pair forces: adds the condition's
+     * forces (N) to m->p.f and their power at the current (half-step)
+     * velocities to *power (W); the caller books dt * power as external work. */
+    void (*force)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                  double *power);
+
+    /* At the end of the step, after the second kick's constraints and before
+     * g->impulse becomes the reaction g->reaction = impulse / dt and is cleared.
+     * Books any work it does directly in m->energy.external_work. */
+    void (*end_step)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                     double dt);
+};
+
+/* The kind named name (as in the scene), or NULL. */
+const struct tlsph_bc_kind *tlsph_bc_find(const char *name);
+
+/* Writes the names of the kinds, in table order, into buf (size bytes): all
+ * of them, or only those that carry load when load_only; each between quote,
+ * separated by ", " except the last pair, which is separated by last_sep
+ * ("a, b, c" or "'a', 'b' or 'c'").  For error messages. */
+void tlsph_bc_names(char *buf, size_t size, int load_only, const char *quote,
+                    const char *last_sep);
+
+#endif

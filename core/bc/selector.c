@@ -1,0 +1,125 @@
+#include "bc/selector.h"
+
+#include "run/model.h"
+#include "scene/parse_internal.h"
+
+static const char *const xyz[] = {"x", "y", "z"};
+
+int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
+                         struct tlsph_selector *sel, const char *P, struct tlsph_errors *err)
+{
+    static const char *const keys[] = {"body", "box", "expression", NULL};
+    sel->body = -1;
+    sel->has_box = 0;
+    const json_t *v = json_object_get(obj, "select");
+    char p[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, P, "select");
+    if (!v) {
+        if (required) {
+            tlsph_errors_add(err, p,
+                             "required object 'select' is missing (give body, box and/or "
+                             "expression)");
+            return -1;
+        }
+        return 0;
+    }
+    if (!json_is_object(v)) {
+        tlsph_errors_add(err, p, "'select' must be an object, got %s", jc_type_name(v));
+        return -1;
+    }
+    int bad = jc_unknown_keys(v, keys, p, err) != 0;
+    if (!json_object_get(v, "body") && !json_object_get(v, "box") &&
+        !json_object_get(v, "expression")) {
+        tlsph_errors_add(err, p, "'select' needs at least one of body, box, expression");
+        bad = 1;
+    }
+    char name[TLSPH_NAME_MAX];
+    int r = jc_string(v, "body", 0, p, name, sizeof name, err);
+    if (r < 0) {
+        bad = 1;
+    } else if (r == 0 && (sel->body = tlsph_scene_find_body(s, name)) < 0) {
+        tlsph_pointer_join(q, sizeof q, p, "body");
+        tlsph_errors_add(err, q, "unknown body '%s' (not a name in /bodies)", name);
+        bad = 1;
+    }
+    const json_t *box = jc_object(v, "box", 0, p, err);
+    if (box) {
+        static const char *const box_keys[] = {"min", "max", NULL};
+        tlsph_pointer_join(q, sizeof q, p, "box");
+        bad |= jc_unknown_keys(box, box_keys, q, err) != 0;
+        int r1 = jc_vector(box, "min", 1, 3, "m", q, sel->box_min, err);
+        int r2 = jc_vector(box, "max", 1, 3, "m", q, sel->box_max, err);
+        if (r1 || r2) {
+            bad = 1;
+        } else {
+            if (s->dimension == 2) {
+                sel->box_min[2] = -1e300;
+                sel->box_max[2] = 1e300;
+            }
+            for (int k = 0; k < s->dimension; k++)
+                if (!(sel->box_max[k] > sel->box_min[k])) {
+                    char m[TLSPH_POINTER_MAX], mk[TLSPH_POINTER_MAX];
+                    tlsph_pointer_join(m, sizeof m, q, "max");
+                    tlsph_pointer_index(mk, sizeof mk, m, (size_t)k);
+                    tlsph_errors_add(err, mk,
+                                     "selector box max[%d] = %g m must be greater than min[%d] "
+                                     "= %g m",
+                                     k, sel->box_max[k], k, sel->box_min[k]);
+                    bad = 1;
+                }
+            sel->has_box = 1;
+        }
+    } else if (json_object_get(v, "box")) {
+        bad = 1;
+    }
+    const json_t *e = json_object_get(v, "expression");
+    if (e) {
+        tlsph_pointer_join(q, sizeof q, p, "expression");
+        if (!json_is_string(e)) {
+            tlsph_errors_add(err, q,
+                             "'expression' must be a string condition of x, y, z (m), got %s",
+                             jc_type_name(e));
+            bad = 1;
+        } else if (tlsph_scene_expr(&sel->expression, e, xyz, 3, 1, s, q, err) != 0) {
+            bad = 1;
+        }
+    }
+    return bad ? -1 : 0;
+}
+
+int tlsph_selector_given(const struct tlsph_selector *sel)
+{
+    return sel->body >= 0 || sel->has_box || sel->expression.evaluator;
+}
+
+static int selected(const struct tlsph_model *m, struct tlsph_selector *sel, size_t i)
+{
+    if (sel->body >= 0 && m->p.body[i] != sel->body)
+        return 0;
+    const double *X = m->p.X + 3 * i;
+    if (sel->has_box)
+        for (int c = 0; c < m->dim; c++)
+            if (X[c] < sel->box_min[c] || X[c] > sel->box_max[c])
+                return 0;
+    if (sel->expression.evaluator)
+        return tlsph_expr_eval(&sel->expression, X) != 0.0;
+    return 1;
+}
+
+size_t tlsph_selector_pick(const struct tlsph_model *m, struct tlsph_selector *sel,
+                           int32_t *index)
+{
+    size_t count = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        if (selected(m, sel, i)) {
+            if (index)
+                index[count] = (int32_t)i;
+            count++;
+        }
+    return count;
+}
+
+size_t tlsph_selector_select(const struct tlsph_model *m, struct tlsph_bc *bc, int32_t *index)
+{
+    return tlsph_selector_pick(m, &bc->select, index);
+}

@@ -1,0 +1,35 @@
+/* Particle selectors ("select": {body, box, expression}), shared by the kinds
+ * that act on a group of particles.  The fields are described in
+ * core/scene/scene.h (struct tlsph_selector). */
+#ifndef TLSPH_BC_SELECTOR_H
+#define TLSPH_BC_SELECTOR_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <jansson.h>
+
+#include "scene/scene.h"
+#include "util/errors.h"
+
+struct tlsph_model;
+
+/* Reads obj's "select" into sel (body index, box in m, expression of x, y, z
+ * with comparisons); pointer is the condition's.  required = 0: an absent
+ * selector selects every particle.  In 2-D the box spans all z.  Returns 0 or
+ * -1 with every problem in err. */
+int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
+                         struct tlsph_selector *sel, const char *pointer,
+                         struct tlsph_errors *err);
+
+/* Whether the scene gave any test (an absent selector selects everything). */
+int tlsph_selector_given(const struct tlsph_selector *sel);
+
+/* The particles sel selects, by reference position: their indices in
+ * increasing order into index (NULL: count only); returns their number. */
+size_t tlsph_selector_pick(const struct tlsph_model *m, struct tlsph_selector *sel,
+                           int32_t *index);
+
+/* A kind's select hook for conditions whose group is exactly their selector's. */
+size_t tlsph_selector_select(const struct tlsph_model *m, struct tlsph_bc *bc, int32_t *index);
+
+#endif

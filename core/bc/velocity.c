@@ -1,0 +1,95 @@
+/* "velocity": the given components of the selected particles' velocity follow
+ * expressions of t (s); null components are free.  The support's impulse does
+ * work at the prescribed mid-step velocity; its reaction is a support load. */
+#include "bc/impulse.h"
+#include "bc/kind.h"
+#include "bc/selector.h"
+#include "scene/parse_internal.h"
+
+static const char *const tvar[] = {"t"};
+
+static int parse_velocity(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                          const char *P, struct tlsph_errors *err)
+{
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, P, "velocity");
+    const json_t *v = json_object_get(obj, "velocity");
+    if (!v) {
+        tlsph_errors_add(err, p, "required field 'velocity' (3 items: m/s, expression of t, or "
+                                 "null) is missing");
+        return -1;
+    }
+    if (!json_is_array(v) || json_array_size(v) != 3) {
+        tlsph_errors_add(err, p,
+                         "'velocity' must be an array of 3 items, each a number (m/s), an "
+                         "expression string of t (s) giving m/s, or null (free component)");
+        return -1;
+    }
+    int bad = 0, given = 0;
+    for (int k = 0; k < 3; k++) {
+        char q[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(q, sizeof q, p, (size_t)k);
+        const json_t *c = json_array_get(v, (size_t)k);
+        if (json_is_null(c))
+            continue;
+        if (tlsph_scene_expr(&bc->velocity[k], c, tvar, 1, 0, s, q, err) != 0) {
+            bad = 1;
+            continue;
+        }
+        if (k == 2 && s->dimension == 2) {
+            const double t0 = 0.0;
+            if (!bc->velocity[2].constant || tlsph_expr_eval(&bc->velocity[2], &t0) != 0.0) {
+                tlsph_errors_add(err, q, "in a 2-D scene the z velocity must be null or 0");
+                bad = 1;
+            }
+            tlsph_expr_free(&bc->velocity[2]);
+            continue;
+        }
+        bc->velocity_set[k] = 1;
+        given++;
+    }
+    if (!bad && given == 0) {
+        tlsph_errors_add(err, p,
+                         "'velocity' has no prescribed component: at least one of the %s items "
+                         "must be a number or an expression of t",
+                         s->dimension == 2 ? "first two" : "3");
+        bad = 1;
+    }
+    return bad ? -1 : 0;
+}
+
+static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                 const char *pointer, struct tlsph_errors *err)
+{
+    int bad = tlsph_selector_parse(obj, 1, s, &bc->select, pointer, err) != 0;
+    bad |= parse_velocity(obj, s, bc, pointer, err) != 0;
+    return bad ? -1 : 0;
+}
+
+static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                      double t, double t_mid, double *work)
+{
+    double val[3], mid[3];
+    for (int c = 0; c < 3; c++) {
+        val[c] = bc->velocity_set[c] ? tlsph_expr_eval(&bc->velocity[c], &t) : 0.0;
+        mid[c] = bc->velocity_set[c] ? tlsph_expr_eval(&bc->velocity[c], &t_mid) : 0.0;
+    }
+    double w = *work; /* a local: the velocity stores cannot alias it */
+    for (size_t a = 0; a < g->n; a++)
+        for (int c = 0; c < 3; c++)
+            if (bc->velocity_set[c])
+                tlsph_bc_impose(m, g, (size_t)g->index[a], c, val[c], mid[c], &w);
+    *work = w;
+}
+
+static const char *const keys[] = {"type", "name", "select", "velocity", NULL};
+
+const struct tlsph_bc_kind tlsph_bc_velocity = {
+    .name = "velocity",
+    .module = "bc:velocity",
+    .carries_load = 1,
+    .keys = keys,
+    .parse = parse,
+    .select = tlsph_selector_select,
+    .constrain = constrain,
+};

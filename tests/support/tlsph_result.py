@@ -1,0 +1,132 @@
+"""Reading a tlsph result file (result.h5, layout in docs/output.md) for tests
+and benchmarks: one place that knows the paths, the string encodings h5py
+returns and how series, fields, diagnostics and cost are stored.
+
+    from tlsph_result import Result
+    with Result("out/strip") as r:            # a result directory or its result.h5
+        t, ke = r.series("kinetic_energy")    # global series: times (s), values
+        t, R = r.series("groups/left/reaction_force")
+        D = r.field("damage", frame=-1)       # per-particle field at one frame
+        r.status, r.cost["steps"], r.scene["bodies"][0]["spacing"]
+
+Scripts outside tests/support put that folder on sys.path first
+(bench/*_metrics.py do).  Needs h5py and numpy (Debian: python3-h5py,
+python3-numpy; run with /usr/bin/python3).  Units are those of the file: SI.
+"""
+import json
+import os
+
+import h5py
+import numpy as np
+
+PARTICLES = "particles/solid"
+OBSERVABLES = "observables"
+
+
+def text(v):
+    """An HDF5 string attribute or scalar dataset as str (h5py gives bytes
+    for fixed-length strings; the writer pads some with NULs)."""
+    if isinstance(v, np.ndarray) and v.shape == ():
+        v = v[()]
+    if isinstance(v, bytes):
+        v = v.decode()
+    return str(v).rstrip("\x00")
+
+
+class Result:
+    """A finished (or, with swmr=True, a running) result file."""
+
+    def __init__(self, path, swmr=False):
+        if os.path.isdir(path):
+            path = os.path.join(path, "result.h5")
+        self.path = path
+        if swmr:
+            self.file = h5py.File(path, "r", libver="latest", swmr=True)
+        else:
+            self.file = h5py.File(path, "r")
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+    def close(self):
+        self.file.close()
+
+    # -------------------------------------------------------------- metadata
+    @property
+    def scene(self):
+        """The scene as submitted (dict)."""
+        return json.loads(text(self.file["parameters/scene"][()]))
+
+    @property
+    def modules(self):
+        """The active modules of the run, in pipeline order (list of str)."""
+        return json.loads(text(self.file["parameters/modules"][()]))
+
+    @property
+    def status(self):
+        """successful, unstable, cancelled or io_error."""
+        return text(self.file["diagnostics"].attrs["status"])
+
+    @property
+    def diagnostics(self):
+        """The stability diagnostic as a dict (empty values when successful)."""
+        a = self.file["diagnostics"].attrs
+        return {k: (text(a[k]) if a[k].dtype.kind in "SOU" else a[k]) for k in a}
+
+    @property
+    def cost(self):
+        """particles, pairs, steps, wall_seconds, particle_steps_per_second,
+        peak_memory_bytes, bytes_per_particle."""
+        return {k: v.item() if hasattr(v, "item") else v
+                for k, v in self.file["cost"].attrs.items()}
+
+    # -------------------------------------------------------------- series
+    def has_series(self, name):
+        return name in self.file[OBSERVABLES]
+
+    def series(self, name):
+        """(time s, values) of a time series: a global one ("kinetic_energy")
+        or a per-item one ("groups/left/reaction_force", "gauges/bar/
+        engineering_stress", "sections/middle/damage").  Per-item series
+        without their own clock share the energy_balance samples' times."""
+        g = self.file[OBSERVABLES][name]
+        if "time" in g:
+            t = g["time"][:]
+        else:
+            t = self.file[OBSERVABLES]["energy_balance/time"][:]
+        return t, g["value"][:]
+
+    def last(self, name, default=float("nan")):
+        """The last sample of a global series, or default when the run has no
+        such series (its module was not active)."""
+        if not self.has_series(name):
+            return default
+        return float(self.file[OBSERVABLES][name]["value"][-1])
+
+    # -------------------------------------------------------------- fields
+    def has_field(self, name):
+        return name in self.file[PARTICLES]
+
+    def field(self, name, frame=-1):
+        """A per-frame field at one frame ([N] or [N, components]), or a
+        per-particle constant ("reference_position", "volume", "mass", "body",
+        "id") when the name has no frames."""
+        g = self.file[PARTICLES][name]
+        if isinstance(g, h5py.Dataset):
+            return g[()]
+        return g["value"][frame]
+
+    def frame_times(self, name="position"):
+        return self.file[PARTICLES][name]["time"][:]
+
+    def frame_fields(self):
+        """Names of the per-frame fields the file holds."""
+        return [k for k, g in self.file[PARTICLES].items()
+                if isinstance(g, h5py.Group) and "value" in g]
+
+    def spacing(self, body=0):
+        """Lattice spacing of a body (m), from the stored scene."""
+        return self.scene["bodies"][body]["spacing"]
