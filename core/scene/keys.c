@@ -113,8 +113,8 @@ static int read_choice(const json_t *obj, const struct tlsph_key *k, int require
     char list[400] = "";
     size_t len = 0;
     for (const struct tlsph_key_choice *c = k->choices; c->name && len + 1 < sizeof list; c++)
-        len += (size_t)snprintf(list + len, sizeof list - len, "%s%s",
-                                c == k->choices ? "" : ", ", c->name);
+        len += (size_t)snprintf(list + len, sizeof list - len, "%s%s", c == k->choices ? "" : ", ",
+                                c->name);
     tlsph_key_error(err, pointer, k->name, "unknown %s '%s' (accepted: %s)", k->noun, v, list);
     return -1;
 }
@@ -135,8 +135,8 @@ int tlsph_keys_object(const json_t *obj, const char *name, int required,
 static int read_object(const json_t *obj, const struct tlsph_key *k, const char *pointer,
                        const struct tlsph_key_target *to, struct tlsph_errors *err)
 {
-    return tlsph_keys_object(obj, k->name, (k->flags & TLSPH_KEY_REQUIRED) != 0, k->table,
-                             pointer, to, err);
+    return tlsph_keys_object(obj, k->name, (k->flags & TLSPH_KEY_REQUIRED) != 0, k->table, pointer,
+                             to, err);
 }
 
 /* One key that is not the caller's: 0 valid or absent, -1 reported. */
@@ -157,19 +157,18 @@ static int read_key(const json_t *obj, const struct tlsph_key *k, const char *po
             break;
         if (at)
             memcpy(at, &x, sizeof x);
-        if ((k->flags & TLSPH_KEY_BELOW_E) && to->youngs_modulus > 0.0 &&
-            x >= to->youngs_modulus) {
+        if ((k->flags & TLSPH_KEY_BELOW_E) && to->youngs_modulus > 0.0 && x >= to->youngs_modulus) {
             tlsph_key_error(err, pointer, k->name,
-                            "'%s' = %g Pa must be below the Young's modulus E = %g Pa", k->name,
-                            x, to->youngs_modulus);
+                            "'%s' = %g Pa must be below the Young's modulus E = %g Pa", k->name, x,
+                            to->youngs_modulus);
             r = -1;
         }
         break;
     }
     case TLSPH_KEY_INTEGER: {
         long v;
-        r = jc_integer(obj, k->name, required, (long)k->range.min, (long)k->range.max, pointer,
-                       &v, err);
+        r = jc_integer(obj, k->name, required, (long)k->range.min, (long)k->range.max, pointer, &v,
+                       err);
         if (r == 0)
             store_int(at, k, v);
         break;

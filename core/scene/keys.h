@@ -37,16 +37,23 @@ enum tlsph_key_kind {
     TLSPH_KEY_ARRAY    /* items described by .table when they are objects */
 };
 
-#define TLSPH_KEY_REQUIRED 1u /* must be present (when its .with key is present) */
-#define TLSPH_KEY_DEFAULT 2u  /* absent means .def (.def_text for a string); for a required
-                                 key, the value validation goes on with when it is invalid */
-#define TLSPH_KEY_CALLER 4u   /* read by the caller, not by tlsph_keys_values: listed so that
-                                 it is allowed here and documented */
-#define TLSPH_KEY_REFUSED 8u  /* not accepted: listed so that the caller can refuse it with
-                                 its reason instead of "unknown field" */
-#define TLSPH_KEY_MAP 16u     /* OBJECT whose members, under any name, are each a .table */
-#define TLSPH_KEY_BELOW_E 32u /* NUMBER in Pa that must be below the material's Young's
-                                 modulus (a flow stress at or above E means unit slip) */
+/* .flags */
+enum {
+    TLSPH_KEY_REQUIRED = 1u, /* must be present (when its .with key is present) */
+    /* Absent means .def (.def_text for a string); for a required key, the value
+     * validation goes on with when it is missing or invalid. */
+    TLSPH_KEY_DEFAULT = 2u,
+    /* Read by the caller, not by tlsph_keys_values: listed so that it is allowed here
+     * and documented. */
+    TLSPH_KEY_CALLER = 4u,
+    /* Not accepted: listed so that the caller can refuse it with its reason instead of
+     * "unknown field". */
+    TLSPH_KEY_REFUSED = 8u,
+    TLSPH_KEY_MAP = 16u, /* OBJECT whose members, under any name, are each a .table */
+    /* NUMBER in Pa that must be below the material's Young's modulus (a flow stress at
+     * or above E means unit slip). */
+    TLSPH_KEY_BELOW_E = 32u
+};
 
 /* Where a key's value goes when it is stored nowhere (only validated). */
 #define TLSPH_KEY_NOWHERE ((size_t)-1)
@@ -63,39 +70,47 @@ struct tlsph_key_table;
 struct tlsph_key {
     const char *name;
     enum tlsph_key_kind kind;
-    unsigned flags;             /* TLSPH_KEY_* */
-    struct jc_range range;      /* NUMBER, INTEGER (JC_NONE: unbounded on that side) */
-    const char *unit;           /* SI unit, "1" when dimensionless; NULL for choices,
-                                   booleans, strings and objects */
-    const char *said;           /* how messages name the unit when not .unit; NULL means
-                                   .unit, or "(dimensionless)" when .unit is "1" */
-    double def;                 /* TLSPH_KEY_DEFAULT: NUMBER, INTEGER, BOOLEAN (0/1), CHOICE
-                                   (the value of the default choice) */
-    const char *def_text;       /* TLSPH_KEY_DEFAULT of a STRING */
-    size_t offset;              /* from the reader's base; TLSPH_KEY_NOWHERE */
-    size_t size;                /* INTEGER: sizeof(int) or sizeof(long) (0 = long);
-                                   STRING, CHOICE: buffer size with the NUL */
+    unsigned flags;        /* TLSPH_KEY_* */
+    struct jc_range range; /* NUMBER, INTEGER (JC_NONE: unbounded on that side) */
+    /* SI unit, "1" when dimensionless; NULL for choices, booleans, strings, objects */
+    const char *unit;
+    /* How messages name the unit when not .unit; NULL: .unit, or "(dimensionless)"
+     * when .unit is "1". */
+    const char *said;
+    /* TLSPH_KEY_DEFAULT: the value of a NUMBER, INTEGER, BOOLEAN (0/1) or CHOICE (the
+     * default choice's value); def_text that of a STRING. */
+    double def;
+    const char *def_text;
+    size_t offset; /* from the reader's base; TLSPH_KEY_NOWHERE */
+    /* INTEGER: sizeof(int) or sizeof(long) (0 = long); STRING, CHOICE: buffer size
+     * with the NUL. */
+    size_t size;
     const struct tlsph_key_choice *choices; /* CHOICE: ends with {NULL, 0} */
-    const char *noun;           /* CHOICE: "unknown <noun> 'x' (accepted: ...)" */
-    const char *with;           /* only with this earlier key of the same object: read when
-                                   it is present, "has no effect without" when it is not */
-    unsigned term;              /* or'ed into the target's *terms when valid (optional term
-                                   of a law: TLSPH_FLOW_RATE ...) */
-    const char *above_max;      /* NUMBER: why values above the maximum are refused, in
-                                   place of "is out of range" */
-    const struct tlsph_key_table *table; /* OBJECT, ARRAY: keys of the object, its members
-                                   or its items; read here unless TLSPH_KEY_CALLER */
-    const char *description;    /* what the key means, for people */
+    const char *noun;                       /* CHOICE: "unknown <noun> 'x' (accepted: ...)" */
+    /* Only with this earlier key of the same object: read when it is present, "has no
+     * effect without" when it is not. */
+    const char *with;
+    /* Or'ed into the target's *terms when the value is valid: the optional term of a
+     * law it switches on (TLSPH_FLOW_RATE ...). */
+    unsigned term;
+    /* NUMBER: why values above the maximum are refused, in place of "is out of range". */
+    const char *above_max;
+    /* OBJECT, ARRAY: the keys of the object, of each member (TLSPH_KEY_MAP) or of each
+     * item; read by the reader itself unless TLSPH_KEY_CALLER. */
+    const struct tlsph_key_table *table;
+    const char *description; /* what the key means, for people */
 };
 
 struct tlsph_key_table {
-    const char *path;  /* where the object sits in a scene, "*" for any member or item:
-                          "/materials/ * /thermal" (without the spaces) */
+    /* Where the object sits in a scene: a JSON pointer with "*" for any member name or
+     * item index (a material's thermal block: "/materials/" "*" "/thermal"). */
+    const char *path;
     const char *model; /* a model's parameters: the "type" that selects this table */
     const struct tlsph_key *keys;
     size_t nkeys;
 };
 
+/* clang-format off */
 #define TLSPH_KEY_TABLE(path, model, keys) {(path), (model), (keys), sizeof(keys) / sizeof *(keys)}
 
 /* The "type" key of a model's table: read by the caller to choose the model. */
@@ -103,6 +118,7 @@ struct tlsph_key_table {
     {.name = "type", .kind = TLSPH_KEY_STRING,                                                 \
      .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, .size = 64,                               \
      .description = "the model's name"}
+/* clang-format on */
 
 /* What the reader writes to. */
 struct tlsph_key_target {

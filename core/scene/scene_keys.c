@@ -9,6 +9,9 @@
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
 
+/* One row per key, as in the docs' tables. */
+/* clang-format off */
+
 /* Choices are stored through an int. */
 _Static_assert(sizeof(enum tlsph_kernel_type) == sizeof(int), "kernel choice stored as int");
 _Static_assert(sizeof(enum tlsph_crack_treatment) == sizeof(int), "treatment stored as int");
@@ -286,6 +289,8 @@ static const struct tlsph_key scene_keys[] = {
      .description = "supports and loads"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
+
+/* clang-format on */
 
 void tlsph_scene_defaults(struct tlsph_scene *s)
 {

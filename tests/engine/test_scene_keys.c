@@ -10,6 +10,7 @@
  * tests/support/scene_keys_check.py, which compares it with
  * schemas/scene.schema.json and docs/scene.md. */
 #include <check.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -42,12 +43,12 @@ static void add_tree(struct tables *all, const struct tlsph_key_table *t)
 }
 
 /* Each name of a family's comma-separated list, found in its registry. */
-#define ADD_FAMILY(all, names, find)                                                         \
-    do {                                                                                     \
-        char list[256];                                                                      \
-        snprintf(list, sizeof list, "%s", names());                                          \
+#define ADD_FAMILY(all, names, find)                                                           \
+    do {                                                                                       \
+        char list[256];                                                                        \
+        snprintf(list, sizeof list, "%s", names());                                            \
         for (char *save, *s = strtok_r(list, ", ", &save); s; s = strtok_r(NULL, ", ", &save)) \
-            add_tree(all, find(s)->keys);                                                    \
+            add_tree(all, find(s)->keys);                                                      \
     } while (0)
 
 static struct tables all_tables(void)
@@ -134,8 +135,8 @@ static int print_json(void)
         json_t *keys = json_array();
         for (size_t k = 0; k < t->nkeys; k++)
             json_array_append_new(keys, key_json(&t->keys[k]));
-        json_array_append_new(arr, json_pack("{s:s, s:s?, s:o}", "path", t->path, "model",
-                                             t->model, "keys", keys));
+        json_array_append_new(
+            arr, json_pack("{s:s, s:s?, s:o}", "path", t->path, "model", t->model, "keys", keys));
     }
     json_t *doc = json_pack("{s:o}", "tables", arr);
     const int rc = doc ? json_dumpf(doc, stdout, JSON_INDENT(1)) : -1;
@@ -164,8 +165,7 @@ static void check_key(const struct tlsph_key_table *t, size_t i)
         ck_assert_msg(sw && sw < k && !sw->with, "%s: 'with' must name an earlier switch", where);
     }
     if (k->flags & (TLSPH_KEY_CALLER | TLSPH_KEY_REFUSED))
-        ck_assert_msg(!(k->flags & TLSPH_KEY_DEFAULT), "%s: the caller's key has a default",
-                      where);
+        ck_assert_msg(!(k->flags & TLSPH_KEY_DEFAULT), "%s: the caller's key has a default", where);
     if (k->kind == TLSPH_KEY_NUMBER || k->kind == TLSPH_KEY_INTEGER) {
         ck_assert_msg(k->unit != NULL, "%s: no unit", where);
         const struct jc_range r = k->range;
@@ -197,8 +197,8 @@ static void check_key(const struct tlsph_key_table *t, size_t i)
         char want[256];
         const int many = k->kind == TLSPH_KEY_ARRAY || (k->flags & TLSPH_KEY_MAP);
         snprintf(want, sizeof want, "%s/%s%s", t->path, k->name, many ? "/*" : "");
-        ck_assert_msg(strcmp(k->table->path, want) == 0, "%s: table at %s, link says %s",
-                      where, k->table->path, want);
+        ck_assert_msg(strcmp(k->table->path, want) == 0, "%s: table at %s, link says %s", where,
+                      k->table->path, want);
     }
 }
 
@@ -216,17 +216,17 @@ START_TEST(test_tables_well_formed)
 END_TEST
 
 /* Each model's table sits at its family's key and names the model. */
-#define CHECK_FAMILY(names, find, family)                                                    \
-    do {                                                                                     \
-        char list[256];                                                                      \
-        snprintf(list, sizeof list, "%s", names());                                          \
+#define CHECK_FAMILY(names, find, family)                                                        \
+    do {                                                                                         \
+        char list[256];                                                                          \
+        snprintf(list, sizeof list, "%s", names());                                              \
         for (char *save, *s = strtok_r(list, ", ", &save); s; s = strtok_r(NULL, ", ", &save)) { \
-            const struct tlsph_key_table *t = find(s)->keys;                                 \
-            ck_assert_msg(t != NULL, "%s has no key table", s);                              \
-            ck_assert_str_eq(t->path, "/materials/*/" family);                               \
-            ck_assert_str_eq(t->model, s);                                                   \
-            ck_assert_str_eq(t->keys[0].name, "type");                                       \
-        }                                                                                    \
+            const struct tlsph_key_table *t = find(s)->keys;                                     \
+            ck_assert_msg(t != NULL, "%s has no key table", s);                                  \
+            ck_assert_str_eq(t->path, "/materials/*/" family);                                   \
+            ck_assert_str_eq(t->model, s);                                                       \
+            ck_assert_str_eq(t->keys[0].name, "type");                                           \
+        }                                                                                        \
     } while (0)
 
 START_TEST(test_models)
@@ -234,6 +234,121 @@ START_TEST(test_models)
     CHECK_FAMILY(tlsph_eos_names, tlsph_eos_find, "eos");
     CHECK_FAMILY(tlsph_strength_names, tlsph_strength_find, "strength");
     CHECK_FAMILY(tlsph_damage_names, tlsph_damage_find, "damage");
+}
+END_TEST
+
+/* The reader on a small table of its own: what it stores, defaults and says. */
+struct sample {
+    double x, rate, stress;
+    long n;
+    int on, choice;
+};
+static const struct tlsph_key_choice sample_choices[] = {{"a", 0}, {"b", 7}, {0}};
+static const struct tlsph_key sample_keys[] = {
+    {.name = "x",
+     .kind = TLSPH_KEY_NUMBER,
+     .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 1.0, JC_OPEN, JC_CLOSED},
+     .unit = "m",
+     .above_max = "too far",
+     .offset = offsetof(struct sample, x),
+     .description = "a length"},
+    {.name = "n",
+     .kind = TLSPH_KEY_INTEGER,
+     .flags = TLSPH_KEY_DEFAULT,
+     .range = {1.0, 9.0, JC_CLOSED, JC_CLOSED},
+     .unit = "1",
+     .def = 4.0,
+     .offset = offsetof(struct sample, n),
+     .description = "a count"},
+    {.name = "on",
+     .kind = TLSPH_KEY_BOOLEAN,
+     .flags = TLSPH_KEY_DEFAULT,
+     .def = 1.0,
+     .term = 2u,
+     .offset = offsetof(struct sample, on),
+     .description = "a switch"},
+    {.name = "rate",
+     .kind = TLSPH_KEY_NUMBER,
+     .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE},
+     .unit = "1/s",
+     .with = "on",
+     .offset = offsetof(struct sample, rate),
+     .description = "only with on"},
+    {.name = "stress",
+     .kind = TLSPH_KEY_NUMBER,
+     .flags = TLSPH_KEY_BELOW_E,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE},
+     .unit = "Pa",
+     .offset = offsetof(struct sample, stress),
+     .description = "a stress"},
+    {.name = "choice",
+     .kind = TLSPH_KEY_CHOICE,
+     .flags = TLSPH_KEY_DEFAULT,
+     .def = 7.0,
+     .size = 8,
+     .choices = sample_choices,
+     .noun = "letter",
+     .offset = offsetof(struct sample, choice),
+     .description = "a letter"},
+};
+static const struct tlsph_key_table sample_table = TLSPH_KEY_TABLE("/sample", NULL, sample_keys);
+
+/* Reads text with sample_table; returns the status, err holds the messages. */
+static int read_sample(const char *text, struct sample *out, unsigned *terms,
+                       struct tlsph_errors *err)
+{
+    json_t *obj = json_loads(text, 0, NULL);
+    ck_assert_ptr_nonnull(obj);
+    memset(out, 0, sizeof *out);
+    *terms = 0;
+    const struct tlsph_key_target to = {.base = out, .terms = terms, .youngs_modulus = 1e9};
+    tlsph_errors_init(err);
+    const int rc = tlsph_keys_read(obj, &sample_table, "/sample", &to, err);
+    json_decref(obj);
+    return rc;
+}
+
+static void expect_message(const struct tlsph_errors *e, size_t i, const char *pointer,
+                           const char *message)
+{
+    ck_assert_uint_gt(e->count, i);
+    ck_assert_str_eq(e->items[i].pointer, pointer);
+    ck_assert_str_eq(e->items[i].message, message);
+}
+
+START_TEST(test_reader)
+{
+    struct sample v;
+    struct tlsph_errors e;
+    unsigned terms;
+    ck_assert_int_eq(
+        read_sample("{\"x\": 0.5, \"on\": true, \"rate\": 3, \"choice\": \"a\"}", &v, &terms, &e),
+        0);
+    ck_assert(v.x == 0.5 && v.rate == 3.0 && v.n == 4 && v.on == 1 && v.choice == 0);
+    ck_assert_uint_eq(terms, 2u);
+    tlsph_errors_free(&e);
+
+    ck_assert_int_eq(read_sample("{\"x\": 2, \"n\": 10, \"on\": false, \"rate\": 1, "
+                                 "\"stress\": 2e9, \"choice\": \"c\", \"y\": 1}",
+                                 &v, &terms, &e),
+                     -1);
+    expect_message(&e, 0, "/sample/y",
+                   "unknown field 'y' (allowed here: x, n, on, rate, stress, choice)");
+    expect_message(&e, 1, "/sample/x", "'x' = 2: too far; must be in (0, 1]");
+    expect_message(&e, 2, "/sample/n", "'n' = 10 is out of range: must be in [1, 9]");
+    expect_message(&e, 3, "/sample/stress",
+                   "'stress' = 2e+09 Pa must be below the Young's modulus E = 1e+09 Pa");
+    expect_message(&e, 4, "/sample/choice", "unknown letter 'c' (accepted: a, b)");
+    ck_assert_uint_eq(e.count, 5); /* on = false is present: rate is read, and valid */
+    ck_assert(v.x == 0.0 && v.n == 4 && v.on == 0 && v.choice == 7 && v.rate == 1.0);
+    tlsph_errors_free(&e);
+
+    ck_assert_int_eq(read_sample("{\"x\": 0, \"rate\": 1}", &v, &terms, &e), -1);
+    expect_message(&e, 0, "/sample/x", "'x' = 0 m is out of range: must be in (0, 1]");
+    expect_message(&e, 1, "/sample/rate", "'rate' has no effect without 'on'");
+    tlsph_errors_free(&e);
 }
 END_TEST
 
@@ -324,6 +439,6 @@ int main(int argc, char **argv)
     if (argc == 2 && strcmp(argv[1], "--json") == 0)
         return print_json();
     const TTest *const tests[] = {test_tables_well_formed, test_models, test_offsets,
-                                  test_parser_defaults};
+                                  test_parser_defaults, test_reader};
     return tlsph_check_run_tests("scene_keys", 0, tests, sizeof tests / sizeof *tests);
 }

@@ -12,6 +12,7 @@
 
 enum { WCR };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     {.name = "critical_work", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
@@ -23,6 +24,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/damage", "cockcroft_latham", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

@@ -8,6 +8,7 @@
 #include "scene/keys.h"
 #include "material/damage/damage.h"
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     {.name = "factor", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
      .range = {0.0, 1e6, JC_OPEN, JC_CLOSED}, .unit = "1",
@@ -17,6 +18,7 @@ static const struct tlsph_key keys[] = {
 };
 const struct tlsph_key_table tlsph_damage_evolution_keys =
     TLSPH_KEY_TABLE("/materials/*/damage/evolution", NULL, keys);
+/* clang-format on */
 
 int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, const char *pointer,
                                  struct tlsph_errors *err)

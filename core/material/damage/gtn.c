@@ -12,6 +12,7 @@
 #define REQUIRED TLSPH_KEY_REQUIRED
 #define DEFAULT TLSPH_KEY_DEFAULT
 
+/* clang-format off */
 static const struct tlsph_key nucleation_keys[] = {
     {.name = "amplitude", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 1.0, JC_OPEN, JC_OPEN},
      .unit = "1", .said = "(void volume fraction F_N)", .offset = TLSPH_PARAM(GTN_FN),
@@ -59,6 +60,7 @@ static const struct tlsph_key keys[] = {
      .description = "refused: the damage of gtn comes from the void fraction"},
 };
 static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/materials/*/damage", "gtn", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

@@ -23,6 +23,7 @@ enum { D1, D2, D3, D4, EPSDOT0, D5, TREF, TMELT };
 #define NUMBER TLSPH_KEY_NUMBER
 #define REQUIRED TLSPH_KEY_REQUIRED
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     {.name = "d1", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 1e3, JC_CLOSED, JC_CLOSED},
@@ -54,6 +55,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/damage", "johnson_cook", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

@@ -16,6 +16,7 @@
 
 enum { C0, S, GAMMA0 };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     {.name = "c0", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
@@ -30,6 +31,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/eos", "mie_gruneisen", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

@@ -18,6 +18,7 @@
 
 enum { A, B, N, C, EPSDOT0, M, TREF, TMELT };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     STRENGTH_STRESS("yield_stress", JC_OPEN, A, "initial yield stress A"),
@@ -46,6 +47,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "johnson_cook", keys);
+/* clang-format on */
 
 /* The thermal term compares its temperatures with each other and with the
  * material's thermal block. */

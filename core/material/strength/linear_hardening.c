@@ -6,6 +6,7 @@
 
 enum { SIGMA0, H };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     STRENGTH_STRESS("yield_stress", JC_OPEN, SIGMA0, "initial yield stress sigma_0"),
@@ -14,6 +15,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "linear_hardening", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

@@ -8,6 +8,7 @@
 
 enum { K, EPS0, N };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     {.name = "strength_coefficient", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
@@ -19,6 +20,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "swift", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)

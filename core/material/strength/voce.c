@@ -8,6 +8,7 @@
 
 enum { SIGMA0, SIGMAS, B };
 
+/* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     STRENGTH_STRESS("yield_stress", JC_OPEN, SIGMA0, "initial yield stress sigma_0"),
@@ -17,6 +18,7 @@ static const struct tlsph_key keys[] = {
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "voce", keys);
+/* clang-format on */
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
