@@ -25,9 +25,6 @@ int job_poll(const settings *s, const char *id, double wait_s, json_t **out);
  * prints the new job id. */
 int submit_job(const settings *s, const char *process, json_t *inputs);
 
-/* Monotonic clock in seconds. */
-double now_seconds(void);
-
 /* Usage error helper: prints "tlsph CMD: msg" and returns RC_USAGE. */
 int usage_error(const char *cmd, const char *msg, const char *arg);
 

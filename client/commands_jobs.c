@@ -12,13 +12,7 @@
 #include "jobfmt.h"
 #include "jsonfile.h"
 #include "urls.h"
-
-double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "util/clock.h"
 
 int usage_error(const char *cmd, const char *msg, const char *arg)
 {
@@ -143,11 +137,11 @@ int cmd_wait(const settings *s, int argc, char **argv)
     int rc = id_check(id);
     if (rc != RC_OK)
         return rc;
-    double deadline = timeout > 0 ? now_seconds() + timeout : 0;
+    double deadline = timeout > 0 ? tlsph_monotonic_seconds() + timeout : 0;
     for (;;) {
         double w = 30;
         if (deadline) {
-            double left = deadline - now_seconds();
+            double left = deadline - tlsph_monotonic_seconds();
             if (left <= 0) {
                 fprintf(stderr, "tlsph: job %s is not final after %g s\n", id, timeout);
                 return RC_TIMEOUT;
@@ -155,7 +149,7 @@ int cmd_wait(const settings *s, int argc, char **argv)
             if (left < w)
                 w = left;
         }
-        double t0 = now_seconds();
+        double t0 = tlsph_monotonic_seconds();
         json_t *info;
         if ((rc = job_poll(s, id, w, &info)) != RC_OK)
             return rc;
@@ -167,7 +161,7 @@ int cmd_wait(const settings *s, int argc, char **argv)
             return rc;
         }
         json_decref(info);
-        if (now_seconds() - t0 < 0.2) { /* a server that does not long-poll: do not spin */
+        if (tlsph_monotonic_seconds() - t0 < 0.2) { /* a server that does not long-poll: do not spin */
             struct timespec ts = {0, 500000000L};
             nanosleep(&ts, NULL);
         }

@@ -12,6 +12,7 @@
 #include "http.h"
 #include "jobfmt.h"
 #include "urls.h"
+#include "util/clock.h"
 
 #define BAR_WIDTH 20
 
@@ -67,7 +68,7 @@ static void progress_line(char *buf, size_t n, const json_t *info, int bar, doub
     double finished = job_parse_time(json_string_value(json_object_get(info, "finished")));
     double elapsed = -1;
     if (local_start >= 0 && !job_is_final(st))
-        elapsed = now_seconds() - local_start;
+        elapsed = tlsph_monotonic_seconds() - local_start;
     else if (started > 0)
         elapsed = (finished > 0 ? finished : realtime_now()) - started;
     if (elapsed < 0)
@@ -108,7 +109,7 @@ int cmd_watch(const settings *s, int argc, char **argv)
     double last_print = -10, local_start = -1;
     int seen_accepted = 0;
     for (;;) {
-        double t0 = now_seconds();
+        double t0 = tlsph_monotonic_seconds();
         json_t *info;
         if ((rc = job_poll(s, id, 1.0, &info)) != RC_OK) {
             if (tty)
@@ -120,7 +121,7 @@ int cmd_watch(const settings *s, int argc, char **argv)
         if (strcmp(st, "accepted") == 0)
             seen_accepted = 1;
         else if (seen_accepted && local_start < 0 && strcmp(st, "running") == 0)
-            local_start = now_seconds();
+            local_start = tlsph_monotonic_seconds();
         progress_line(line, sizeof line, info, tty, local_start);
         if (tty) {
             printf("\r%s\033[K", line);
@@ -130,11 +131,11 @@ int cmd_watch(const settings *s, int argc, char **argv)
         } else {
             /* plain lines: only changes, at most about one per second */
             int changed = strcmp(line, last) != 0;
-            if (changed && !final && now_seconds() - last_print >= 0.9) {
+            if (changed && !final && tlsph_monotonic_seconds() - last_print >= 0.9) {
                 printf("%s\n", line);
                 fflush(stdout);
                 snprintf(last, sizeof last, "%s", line);
-                last_print = now_seconds();
+                last_print = tlsph_monotonic_seconds();
             }
         }
         if (final) {
@@ -145,7 +146,7 @@ int cmd_watch(const settings *s, int argc, char **argv)
             return rc;
         }
         json_decref(info);
-        double dt = now_seconds() - t0;
+        double dt = tlsph_monotonic_seconds() - t0;
         if (dt < 0.9) { /* answered early (no long-poll): keep about one request per second */
             double sl = 0.9 - dt;
             struct timespec ts = {(time_t)sl, (long)((sl - floor(sl)) * 1e9)};

@@ -6,9 +6,13 @@
 #include <errno.h>
 #include <limits.h>
 #include <netinet/in.h>
+#include <stddef.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
+
+#include "run/protocol.h"
+#include "scene/scene.h"
 
 #ifndef TLSPH_ENGINE_DEFAULT
 #define TLSPH_ENGINE_DEFAULT "tlsph-run"
@@ -25,9 +29,10 @@ void tcfg_usage(FILE *f)
             "              [--kill-grace S] [--max-attempts N] [--token-file FILE]\n"
             "defaults: --listen 127.0.0.1:8080, --data-dir $XDG_STATE_HOME/tlsphd or ./tlsphd-data,\n"
             "          --max-jobs 1, --threads-per-job <cores>, --wall-limit 3600,\n"
-            "          --max-particles 2000000.  Config file: 'key = value' lines with the\n"
+            "          --max-particles %ld.  Config file: 'key = value' lines with the\n"
             "          same names (underscores), plus 'token_sha256 = HEX' (repeatable).\n"
-            "Tokens are required when listening on a non-loopback address.\n");
+            "Tokens are required when listening on a non-loopback address.\n",
+            TLSPH_DEFAULT_MAX_PARTICLES);
 }
 
 static int parse_long(const char *s, long lo, long hi, long *out)
@@ -116,51 +121,110 @@ static int parse_listen(struct tcfg *c, const char *v)
     return 0;
 }
 
-/* Applies one key = value.  Returns 0, -1 bad value, -2 unknown key. */
-static int apply(struct tcfg *c, const char *key, const char *v, char *err, size_t errsize)
+/* Every setting once: its name in the file, its flag, how its value is read,
+ * the accepted range and where it goes.  Limits the engine also enforces come
+ * from the engine's own constants. */
+enum key_kind {
+    K_LISTEN,     /* ADDR:PORT */
+    K_STRING,     /* a char[] member, non-empty */
+    K_INT,        /* an int member, integer in [lo, hi] */
+    K_LONG,       /* a long member */
+    K_SIZE,       /* a size_t member */
+    K_DOUBLE,     /* a double member, number in [lo, hi] */
+    K_TOKEN_HEX,  /* adds a token hash */
+    K_TOKEN_FILE  /* adds the tokens of a file */
+};
+
+struct key {
+    const char *name; /* in the config file */
+    const char *flag; /* on the command line; NULL: file only */
+    enum key_kind kind;
+    double lo, hi;
+    size_t offset, size; /* of the member in struct tcfg */
+};
+
+#define MEMBER(m) offsetof(struct tcfg, m), sizeof(((struct tcfg *)0)->m)
+
+static const struct key keys[] = {
+    {"listen", "--listen", K_LISTEN, 0, 0, 0, 0},
+    {"data_dir", "--data-dir", K_STRING, 0, 0, MEMBER(data_dir)},
+    {"engine", "--engine", K_STRING, 0, 0, MEMBER(engine)},
+    {"schemas_dir", "--schemas-dir", K_STRING, 0, 0, MEMBER(schemas_dir)},
+    {"max_jobs", "--max-jobs", K_INT, 1, 1024, MEMBER(max_jobs)},
+    {"threads_per_job", "--threads-per-job", K_INT, 1, TLSPH_MAX_THREADS, MEMBER(threads_per_job)},
+    {"wall_limit", "--wall-limit", K_DOUBLE, 1, 1e9, MEMBER(wall_limit)},
+    {"max_particles", "--max-particles", K_LONG, 1, TLSPH_MAX_PARTICLES, MEMBER(max_particles)},
+    {"max_children", "--max-children", K_LONG, 1, 100000, MEMBER(max_children)},
+    {"body_limit", "--body-limit", K_SIZE, 1024, 1L << 30, MEMBER(body_limit)},
+    {"connection_limit", "--connection-limit", K_INT, 4, 65536, MEMBER(connection_limit)},
+    {"per_ip_limit", "--per-ip-limit", K_INT, 0, 65536, MEMBER(per_ip_limit)},
+    {"connection_timeout", "--connection-timeout", K_INT, 1, 3600, MEMBER(connection_timeout)},
+    {"memory_limit_mb", "--memory-limit-mb", K_LONG, 0, 1L << 30, MEMBER(memory_limit_mb)},
+    {"kill_grace", "--kill-grace", K_DOUBLE, 0, 3600, MEMBER(kill_grace)},
+    {"max_attempts", "--max-attempts", K_INT, 1, 100, MEMBER(max_attempts)},
+    {"token_sha256", NULL, K_TOKEN_HEX, 0, 0, 0, 0},
+    {"token_file", "--token-file", K_TOKEN_FILE, 0, 0, 0, 0},
+};
+#define NKEYS (sizeof keys / sizeof keys[0])
+
+enum apply_rc {
+    APPLY_OK,
+    APPLY_BAD_VALUE,   /* the caller says which key and where */
+    APPLY_UNKNOWN_KEY,
+    APPLY_FAILED       /* err already says why (a token file) */
+};
+
+/* Sets one setting from its text; a bad value leaves the member as it was. */
+static enum apply_rc apply_key(struct tcfg *c, const struct key *k, const char *v, char *err,
+                               size_t errsize)
 {
+    void *dst = (char *)c + k->offset;
     long l = 0;
-    double d = 0.0;
-    int r = 0;
-    if (!strcmp(key, "listen"))
-        r = parse_listen(c, v);
-    else if (!strcmp(key, "data_dir"))
-        r = set_str(c->data_dir, sizeof c->data_dir, v);
-    else if (!strcmp(key, "engine"))
-        r = set_str(c->engine, sizeof c->engine, v);
-    else if (!strcmp(key, "schemas_dir"))
-        r = set_str(c->schemas_dir, sizeof c->schemas_dir, v);
-    else if (!strcmp(key, "max_jobs"))
-        r = parse_long(v, 1, 1024, &l), c->max_jobs = (int)l;
-    else if (!strcmp(key, "threads_per_job"))
-        r = parse_long(v, 1, 1024, &l), c->threads_per_job = (int)l;
-    else if (!strcmp(key, "wall_limit"))
-        r = parse_double(v, 1, 1e9, &d), c->wall_limit = d;
-    else if (!strcmp(key, "max_particles"))
-        r = parse_long(v, 1, 50000000L, &l), c->max_particles = l;
-    else if (!strcmp(key, "max_children"))
-        r = parse_long(v, 1, 100000, &l), c->max_children = l;
-    else if (!strcmp(key, "body_limit"))
-        r = parse_long(v, 1024, 1L << 30, &l), c->body_limit = (size_t)l;
-    else if (!strcmp(key, "connection_limit"))
-        r = parse_long(v, 4, 65536, &l), c->connection_limit = (int)l;
-    else if (!strcmp(key, "per_ip_limit"))
-        r = parse_long(v, 0, 65536, &l), c->per_ip_limit = (int)l;
-    else if (!strcmp(key, "connection_timeout"))
-        r = parse_long(v, 1, 3600, &l), c->connection_timeout = (int)l;
-    else if (!strcmp(key, "memory_limit_mb"))
-        r = parse_long(v, 0, 1L << 30, &l), c->memory_limit_mb = l;
-    else if (!strcmp(key, "kill_grace"))
-        r = parse_double(v, 0, 3600, &d), c->kill_grace = d;
-    else if (!strcmp(key, "max_attempts"))
-        r = parse_long(v, 1, 100, &l), c->max_attempts = (int)l;
-    else if (!strcmp(key, "token_sha256"))
-        r = tauth_add_hex(&c->auth, v);
-    else if (!strcmp(key, "token_file"))
-        return tauth_load_file(&c->auth, v, err, errsize) < 0 ? -3 : 0;
-    else
-        return -2;
-    return r == 0 ? 0 : -1;
+    double d = 0;
+    switch (k->kind) {
+    case K_LISTEN:
+        return parse_listen(c, v) == 0 ? APPLY_OK : APPLY_BAD_VALUE;
+    case K_STRING:
+        return set_str(dst, k->size, v) == 0 ? APPLY_OK : APPLY_BAD_VALUE;
+    case K_INT:
+    case K_LONG:
+    case K_SIZE:
+        if (parse_long(v, (long)k->lo, (long)k->hi, &l) != 0)
+            return APPLY_BAD_VALUE;
+        if (k->kind == K_INT)
+            *(int *)dst = (int)l;
+        else if (k->kind == K_LONG)
+            *(long *)dst = l;
+        else
+            *(size_t *)dst = (size_t)l;
+        return APPLY_OK;
+    case K_DOUBLE:
+        if (parse_double(v, k->lo, k->hi, &d) != 0)
+            return APPLY_BAD_VALUE;
+        *(double *)dst = d;
+        return APPLY_OK;
+    case K_TOKEN_HEX:
+        return tauth_add_hex(&c->auth, v) == 0 ? APPLY_OK : APPLY_BAD_VALUE;
+    case K_TOKEN_FILE:
+        return tauth_load_file(&c->auth, v, err, errsize) < 0 ? APPLY_FAILED : APPLY_OK;
+    }
+    return APPLY_BAD_VALUE;
+}
+
+static const struct key *key_named(const char *name)
+{
+    for (size_t k = 0; k < NKEYS; k++)
+        if (!strcmp(keys[k].name, name))
+            return &keys[k];
+    return NULL;
+}
+
+static const struct key *key_of_flag(const char *flag)
+{
+    for (size_t k = 0; k < NKEYS; k++)
+        if (keys[k].flag && !strcmp(keys[k].flag, flag))
+            return &keys[k];
+    return NULL;
 }
 
 static int load_file(struct tcfg *c, const char *path, char *err, size_t errsize)
@@ -196,12 +260,13 @@ static int load_file(struct tcfg *c, const char *path, char *err, size_t errsize
         for (char *k = s; *k; k++)
             if (*k == '-')
                 *k = '_';
-        int r = apply(c, s, v, err, errsize);
-        if (r == -2)
+        const struct key *k = key_named(s);
+        enum apply_rc r = k ? apply_key(c, k, v, err, errsize) : APPLY_UNKNOWN_KEY;
+        if (r == APPLY_UNKNOWN_KEY)
             snprintf(err, errsize, "config %s:%d: unknown key '%s'", path, lineno, s);
-        else if (r == -1)
+        else if (r == APPLY_BAD_VALUE)
             snprintf(err, errsize, "config %s:%d: bad value for '%s'", path, lineno, s);
-        if (r < 0) {
+        if (r != APPLY_OK) {
             rc = -1;
             break;
         }
@@ -262,29 +327,7 @@ static void default_schemas(struct tcfg *c)
     snprintf(c->schemas_dir, sizeof c->schemas_dir, "schemas");
 }
 
-static const struct {
-    const char *flag, *key;
-} flags[] = {
-    {"--listen", "listen"},
-    {"--data-dir", "data_dir"},
-    {"--engine", "engine"},
-    {"--schemas-dir", "schemas_dir"},
-    {"--max-jobs", "max_jobs"},
-    {"--threads-per-job", "threads_per_job"},
-    {"--wall-limit", "wall_limit"},
-    {"--max-particles", "max_particles"},
-    {"--max-children", "max_children"},
-    {"--body-limit", "body_limit"},
-    {"--connection-limit", "connection_limit"},
-    {"--per-ip-limit", "per_ip_limit"},
-    {"--connection-timeout", "connection_timeout"},
-    {"--memory-limit-mb", "memory_limit_mb"},
-    {"--kill-grace", "kill_grace"},
-    {"--max-attempts", "max_attempts"},
-    {"--token-file", "token_file"},
-};
-
-int tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t errsize)
+enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t errsize)
 {
     memset(c, 0, sizeof *c);
     tauth_init(&c->auth);
@@ -298,7 +341,7 @@ int tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t errsize)
     long cores = sysconf(_SC_NPROCESSORS_ONLN);
     c->threads_per_job = cores > 0 ? (int)cores : 1;
     c->wall_limit = 3600;
-    c->max_particles = 2000000;
+    c->max_particles = TLSPH_DEFAULT_MAX_PARTICLES;
     c->max_children = 1000;
     c->body_limit = 8u << 20;
     c->connection_limit = 256;
@@ -312,40 +355,37 @@ int tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t errsize)
     const char *config = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
-            return 1;
+            return TCFG_HELP;
         if (!strcmp(argv[i], "--config")) {
             if (i + 1 >= argc) {
                 snprintf(err, errsize, "--config needs a value");
-                return -1;
+                return TCFG_ERROR;
             }
             config = argv[++i];
         }
     }
     if (config && load_file(c, config, err, errsize) != 0)
-        return -1;
+        return TCFG_ERROR;
     /* pass 2: flags override the file */
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--config")) {
             i++;
             continue;
         }
-        size_t k;
-        for (k = 0; k < sizeof flags / sizeof flags[0]; k++)
-            if (!strcmp(argv[i], flags[k].flag))
-                break;
-        if (k == sizeof flags / sizeof flags[0]) {
+        const struct key *k = key_of_flag(argv[i]);
+        if (!k) {
             snprintf(err, errsize, "unknown argument '%s'", argv[i]);
-            return -1;
+            return TCFG_ERROR;
         }
         if (i + 1 >= argc) {
             snprintf(err, errsize, "%s needs a value", argv[i]);
-            return -1;
+            return TCFG_ERROR;
         }
-        int r = apply(c, flags[k].key, argv[++i], err, errsize);
-        if (r == -1)
-            snprintf(err, errsize, "bad value for %s: '%s'", flags[k].flag, argv[i]);
-        if (r < 0)
-            return -1;
+        enum apply_rc r = apply_key(c, k, argv[++i], err, errsize);
+        if (r == APPLY_BAD_VALUE)
+            snprintf(err, errsize, "bad value for %s: '%s'", k->flag, argv[i]);
+        if (r != APPLY_OK)
+            return TCFG_ERROR;
     }
     if (!c->engine[0])
         default_engine(c);
@@ -356,16 +396,16 @@ int tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t errsize)
         snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s/jobs", c->data_dir) >=
             (int)sizeof c->jobs_dir) {
         snprintf(err, errsize, "data directory path too long");
-        return -1;
+        return TCFG_ERROR;
     }
     if (!c->loopback && !tauth_enabled(&c->auth)) {
         snprintf(err, errsize,
                  "refusing to listen on non-loopback address %s without tokens "
                  "(token_sha256 in the config file or --token-file)",
                  c->listen);
-        return -1;
+        return TCFG_ERROR;
     }
-    return 0;
+    return TCFG_OK;
 }
 
 void tcfg_free(struct tcfg *c)

@@ -10,9 +10,10 @@
  *                                             TLSPH_ENGINE_DEFAULT ($bindir/tlsph-run)
  *   schemas_dir = DIR         --schemas-dir   where openapi.json is read from (see config.c)
  *   max_jobs = N              --max-jobs      1
- *   threads_per_job = N       --threads-per-job  number of online cores
+ *   threads_per_job = N       --threads-per-job  number of online cores (at most TLSPH_MAX_THREADS)
  *   wall_limit = S            --wall-limit    3600
- *   max_particles = N         --max-particles 2000000
+ *   max_particles = N         --max-particles the engine's default, TLSPH_DEFAULT_MAX_PARTICLES
+ *                                             (2000000; at most TLSPH_MAX_PARTICLES)
  *   max_children = N          --max-children  1000 (study size)
  *   body_limit = BYTES        --body-limit    8388608
  *   connection_limit = N      --connection-limit 256
@@ -59,9 +60,14 @@ struct tcfg {
     struct tauth auth;       /* token hashes (empty = no authentication) */
 };
 
-/* Fills cfg from defaults, the config file and argv.  Returns 0, 1 when
- * --help was printed (exit 0), or -1 with err (usage error). */
-int tcfg_load(struct tcfg *cfg, int argc, char **argv, char *err, size_t errsize);
+enum tcfg_rc {
+    TCFG_OK,
+    TCFG_HELP, /* --help: print the usage and exit 0 */
+    TCFG_ERROR /* a usage error; err says why */
+};
+
+/* Fills cfg from defaults, the config file and argv. */
+enum tcfg_rc tcfg_load(struct tcfg *cfg, int argc, char **argv, char *err, size_t errsize);
 void tcfg_free(struct tcfg *cfg);
 void tcfg_usage(FILE *f);
 

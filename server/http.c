@@ -13,6 +13,9 @@
 
 #include <microhttpd.h>
 
+#include "errmsg.h"
+#include "util/clock.h"
+
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
 #define WATCH_PERIOD_MS 200
 
@@ -42,13 +45,6 @@ struct http {
     pthread_t worker, watcher;
     int worker_started, watcher_started;
 };
-
-double http_now(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 /* ------------------------------------------------------------------ replies */
 
@@ -287,7 +283,7 @@ static void *watcher_main(void *arg)
     for (;;) {
         if (h->nwait == 0 && !h->stopping)
             pthread_cond_wait(&h->watch_cv, &h->mu);
-        const double now = http_now();
+        const double now = tlsph_monotonic_seconds();
         for (size_t i = 0; i < h->nwait;) {
             struct waiter *w = &h->waiters[i];
             int go = h->stopping || now >= w->deadline;
@@ -337,7 +333,7 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
             return MHD_NO;
         r->conn = conn;
         r->http = h;
-        r->t0 = http_now();
+        r->t0 = tlsph_monotonic_seconds();
         r->reply.fd = -1;
         snprintf(r->method, sizeof r->method, "%s", method);
         r->path = strdup(url ? url : "/");
@@ -364,25 +360,13 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
     if (r->phase == PHASE_BODY && *upload_data_size > 0) {
         size_t n = *upload_data_size;
         *upload_data_size = 0;
-        if (r->too_big || r->body_len + n > h->cfg.body_limit) {
+        if (r->too_big || r->body.len + n > h->cfg.body_limit) {
             r->too_big = 1;
             return MHD_YES; /* count and drop; answer 413 at the end */
         }
-        if (r->body_len + n + 1 > r->body_cap) {
-            size_t cap = r->body_cap ? r->body_cap : 4096;
-            while (cap < r->body_len + n + 1)
-                cap *= 2;
-            if (cap > h->cfg.body_limit + 1)
-                cap = h->cfg.body_limit + 1;
-            char *b = realloc(r->body, cap);
-            if (!b)
-                return MHD_NO;
-            r->body = b;
-            r->body_cap = cap;
-        }
-        memcpy(r->body + r->body_len, upload_data, n);
-        r->body_len += n;
-        r->body[r->body_len] = '\0';
+        strbuf_add(&r->body, upload_data, n);
+        if (r->body.oom)
+            return MHD_NO;
         return MHD_YES;
     }
     if (r->phase == PHASE_DONE) {
@@ -417,7 +401,7 @@ static void log_line(const struct hreq *r)
         path[i++] = (*s >= 0x20 && *s < 0x7f) ? *s : '?';
     path[i] = '\0';
     fprintf(stderr, "%s.%03ldZ tlsphd: %s %s %u %.1fms\n", ts, now.tv_nsec / 1000000L,
-            r->method, path, r->logged_status, 1e3 * (http_now() - r->t0));
+            r->method, path, r->logged_status, 1e3 * (tlsph_monotonic_seconds() - r->t0));
 }
 
 static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
@@ -432,7 +416,7 @@ static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
     log_line(r);
     reply_clear(&r->reply);
     free(r->path);
-    free(r->body);
+    strbuf_free(&r->body);
     free(r->data);
     free(r);
     *con_cls = NULL;
@@ -500,7 +484,7 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
-        fprintf(stderr, "tlsphd: cannot start the HTTP server (address in use?)\n");
+        tlog("cannot start the HTTP server (address in use?)");
         goto fail;
     }
     return h;

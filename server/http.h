@@ -25,6 +25,7 @@
 #include <jansson.h>
 
 #include "problem.h"
+#include "strbuf.h"
 
 struct MHD_Connection;
 struct http;
@@ -47,20 +48,13 @@ struct hreq {
     struct http *http;
     char method[16];
     char *path;            /* decoded request path (owned) */
-    char *body;            /* request body (owned, NUL-terminated) */
-    size_t body_len, body_cap;
+    struct strbuf body;    /* request body (NUL-terminated once non-empty) */
     int too_big;           /* body exceeded the limit */
     double t0;             /* start, monotonic s */
     int resumed;           /* route re-run after a long-poll wait */
     int has_reply;
     struct hreply reply;
-    /* route scratch space, filled on the MHD thread for deferred tasks */
-    char id[40];
-    char arg[512];
-    char arg2[64];
-    long num;
-    int flags;
-    void *data;            /* freed with free() at completion */
+    void *data;            /* the route layer's (struct route_call), freed with free() at completion */
     /* internal */
     int phase;
     unsigned logged_status;
@@ -112,10 +106,8 @@ void http_add_header(struct hreq *r, const char *name, const char *value);
 /* Runs task on the worker thread with the worker's context; the task sets the
  * reply.  Returns 0, or -1 when shutting down (the route must reply itself). */
 int http_defer(struct hreq *r, void (*task)(struct hreq *r, void *app, void *ctx));
-/* Parks the request until wait_ready(job id) or the deadline (monotonic s).
+/* Parks the request until wait_ready(job id) or the deadline (tlsph_monotonic_seconds).
  * Returns 0, or -1 when it cannot wait (shutdown, too many waiters). */
 int http_wait(struct hreq *r, const char *id, double deadline);
-
-double http_now(void); /* monotonic seconds */
 
 #endif

@@ -15,9 +15,11 @@
 #include <unistd.h>
 
 #include "config.h"
+#include "errmsg.h"
 #include "http.h"
 #include "queue.h"
 #include "routes.h"
+#include "strbuf.h"
 #include "supervisor.h"
 
 static int mkdir_p(const char *path)
@@ -36,51 +38,35 @@ static int mkdir_p(const char *path)
     return 0;
 }
 
+/* The whole file (malloc'ed, *len bytes), or NULL. */
 static char *read_file(const char *path, size_t *len)
 {
-    FILE *f = fopen(path, "rb");
-    if (!f)
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
         return NULL;
-    char *buf = NULL;
-    size_t cap = 0, n = 0, r;
-    do {
-        if (n + 65536 > cap) {
-            cap = cap ? 2 * cap : 131072;
-            char *b = realloc(buf, cap);
-            if (!b) {
-                free(buf);
-                fclose(f);
-                return NULL;
-            }
-            buf = b;
-        }
-        r = fread(buf + n, 1, cap - n, f);
-        n += r;
-    } while (r > 0);
-    fclose(f);
-    *len = n;
-    return buf;
-}
-
-static void log_msg(const char *fmt, const char *a, const char *b)
-{
-    fprintf(stderr, "tlsphd: ");
-    fprintf(stderr, fmt, a, b);
-    fputc('\n', stderr);
+    struct strbuf b = {0};
+    int rc = strbuf_read_fd(&b, fd);
+    close(fd);
+    *len = b.len;
+    if (rc != 0) {
+        strbuf_free(&b);
+        return NULL;
+    }
+    return strbuf_take(&b);
 }
 
 int main(int argc, char **argv)
 {
     struct tcfg cfg;
     char err[512] = "";
-    int rc = tcfg_load(&cfg, argc, argv, err, sizeof err);
-    if (rc == 1) {
+    enum tcfg_rc rc = tcfg_load(&cfg, argc, argv, err, sizeof err);
+    if (rc == TCFG_HELP) {
         tcfg_usage(stdout);
         tcfg_free(&cfg);
         return 0;
     }
-    if (rc != 0) {
-        fprintf(stderr, "tlsphd: %s\n", err);
+    if (rc != TCFG_OK) {
+        tlog("%s", err);
         tcfg_usage(stderr);
         tcfg_free(&cfg);
         return 2;
@@ -95,24 +81,23 @@ int main(int argc, char **argv)
 
     umask(077);
     if (mkdir_p(cfg.data_dir) != 0 || mkdir_p(cfg.jobs_dir) != 0) {
-        log_msg("cannot create data directory %s: %s", cfg.data_dir, strerror(errno));
+        tlog("cannot create data directory %s: %s", cfg.data_dir, strerror(errno));
         tcfg_free(&cfg);
         return 1;
     }
     struct tq *q = NULL;
     if (tq_open(cfg.db_path, &q, err, sizeof err) != 0) {
-        log_msg("cannot open %s: %s", cfg.db_path, err);
+        tlog("cannot open %s: %s", cfg.db_path, err);
         tcfg_free(&cfg);
         return 1;
     }
     int recovered = tq_recover(q, cfg.max_attempts);
     if (recovered < 0)
-        log_msg("recovery failed: %s%s", tq_last_error(q), "");
+        tlog("recovery failed: %s", tq_last_error(q));
     else if (recovered > 0)
-        fprintf(stderr, "tlsphd: recovered %d job(s) left running by a previous daemon\n",
-                recovered);
+        tlog("recovered %d job(s) left running by a previous daemon", recovered);
     if (access(cfg.engine, X_OK) != 0)
-        log_msg("warning: engine %s is not executable (%s)", cfg.engine, strerror(errno));
+        tlog("warning: engine %s is not executable (%s)", cfg.engine, strerror(errno));
 
     struct tsup_config sc = {
         .db_path = cfg.db_path,
@@ -127,7 +112,7 @@ int main(int argc, char **argv)
     };
     struct tsup *sup = NULL;
     if (tsup_start(&sc, &sup, err, sizeof err) != 0) {
-        log_msg("cannot start the supervisor: %s%s", err, "");
+        tlog("cannot start the supervisor: %s", err);
         tq_close(q);
         tcfg_free(&cfg);
         return 1;
@@ -138,7 +123,7 @@ int main(int argc, char **argv)
     snprintf(oapath, sizeof oapath, "%s/openapi.json", cfg.schemas_dir);
     app.openapi = read_file(oapath, &app.openapi_len);
     if (!app.openapi)
-        log_msg("warning: %s not found; /openapi.json will answer 404%s", oapath, "");
+        tlog("warning: %s not found; /openapi.json will answer 404", oapath);
 
     struct http_config hc = {
         .addr = (const struct sockaddr *)&cfg.addr,
@@ -162,22 +147,20 @@ int main(int argc, char **argv)
         tcfg_free(&cfg);
         return 1;
     }
-    fprintf(stderr,
-            "tlsphd: listening on %s (data %s, engine %s, max-jobs %d, threads-per-job %d, "
-            "auth %s)\n",
-            cfg.listen, cfg.data_dir, cfg.engine, cfg.max_jobs, cfg.threads_per_job,
-            tauth_enabled(&cfg.auth) ? "bearer" : "off");
+    tlog("listening on %s (data %s, engine %s, max-jobs %d, threads-per-job %d, auth %s)",
+         cfg.listen, cfg.data_dir, cfg.engine, cfg.max_jobs, cfg.threads_per_job,
+         tauth_enabled(&cfg.auth) ? "bearer" : "off");
 
     int sig = 0;
     while (sigwait(&stop, &sig) != 0)
         ;
-    fprintf(stderr, "tlsphd: signal %d, shutting down\n", sig);
+    tlog("signal %d, shutting down", sig);
     http_quiesce(h);
     http_stop(h);
     tsup_stop(sup);
     tq_close(q);
     free(app.openapi);
     tcfg_free(&cfg);
-    fprintf(stderr, "tlsphd: stopped\n");
+    tlog("stopped");
     return 0;
 }

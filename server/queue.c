@@ -1,4 +1,6 @@
-/* The job queue on SQLite (see queue.h and docs: daemon-research.md §3).
+/* The job queue on SQLite (see queue.h): the schema, every SQL statement,
+ * connections and the row helpers.  The operations are in queue_jobs.c and
+ * queue_study.c (queue_internal.h); no SQL text lives anywhere else.
  *
  * - One connection per handle, opened READWRITE|CREATE|NOMUTEX; WAL,
  *   synchronous=NORMAL, foreign_keys=ON, busy timeout 5 s.
@@ -10,15 +12,13 @@
  * - Every write runs inside BEGIN IMMEDIATE ... COMMIT (ROLLBACK on error), and
  *   every statement is stepped to completion and reset so no read snapshot is
  *   left open (it would block WAL checkpoints). */
-#include "queue.h"
+#include "queue_internal.h"
 
-#include <errno.h>
 #include <sqlite3.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
 #include <time.h>
 
 /* ------------------------------------------------------------------ schema */
@@ -69,35 +69,6 @@ static const struct migration migrations[] = {
     "cancel_requested, threads, wall_limit"
 
 #define FINAL_SQL "('successful','failed','dismissed')"
-
-enum {
-    S_BEGIN,
-    S_COMMIT,
-    S_ROLLBACK,
-    S_INSERT,
-    S_GET,
-    S_LOOKUP,
-    S_CLAIM,
-    S_SET_PID,
-    S_PROGRESS,
-    S_FINISH,
-    S_REQUEUE,
-    S_DISMISS,          /* accepted or running job -> dismissed/cancelled */
-    S_CANCEL_MARK,      /* cancel_requested = 1 on one row */
-    S_CANCEL_CHILDREN_ACCEPTED,
-    S_CANCEL_CHILDREN_RUNNING,
-    S_CANCEL_REQUESTS,
-    S_DELETE,
-    S_RECOVER_CANCELLED,
-    S_RECOVER_REQUEUE,
-    S_RECOVER_FAIL,
-    S_OPEN_STUDIES,
-    S_STUDY_AGG,
-    S_STUDY_UPDATE,
-    S_COUNTS,
-    S_LIST0, /* + bitmask: 1 status, 2 study_id, 4 process */
-    S_COUNT = S_LIST0 + 8
-};
 
 static const char *const stmt_sql[S_LIST0] = {
     [S_BEGIN] = "BEGIN IMMEDIATE",
@@ -160,23 +131,16 @@ static const char *const stmt_sql[S_LIST0] = {
                  " TOTAL(status IN " FINAL_SQL ") FROM jobs WHERE process='run'",
 };
 
-struct tq {
-    sqlite3 *db;
-    sqlite3_stmt *st[S_COUNT];
-    char err[512];
-};
-
 /* ------------------------------------------------------------------ helpers */
 
-static double now_seconds(void)
+double tqi_now_seconds(void)
 {
     struct timespec ts;
     clock_gettime(CLOCK_REALTIME, &ts);
     return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
 }
 
-static void set_err(struct tq *q, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void set_err(struct tq *q, const char *fmt, ...)
+void tqi_set_err(struct tq *q, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
@@ -184,9 +148,9 @@ static void set_err(struct tq *q, const char *fmt, ...)
     va_end(ap);
 }
 
-static void set_db_err(struct tq *q, const char *what)
+void tqi_set_db_err(struct tq *q, const char *what)
 {
-    set_err(q, "%s: %s", what, sqlite3_errmsg(q->db));
+    tqi_set_err(q, "%s: %s", what, sqlite3_errmsg(q->db));
 }
 
 const char *tq_last_error(struct tq *q)
@@ -194,102 +158,71 @@ const char *tq_last_error(struct tq *q)
     return q ? q->err : "no queue handle";
 }
 
-int tq_new_id(char out[TQ_ID_LEN + 1])
+int tqi_check_id(struct tq *q, const char *fn, const char *id)
 {
-    unsigned char b[TQ_ID_LEN / 2];
-    size_t got = 0;
-    while (got < sizeof b) {
-        ssize_t r = getrandom(b + got, sizeof b - got, 0);
-        if (r < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        got += (size_t)r;
-    }
-    static const char hex[] = "0123456789abcdef";
-    for (size_t i = 0; i < sizeof b; i++) {
-        out[2 * i] = hex[b[i] >> 4];
-        out[2 * i + 1] = hex[b[i] & 15];
-    }
-    out[TQ_ID_LEN] = '\0';
-    return 0;
-}
-
-/* Public entry points refuse a NULL handle (tq_last_error(NULL) explains). */
-#define NEED_Q(q)      \
-    do {               \
-        if (!(q))      \
-            return -1; \
-    } while (0)
-
-static int valid_id(const char *id)
-{
-    if (!id || !id[0])
+    if (job_key_valid(id))
         return 0;
-    size_t n = 0;
-    for (const char *c = id; *c; c++, n++) {
-        if (n >= TQ_ID_LEN)
-            return 0;
-        if (!((*c >= '0' && *c <= '9') || (*c >= 'a' && *c <= 'z') || (*c >= 'A' && *c <= 'Z') ||
-              *c == '_' || *c == '-'))
-            return 0;
-    }
-    return 1;
-}
-
-static int check_id(struct tq *q, const char *fn, const char *id)
-{
-    if (valid_id(id))
-        return 0;
-    set_err(q, "%s: invalid job id (1..%d characters of [0-9A-Za-z_-])", fn, TQ_ID_LEN);
+    tqi_set_err(q, "%s: invalid job id (1..%d characters of [0-9A-Za-z_-])", fn, TQ_ID_LEN);
     return -1;
 }
 
-static int is_final(const char *status)
+bool tq_status_final(const char *status)
 {
-    return !strcmp(status, TQ_SUCCESSFUL) || !strcmp(status, TQ_FAILED) ||
-           !strcmp(status, TQ_DISMISSED);
+    return status && (!strcmp(status, TQ_SUCCESSFUL) || !strcmp(status, TQ_FAILED) ||
+                      !strcmp(status, TQ_DISMISSED));
 }
 
-static void done_stmt(sqlite3_stmt *st)
+bool tq_status_valid(const char *status)
+{
+    return status && (!strcmp(status, TQ_ACCEPTED) || !strcmp(status, TQ_RUNNING) ||
+                      tq_status_final(status));
+}
+
+void tqi_done_stmt(sqlite3_stmt *st)
 {
     sqlite3_reset(st);
     sqlite3_clear_bindings(st);
 }
 
-static int bind_text(sqlite3_stmt *st, int i, const char *s)
+int tqi_bind_text(sqlite3_stmt *st, int i, const char *s)
 {
     return s ? sqlite3_bind_text(st, i, s, -1, SQLITE_TRANSIENT) : sqlite3_bind_null(st, i);
 }
 
 /* Steps a statement that returns no rows (or whose rows are ignored) to the end. */
-static int run_stmt(struct tq *q, sqlite3_stmt *st, const char *what)
+int tqi_run_stmt(struct tq *q, sqlite3_stmt *st, const char *what)
 {
     int rc;
     while ((rc = sqlite3_step(st)) == SQLITE_ROW)
         ;
     if (rc != SQLITE_DONE) {
-        set_db_err(q, what);
-        done_stmt(st);
+        tqi_set_db_err(q, what);
+        tqi_done_stmt(st);
         return -1;
     }
-    done_stmt(st);
+    tqi_done_stmt(st);
     return 0;
 }
 
-static int tx_begin(struct tq *q, const char *fn)
+int tqi_tx_begin(struct tq *q, const char *fn)
 {
     int rc = sqlite3_step(q->st[S_BEGIN]);
     sqlite3_reset(q->st[S_BEGIN]);
     if (rc != SQLITE_DONE) {
-        set_err(q, "%s: BEGIN IMMEDIATE: %s", fn, sqlite3_errstr(rc));
+        tqi_set_err(q, "%s: BEGIN IMMEDIATE: %s", fn, sqlite3_errstr(rc));
         return -1;
     }
     return 0;
 }
 
-static void tx_rollback(struct tq *q)
+int tqi_begin_for(struct tq *q, const char *fn, const char *id)
+{
+    if (!q || tqi_check_id(q, fn, id) < 0)
+        return -1;
+    return tqi_tx_begin(q, fn);
+}
+
+void tqi_tx_rollback(struct tq *q)
 {
     if (!sqlite3_get_autocommit(q->db)) {
         sqlite3_step(q->st[S_ROLLBACK]);
@@ -297,13 +230,13 @@ static void tx_rollback(struct tq *q)
     }
 }
 
-static int tx_commit(struct tq *q, const char *fn)
+int tqi_tx_commit(struct tq *q, const char *fn)
 {
     int rc = sqlite3_step(q->st[S_COMMIT]);
     sqlite3_reset(q->st[S_COMMIT]);
     if (rc != SQLITE_DONE) {
-        set_err(q, "%s: COMMIT: %s", fn, sqlite3_errstr(rc));
-        tx_rollback(q);
+        tqi_set_err(q, "%s: COMMIT: %s", fn, sqlite3_errstr(rc));
+        tqi_tx_rollback(q);
         return -1;
     }
     return 0;
@@ -311,24 +244,24 @@ static int tx_commit(struct tq *q, const char *fn)
 
 /* Ends a transaction: commit when rc >= 0, else roll back.  Returns rc, or -1
  * when the commit fails. */
-static int tx_end(struct tq *q, const char *fn, int rc)
+int tqi_tx_end(struct tq *q, const char *fn, int rc)
 {
     if (rc < 0) {
-        tx_rollback(q);
+        tqi_tx_rollback(q);
         return -1;
     }
-    if (tx_commit(q, fn) < 0)
+    if (tqi_tx_commit(q, fn) < 0)
         return -1;
     return rc;
 }
 
-static int copy_fixed(struct tq *q, char *dst, size_t size, sqlite3_stmt *st, int col,
+int tqi_copy_fixed(struct tq *q, char *dst, size_t size, sqlite3_stmt *st, int col,
                       const char *name)
 {
     const unsigned char *t = sqlite3_column_text(st, col);
     size_t len = t ? (size_t)sqlite3_column_bytes(st, col) : 0;
     if (len >= size) {
-        set_err(q, "stored %s is too long (%zu bytes)", name, len);
+        tqi_set_err(q, "stored %s is too long (%zu bytes)", name, len);
         return -1;
     }
     if (len)
@@ -337,20 +270,20 @@ static int copy_fixed(struct tq *q, char *dst, size_t size, sqlite3_stmt *st, in
     return 0;
 }
 
-static int copy_dyn(struct tq *q, char **dst, sqlite3_stmt *st, int col)
+int tqi_copy_dyn(struct tq *q, char **dst, sqlite3_stmt *st, int col)
 {
     *dst = NULL;
     if (sqlite3_column_type(st, col) == SQLITE_NULL)
         return 0;
     const unsigned char *t = sqlite3_column_text(st, col);
     if (!t) {
-        set_err(q, "out of memory reading a column");
+        tqi_set_err(q, "out of memory reading a column");
         return -1;
     }
     size_t len = (size_t)sqlite3_column_bytes(st, col);
     char *s = malloc(len + 1);
     if (!s) {
-        set_err(q, "out of memory (%zu bytes)", len + 1);
+        tqi_set_err(q, "out of memory (%zu bytes)", len + 1);
         return -1;
     }
     memcpy(s, t, len);
@@ -360,16 +293,16 @@ static int copy_dyn(struct tq *q, char **dst, sqlite3_stmt *st, int col)
 }
 
 /* Reads a row in JOB_COLS order.  On failure out is freed and zeroed. */
-static int read_job(struct tq *q, sqlite3_stmt *st, struct tq_job *out)
+int tqi_read_job(struct tq *q, sqlite3_stmt *st, struct tq_job *out)
 {
     memset(out, 0, sizeof *out);
-    if (copy_fixed(q, out->id, sizeof out->id, st, 0, "id") < 0 ||
-        copy_fixed(q, out->process, sizeof out->process, st, 1, "process") < 0 ||
-        copy_fixed(q, out->study_id, sizeof out->study_id, st, 2, "study_id") < 0 ||
-        copy_fixed(q, out->status, sizeof out->status, st, 4, "status") < 0 ||
-        copy_fixed(q, out->outcome, sizeof out->outcome, st, 5, "outcome") < 0 ||
-        copy_dyn(q, &out->message, st, 6) < 0 || copy_dyn(q, &out->input, st, 7) < 0 ||
-        copy_dyn(q, &out->params, st, 8) < 0 || copy_dyn(q, &out->cost, st, 9) < 0) {
+    if (tqi_copy_fixed(q, out->id, sizeof out->id, st, 0, "id") < 0 ||
+        tqi_copy_fixed(q, out->process, sizeof out->process, st, 1, "process") < 0 ||
+        tqi_copy_fixed(q, out->study_id, sizeof out->study_id, st, 2, "study_id") < 0 ||
+        tqi_copy_fixed(q, out->status, sizeof out->status, st, 4, "status") < 0 ||
+        tqi_copy_fixed(q, out->outcome, sizeof out->outcome, st, 5, "outcome") < 0 ||
+        tqi_copy_dyn(q, &out->message, st, 6) < 0 || tqi_copy_dyn(q, &out->input, st, 7) < 0 ||
+        tqi_copy_dyn(q, &out->params, st, 8) < 0 || tqi_copy_dyn(q, &out->cost, st, 9) < 0) {
         tq_job_free(out);
         return -1;
     }
@@ -401,46 +334,45 @@ void tq_job_free(struct tq_job *j)
     memset(j, 0, sizeof *j);
 }
 
-/* Row of S_LOOKUP. */
-struct lookup {
-    char process[16];
-    char status[16];
-    char study_id[TQ_ID_LEN + 1];
-    int cancel_requested;
-};
+void tq_jobs_free(struct tq_job *jobs, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        tq_job_free(&jobs[i]);
+    free(jobs);
+}
 
 /* 0 found, 1 not found, -1 error. */
-static int lookup(struct tq *q, const char *id, struct lookup *l)
+int tqi_lookup(struct tq *q, const char *id, struct tqi_lookup *l)
 {
     sqlite3_stmt *st = q->st[S_LOOKUP];
     memset(l, 0, sizeof *l);
-    bind_text(st, 1, id);
+    tqi_bind_text(st, 1, id);
     int rc = sqlite3_step(st);
     if (rc == SQLITE_ROW) {
-        if (copy_fixed(q, l->process, sizeof l->process, st, 0, "process") < 0 ||
-            copy_fixed(q, l->status, sizeof l->status, st, 1, "status") < 0 ||
-            copy_fixed(q, l->study_id, sizeof l->study_id, st, 2, "study_id") < 0) {
-            done_stmt(st);
+        if (tqi_copy_fixed(q, l->process, sizeof l->process, st, 0, "process") < 0 ||
+            tqi_copy_fixed(q, l->status, sizeof l->status, st, 1, "status") < 0 ||
+            tqi_copy_fixed(q, l->study_id, sizeof l->study_id, st, 2, "study_id") < 0) {
+            tqi_done_stmt(st);
             return -1;
         }
         l->cancel_requested = sqlite3_column_int(st, 3);
         rc = sqlite3_step(st);
     } else if (rc == SQLITE_DONE) {
-        done_stmt(st);
+        tqi_done_stmt(st);
         return 1;
     }
     if (rc != SQLITE_DONE) {
-        set_db_err(q, "lookup");
-        done_stmt(st);
+        tqi_set_db_err(q, "lookup");
+        tqi_done_stmt(st);
         return -1;
     }
-    done_stmt(st);
+    tqi_done_stmt(st);
     return 0;
 }
 
 /* Runs an UPDATE ... RETURNING study_id with bindings already made.  Returns 0
  * when a row changed (study filled, "" when none), 1 when none, -1 error. */
-static int update_returning_study(struct tq *q, sqlite3_stmt *st, const char *what,
+int tqi_update_returning_study(struct tq *q, sqlite3_stmt *st, const char *what,
                                   char study[TQ_ID_LEN + 1])
 {
     int changed = 0;
@@ -448,17 +380,17 @@ static int update_returning_study(struct tq *q, sqlite3_stmt *st, const char *wh
     study[0] = '\0';
     while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
         changed = 1;
-        if (copy_fixed(q, study, TQ_ID_LEN + 1, st, 0, "study_id") < 0) {
-            done_stmt(st);
+        if (tqi_copy_fixed(q, study, TQ_ID_LEN + 1, st, 0, "study_id") < 0) {
+            tqi_done_stmt(st);
             return -1;
         }
     }
     if (rc != SQLITE_DONE) {
-        set_db_err(q, what);
-        done_stmt(st);
+        tqi_set_db_err(q, what);
+        tqi_done_stmt(st);
         return -1;
     }
-    done_stmt(st);
+    tqi_done_stmt(st);
     return changed ? 0 : 1;
 }
 
@@ -649,649 +581,3 @@ void tq_close(struct tq *q)
     free(q);
 }
 
-/* ------------------------------------------------------------------ insert */
-
-static int check_job_fields(struct tq *q, const char *fn, const struct tq_job *j,
-                            const char *want_process)
-{
-    if (!j) {
-        set_err(q, "%s: no job", fn);
-        return -1;
-    }
-    if (check_id(q, fn, j->id) < 0)
-        return -1;
-    if (strcmp(j->process, "run") != 0 && strcmp(j->process, "study") != 0) {
-        set_err(q, "%s: process must be \"run\" or \"study\"", fn);
-        return -1;
-    }
-    if (want_process && strcmp(j->process, want_process) != 0) {
-        set_err(q, "%s: job %s must have process \"%s\"", fn, j->id, want_process);
-        return -1;
-    }
-    if (!j->input) {
-        set_err(q, "%s: job %s has no input", fn, j->id);
-        return -1;
-    }
-    if (j->study_id[0] && check_id(q, fn, j->study_id) < 0)
-        return -1;
-    return 0;
-}
-
-static int insert_row(struct tq *q, const struct tq_job *j, const char *study_id, long seq,
-                      double created)
-{
-    sqlite3_stmt *st = q->st[S_INSERT];
-    bind_text(st, 1, j->id);
-    bind_text(st, 2, j->process);
-    bind_text(st, 3, study_id && study_id[0] ? study_id : NULL);
-    sqlite3_bind_int64(st, 4, seq);
-    bind_text(st, 5, j->message);
-    bind_text(st, 6, j->input);
-    bind_text(st, 7, j->params);
-    sqlite3_bind_double(st, 8, created);
-    sqlite3_bind_int64(st, 9, j->threads);
-    sqlite3_bind_double(st, 10, j->wall_limit);
-    char what[TQ_ID_LEN + 32];
-    snprintf(what, sizeof what, "inserting job %s", j->id);
-    return run_stmt(q, st, what);
-}
-
-static int study_refresh_locked(struct tq *q, const char *study_id);
-
-int tq_insert(struct tq *q, const struct tq_job *j)
-{
-    NEED_Q(q);
-    if (check_job_fields(q, "tq_insert", j, NULL) < 0)
-        return -1;
-    if (tx_begin(q, "tq_insert") < 0)
-        return -1;
-    int rc = insert_row(q, j, j->study_id, j->study_id[0] ? j->seq : -1, now_seconds());
-    /* A child added to an existing study: the study must be one, and is refreshed. */
-    if (rc == 0 && j->study_id[0] && study_refresh_locked(q, j->study_id) != 0)
-        rc = -1;
-    return tx_end(q, "tq_insert", rc);
-}
-
-int tq_insert_study(struct tq *q, const struct tq_job *study, const struct tq_job *children,
-                    size_t n)
-{
-    NEED_Q(q);
-    if (check_job_fields(q, "tq_insert_study", study, "study") < 0)
-        return -1;
-    if (n == 0 || !children) {
-        set_err(q, "tq_insert_study: a study needs at least one child");
-        return -1;
-    }
-    for (size_t i = 0; i < n; i++)
-        if (check_job_fields(q, "tq_insert_study", &children[i], "run") < 0)
-            return -1;
-    if (tx_begin(q, "tq_insert_study") < 0)
-        return -1;
-    const double t = now_seconds();
-    int rc = insert_row(q, study, NULL, -1, t);
-    for (size_t i = 0; rc == 0 && i < n; i++)
-        rc = insert_row(q, &children[i], study->id,
-                        children[i].seq >= 0 ? children[i].seq : (long)i, t);
-    if (rc == 0 && study_refresh_locked(q, study->id) < 0)
-        rc = -1;
-    return tx_end(q, "tq_insert_study", rc);
-}
-
-/* ------------------------------------------------------------------ reads */
-
-int tq_get(struct tq *q, const char *id, struct tq_job *out)
-{
-    NEED_Q(q);
-    if (!out) {
-        set_err(q, "tq_get: no output");
-        return -1;
-    }
-    memset(out, 0, sizeof *out);
-    if (check_id(q, "tq_get", id) < 0)
-        return -1;
-    sqlite3_stmt *st = q->st[S_GET];
-    bind_text(st, 1, id);
-    int rc = sqlite3_step(st);
-    if (rc == SQLITE_DONE) {
-        done_stmt(st);
-        return 1;
-    }
-    if (rc != SQLITE_ROW) {
-        set_db_err(q, "tq_get");
-        done_stmt(st);
-        return -1;
-    }
-    if (read_job(q, st, out) < 0) {
-        done_stmt(st);
-        return -1;
-    }
-    rc = sqlite3_step(st);
-    done_stmt(st);
-    if (rc != SQLITE_DONE) {
-        set_db_err(q, "tq_get");
-        tq_job_free(out);
-        return -1;
-    }
-    return 0;
-}
-
-int tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
-            long limit, long offset, struct tq_job **out, size_t *n)
-{
-    NEED_Q(q);
-    if (!out || !n) {
-        set_err(q, "tq_list: no output");
-        return -1;
-    }
-    *out = NULL;
-    *n = 0;
-    if (limit < 1 || limit > 10000) {
-        set_err(q, "tq_list: limit must be in 1..10000 (got %ld)", limit);
-        return -1;
-    }
-    if (offset < 0) {
-        set_err(q, "tq_list: offset must be >= 0 (got %ld)", offset);
-        return -1;
-    }
-    const char *f[3] = {status, study_id, process};
-    int mask = 0;
-    for (int b = 0; b < 3; b++)
-        if (f[b] && f[b][0])
-            mask |= 1 << b;
-    sqlite3_stmt *st = q->st[S_LIST0 + mask];
-    for (int b = 0; b < 3; b++)
-        if (mask & (1 << b))
-            bind_text(st, b + 1, f[b]);
-    sqlite3_bind_int64(st, 4, limit);
-    sqlite3_bind_int64(st, 5, offset);
-
-    struct tq_job *a = NULL;
-    size_t cnt = 0, cap = 0;
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        if (cnt == cap) {
-            size_t ncap = cap ? 2 * cap : 16;
-            struct tq_job *na = realloc(a, ncap * sizeof *na);
-            if (!na) {
-                set_err(q, "tq_list: out of memory");
-                goto fail;
-            }
-            a = na;
-            cap = ncap;
-        }
-        if (read_job(q, st, &a[cnt]) < 0)
-            goto fail;
-        cnt++;
-    }
-    if (rc != SQLITE_DONE) {
-        set_db_err(q, "tq_list");
-        goto fail;
-    }
-    done_stmt(st);
-    *out = a;
-    *n = cnt;
-    return 0;
-fail:
-    done_stmt(st);
-    for (size_t i = 0; i < cnt; i++)
-        tq_job_free(&a[i]);
-    free(a);
-    return -1;
-}
-
-int tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n)
-{
-    NEED_Q(q);
-    if (!ids || !n) {
-        set_err(q, "tq_cancel_requests: no output");
-        return -1;
-    }
-    *ids = NULL;
-    *n = 0;
-    sqlite3_stmt *st = q->st[S_CANCEL_REQUESTS];
-    char (*a)[TQ_ID_LEN + 1] = NULL;
-    size_t cnt = 0, cap = 0;
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        if (cnt == cap) {
-            size_t ncap = cap ? 2 * cap : 8;
-            char (*na)[TQ_ID_LEN + 1] = realloc(a, ncap * sizeof *na);
-            if (!na) {
-                set_err(q, "tq_cancel_requests: out of memory");
-                goto fail;
-            }
-            a = na;
-            cap = ncap;
-        }
-        if (copy_fixed(q, a[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0)
-            goto fail;
-        cnt++;
-    }
-    if (rc != SQLITE_DONE) {
-        set_db_err(q, "tq_cancel_requests");
-        goto fail;
-    }
-    done_stmt(st);
-    *ids = a;
-    *n = cnt;
-    return 0;
-fail:
-    done_stmt(st);
-    free(a);
-    return -1;
-}
-
-int tq_counts(struct tq *q, long *accepted, long *running, long *final)
-{
-    NEED_Q(q);
-    sqlite3_stmt *st = q->st[S_COUNTS];
-    int rc = sqlite3_step(st);
-    if (rc != SQLITE_ROW) {
-        set_db_err(q, "tq_counts");
-        done_stmt(st);
-        return -1;
-    }
-    if (accepted)
-        *accepted = (long)sqlite3_column_int64(st, 0);
-    if (running)
-        *running = (long)sqlite3_column_int64(st, 1);
-    if (final)
-        *final = (long)sqlite3_column_int64(st, 2);
-    done_stmt(st);
-    return 0;
-}
-
-/* ------------------------------------------------------------------ studies */
-
-/* Recomputes the study row from its children; caller holds the write transaction.
- * 0, 1 no such study, -1 error. */
-static int study_refresh_locked(struct tq *q, const char *study_id)
-{
-    struct lookup l;
-    int rc = lookup(q, study_id, &l);
-    if (rc != 0)
-        return rc;
-    if (strcmp(l.process, "study") != 0) {
-        set_err(q, "tq_study_refresh: job %s is not a study", study_id);
-        return -1;
-    }
-    long acc = 0, run = 0, succ = 0, fail = 0, dism = 0;
-    double run_progress = 0, started = 0, finished = 0;
-    sqlite3_stmt *st = q->st[S_STUDY_AGG];
-    bind_text(st, 1, study_id);
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        const char *s = (const char *)sqlite3_column_text(st, 0);
-        long c = (long)sqlite3_column_int64(st, 1);
-        if (!s)
-            continue;
-        if (!strcmp(s, TQ_ACCEPTED))
-            acc += c;
-        else if (!strcmp(s, TQ_RUNNING)) {
-            run += c;
-            run_progress += sqlite3_column_double(st, 2);
-        } else if (!strcmp(s, TQ_SUCCESSFUL))
-            succ += c;
-        else if (!strcmp(s, TQ_FAILED))
-            fail += c;
-        else if (!strcmp(s, TQ_DISMISSED))
-            dism += c;
-        if (sqlite3_column_type(st, 3) != SQLITE_NULL) {
-            double s0 = sqlite3_column_double(st, 3);
-            if (started == 0 || s0 < started)
-                started = s0;
-        }
-        double f0 = sqlite3_column_double(st, 4);
-        if (f0 > finished)
-            finished = f0;
-    }
-    if (rc != SQLITE_DONE) {
-        set_db_err(q, "tq_study_refresh");
-        done_stmt(st);
-        return -1;
-    }
-    done_stmt(st);
-
-    const long n = acc + run + succ + fail + dism;
-    if (n == 0)
-        return 0; /* nothing to aggregate; leave the row as it is */
-    const long fin = succ + fail + dism;
-    const char *status, *outcome = "";
-    char msg[128];
-    const char *message = msg;
-    double progress = (100.0 * (double)fin + run_progress) / (double)n;
-    if (fin == n) {
-        if (succ == n) {
-            status = TQ_SUCCESSFUL;
-            outcome = "successful";
-            progress = 100.0;
-            snprintf(msg, sizeof msg, "all %ld children successful", n);
-        } else if (l.cancel_requested) {
-            status = TQ_DISMISSED;
-            outcome = "cancelled";
-            snprintf(msg, sizeof msg, "cancelled: %ld of %ld children failed/dismissed",
-                     fail + dism, n);
-        } else {
-            status = TQ_FAILED;
-            snprintf(msg, sizeof msg, "%ld of %ld children failed/dismissed", fail + dism, n);
-        }
-    } else {
-        finished = 0;
-        if (acc == n) {
-            status = TQ_ACCEPTED;
-            message = NULL;
-            started = 0;
-        } else {
-            status = TQ_RUNNING;
-            snprintf(msg, sizeof msg, "%ld of %ld children finished", fin, n);
-        }
-    }
-    if (progress < 0)
-        progress = 0;
-    if (progress > 100)
-        progress = 100;
-    st = q->st[S_STUDY_UPDATE];
-    bind_text(st, 1, study_id);
-    bind_text(st, 2, status);
-    bind_text(st, 3, outcome);
-    bind_text(st, 4, message);
-    sqlite3_bind_double(st, 5, progress);
-    sqlite3_bind_double(st, 6, started);
-    sqlite3_bind_double(st, 7, finished);
-    return run_stmt(q, st, "tq_study_refresh: update");
-}
-
-int tq_study_refresh(struct tq *q, const char *study_id)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_study_refresh", study_id) < 0)
-        return -1;
-    if (tx_begin(q, "tq_study_refresh") < 0)
-        return -1;
-    return tx_end(q, "tq_study_refresh", study_refresh_locked(q, study_id));
-}
-
-/* Refreshes the study of a child when study is non-empty; keeps rc otherwise. */
-static int refresh_parent(struct tq *q, const char *study, int rc)
-{
-    if (rc == 0 && study[0] && study_refresh_locked(q, study) < 0)
-        return -1;
-    return rc;
-}
-
-/* ------------------------------------------------------------------ state changes */
-
-int tq_claim_next(struct tq *q, struct tq_job *out)
-{
-    NEED_Q(q);
-    if (!out) {
-        set_err(q, "tq_claim_next: no output");
-        return -1;
-    }
-    memset(out, 0, sizeof *out);
-    if (tx_begin(q, "tq_claim_next") < 0)
-        return -1;
-    sqlite3_stmt *st = q->st[S_CLAIM];
-    sqlite3_bind_double(st, 1, now_seconds());
-    int rc = sqlite3_step(st), ret;
-    if (rc == SQLITE_DONE) {
-        ret = 1;
-    } else if (rc == SQLITE_ROW) {
-        ret = read_job(q, st, out);
-        if (ret == 0 && (rc = sqlite3_step(st)) != SQLITE_DONE) {
-            set_db_err(q, "tq_claim_next");
-            ret = -1;
-        }
-    } else {
-        set_db_err(q, "tq_claim_next");
-        ret = -1;
-    }
-    done_stmt(st);
-    if (ret == 0)
-        ret = refresh_parent(q, out->study_id, 0);
-    ret = tx_end(q, "tq_claim_next", ret);
-    if (ret != 0)
-        tq_job_free(out);
-    return ret;
-}
-
-int tq_set_pid(struct tq *q, const char *id, long pid)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_set_pid", id) < 0)
-        return -1;
-    if (tx_begin(q, "tq_set_pid") < 0)
-        return -1;
-    sqlite3_stmt *st = q->st[S_SET_PID];
-    bind_text(st, 1, id);
-    sqlite3_bind_int64(st, 2, pid);
-    int rc = run_stmt(q, st, "tq_set_pid");
-    if (rc == 0 && sqlite3_changes(q->db) == 0)
-        rc = 1;
-    return tx_end(q, "tq_set_pid", rc);
-}
-
-int tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
-                       double end_time, long step, double eta)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_update_progress", id) < 0)
-        return -1;
-    if (!(progress >= 0)) /* also NaN */
-        progress = 0;
-    if (progress > 100)
-        progress = 100;
-    if (tx_begin(q, "tq_update_progress") < 0)
-        return -1;
-    sqlite3_stmt *st = q->st[S_PROGRESS];
-    bind_text(st, 1, id);
-    sqlite3_bind_double(st, 2, progress);
-    sqlite3_bind_double(st, 3, sim_time);
-    sqlite3_bind_double(st, 4, end_time);
-    sqlite3_bind_int64(st, 5, step);
-    sqlite3_bind_double(st, 6, eta);
-    char study[TQ_ID_LEN + 1];
-    int rc = update_returning_study(q, st, "tq_update_progress", study);
-    return tx_end(q, "tq_update_progress", refresh_parent(q, study, rc));
-}
-
-int tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
-              const char *message, const char *cost_json)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_finish", id) < 0)
-        return -1;
-    if (!status || !is_final(status)) {
-        set_err(q, "tq_finish: status must be successful, failed or dismissed");
-        return -1;
-    }
-    if (!outcome)
-        outcome = "";
-    if (strlen(outcome) >= sizeof ((struct tq_job *)0)->outcome) {
-        set_err(q, "tq_finish: outcome \"%.32s\" is too long", outcome);
-        return -1;
-    }
-    if (tx_begin(q, "tq_finish") < 0)
-        return -1;
-    sqlite3_stmt *st = q->st[S_FINISH];
-    bind_text(st, 1, id);
-    bind_text(st, 2, status);
-    bind_text(st, 3, outcome);
-    bind_text(st, 4, message);
-    bind_text(st, 5, cost_json);
-    sqlite3_bind_double(st, 6, now_seconds());
-    char study[TQ_ID_LEN + 1];
-    int rc = update_returning_study(q, st, "tq_finish", study);
-    return tx_end(q, "tq_finish", refresh_parent(q, study, rc));
-}
-
-int tq_requeue(struct tq *q, const char *id, const char *message)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_requeue", id) < 0)
-        return -1;
-    if (tx_begin(q, "tq_requeue") < 0)
-        return -1;
-    struct lookup l;
-    int rc = lookup(q, id, &l);
-    char study[TQ_ID_LEN + 1] = "";
-    if (rc == 0 && (strcmp(l.status, TQ_RUNNING) != 0 || strcmp(l.process, "run") != 0))
-        rc = 1;
-    if (rc == 0 && l.cancel_requested) {
-        /* A cancel was pending: honour it instead of running the job again. */
-        sqlite3_stmt *st = q->st[S_DISMISS];
-        bind_text(st, 1, id);
-        bind_text(st, 2, "cancelled (stopped before it finished)");
-        sqlite3_bind_double(st, 3, now_seconds());
-        rc = run_stmt(q, st, "tq_requeue");
-        snprintf(study, sizeof study, "%s", l.study_id);
-    } else if (rc == 0) {
-        sqlite3_stmt *st = q->st[S_REQUEUE];
-        bind_text(st, 1, id);
-        bind_text(st, 2, message);
-        rc = update_returning_study(q, st, "tq_requeue", study);
-    }
-    return tx_end(q, "tq_requeue", refresh_parent(q, study, rc));
-}
-
-int tq_request_cancel(struct tq *q, const char *id)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_request_cancel", id) < 0)
-        return -1;
-    if (tx_begin(q, "tq_request_cancel") < 0)
-        return -1;
-    struct lookup l;
-    int rc = lookup(q, id, &l);
-    const double t = now_seconds();
-    if (rc != 0 || is_final(l.status))
-        return tx_end(q, "tq_request_cancel", rc);
-    sqlite3_stmt *st;
-    if (!strcmp(l.process, "study")) {
-        st = q->st[S_CANCEL_MARK];
-        bind_text(st, 1, id);
-        rc = run_stmt(q, st, "tq_request_cancel: study");
-        if (rc == 0) {
-            st = q->st[S_CANCEL_CHILDREN_ACCEPTED];
-            bind_text(st, 1, id);
-            bind_text(st, 2, "cancelled before it started");
-            sqlite3_bind_double(st, 3, t);
-            rc = run_stmt(q, st, "tq_request_cancel: children");
-        }
-        if (rc == 0) {
-            st = q->st[S_CANCEL_CHILDREN_RUNNING];
-            bind_text(st, 1, id);
-            rc = run_stmt(q, st, "tq_request_cancel: children");
-        }
-        if (rc == 0)
-            rc = study_refresh_locked(q, id);
-        return tx_end(q, "tq_request_cancel", rc < 0 ? -1 : 0);
-    }
-    if (!strcmp(l.status, TQ_ACCEPTED)) {
-        st = q->st[S_DISMISS];
-        bind_text(st, 1, id);
-        bind_text(st, 2, "cancelled before it started");
-        sqlite3_bind_double(st, 3, t);
-        rc = run_stmt(q, st, "tq_request_cancel");
-    } else {
-        st = q->st[S_CANCEL_MARK];
-        bind_text(st, 1, id);
-        rc = run_stmt(q, st, "tq_request_cancel");
-    }
-    return tx_end(q, "tq_request_cancel", refresh_parent(q, l.study_id, rc));
-}
-
-int tq_delete(struct tq *q, const char *id)
-{
-    NEED_Q(q);
-    if (check_id(q, "tq_delete", id) < 0)
-        return -1;
-    if (tx_begin(q, "tq_delete") < 0)
-        return -1;
-    struct lookup l;
-    int rc = lookup(q, id, &l);
-    if (rc == 0 && !is_final(l.status))
-        rc = 2;
-    if (rc == 0 && l.study_id[0]) {
-        struct lookup parent;
-        int prc = lookup(q, l.study_id, &parent);
-        if (prc < 0)
-            rc = -1;
-        else if (prc == 0 && !is_final(parent.status))
-            rc = 2;
-    }
-    if (rc == 0) {
-        sqlite3_stmt *st = q->st[S_DELETE];
-        bind_text(st, 1, id);
-        rc = run_stmt(q, st, "tq_delete");
-    }
-    return tx_end(q, "tq_delete", rc);
-}
-
-int tq_recover(struct tq *q, int max_attempts)
-{
-    NEED_Q(q);
-    if (tx_begin(q, "tq_recover") < 0)
-        return -1;
-    const double t = now_seconds();
-    long touched = 0;
-    int rc = 0;
-    sqlite3_stmt *st = q->st[S_RECOVER_CANCELLED];
-    sqlite3_bind_double(st, 1, t);
-    if (run_stmt(q, st, "tq_recover") < 0)
-        rc = -1;
-    else
-        touched += sqlite3_changes(q->db);
-    if (rc == 0) {
-        st = q->st[S_RECOVER_REQUEUE];
-        sqlite3_bind_int(st, 1, max_attempts);
-        if (run_stmt(q, st, "tq_recover") < 0)
-            rc = -1;
-        else
-            touched += sqlite3_changes(q->db);
-    }
-    if (rc == 0) {
-        st = q->st[S_RECOVER_FAIL];
-        sqlite3_bind_double(st, 1, t);
-        if (run_stmt(q, st, "tq_recover") < 0)
-            rc = -1;
-        else
-            touched += sqlite3_changes(q->db);
-    }
-    /* Refresh every unfinished study (self-healing after a crash mid-way). */
-    char (*ids)[TQ_ID_LEN + 1] = NULL;
-    size_t cnt = 0, cap = 0;
-    if (rc == 0) {
-        int src;
-        st = q->st[S_OPEN_STUDIES];
-        while ((src = sqlite3_step(st)) == SQLITE_ROW) {
-            if (cnt == cap) {
-                size_t ncap = cap ? 2 * cap : 8;
-                char (*na)[TQ_ID_LEN + 1] = realloc(ids, ncap * sizeof *na);
-                if (!na) {
-                    set_err(q, "tq_recover: out of memory");
-                    rc = -1;
-                    break;
-                }
-                ids = na;
-                cap = ncap;
-            }
-            if (copy_fixed(q, ids[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0) {
-                rc = -1;
-                break;
-            }
-            cnt++;
-        }
-        if (rc == 0 && src != SQLITE_DONE) {
-            set_db_err(q, "tq_recover");
-            rc = -1;
-        }
-        done_stmt(st);
-    }
-    for (size_t i = 0; rc == 0 && i < cnt; i++)
-        if (study_refresh_locked(q, ids[i]) < 0)
-            rc = -1;
-    free(ids);
-    if (tx_end(q, "tq_recover", rc) < 0)
-        return -1;
-    return touched > 2147483647L ? 2147483647 : (int)touched;
-}

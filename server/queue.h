@@ -11,9 +11,12 @@
 #ifndef TLSPHD_QUEUE_H
 #define TLSPHD_QUEUE_H
 
+#include <stdbool.h>
 #include <stddef.h>
 
-#define TQ_ID_LEN 32 /* 128 random bits as lowercase hex */
+#include "jobid.h"
+
+#define TQ_ID_LEN JOB_ID_LEN
 
 /* OGC status values */
 #define TQ_ACCEPTED "accepted"
@@ -21,6 +24,11 @@
 #define TQ_SUCCESSFUL "successful"
 #define TQ_FAILED "failed"
 #define TQ_DISMISSED "dismissed"
+
+/* successful, failed or dismissed: the job will not change any more. */
+bool tq_status_final(const char *status);
+/* One of the five status values above. */
+bool tq_status_valid(const char *status);
 
 struct tq_job {
     char id[TQ_ID_LEN + 1];
@@ -51,56 +59,67 @@ struct tq; /* opaque: one SQLite connection and its prepared statements */
 int tq_open(const char *path, struct tq **out, char *err, size_t errsize);
 void tq_close(struct tq *q);
 void tq_job_free(struct tq_job *j);
+/* Frees an array of n jobs from tq_list and the array. */
+void tq_jobs_free(struct tq_job *jobs, size_t n);
 /* [added] Message of the last error on this handle ("" if none); valid until the
  * next call on the handle.  Every function below that returns -1 sets it. */
 const char *tq_last_error(struct tq *q);
-/* [added] Fills out with a fresh id: 128 random bits (getrandom) as 32 lowercase
- * hex digits.  0 or -1. */
-int tq_new_id(char out[TQ_ID_LEN + 1]);
 
-/* Common conventions (all functions): ids are 1..TQ_ID_LEN characters of
- * [0-9A-Za-z_-]; a tq_job filled by tq_get/tq_list/tq_claim_next is fully
- * overwritten (zeroed and tq_job_free-safe when nothing is returned).
- * Functions that change one job return 0 changed, 1 no such job or the job is
- * not in a state the change applies to (nothing changed), -1 error. */
+/* What the functions below return (errmsg.h: a named status, never a bare
+ * number).  The values are fixed: older callers compare with -1, 0, 1, 2. */
+enum tq_rc {
+    TQ_ERROR = -1,    /* failed; tq_last_error says why (busy database, bad argument) */
+    TQ_OK = 0,        /* done */
+    TQ_NOT_FOUND = 1, /* no such job, or none in the state the call applies to
+                       * (nothing changed; tq_claim_next: nothing queued) */
+    TQ_NOT_FINAL = 2  /* tq_delete: the job or its study is still accepted or running */
+};
+
+/* Common conventions (all functions): ids are keys in the sense of
+ * job_key_valid (jobid.h; new ids come from job_id_new); a tq_job filled by
+ * tq_get/tq_list/tq_claim_next is fully overwritten (zeroed and
+ * tq_job_free-safe when nothing is returned). */
 
 /* Inserts a job (id, process, input, ... as given; status accepted, created now).
- * Returns 0, or -1 on error. */
-int tq_insert(struct tq *q, const struct tq_job *j);
+ * TQ_OK or TQ_ERROR. */
+enum tq_rc tq_insert(struct tq *q, const struct tq_job *j);
 /* Inserts a study and its children in one transaction. */
-int tq_insert_study(struct tq *q, const struct tq_job *study, const struct tq_job *children,
-                    size_t n);
-/* 0 found, 1 no such job, -1 error. */
-int tq_get(struct tq *q, const char *id, struct tq_job *out);
+enum tq_rc tq_insert_study(struct tq *q, const struct tq_job *study,
+                           const struct tq_job *children, size_t n);
+/* TQ_OK found, TQ_NOT_FOUND, TQ_ERROR. */
+enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out);
 /* Jobs newest first; NULL/"" filters are ignored. *out is an array of *n jobs
- * (free each with tq_job_free, then free(*out)). */
-int tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
-            long limit, long offset, struct tq_job **out, size_t *n);
+ * (tq_jobs_free).  TQ_OK or TQ_ERROR. */
+enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
+                   long limit, long offset, struct tq_job **out, size_t *n);
 /* Atomically moves the oldest accepted job (not a study parent) to running
- * (attempts+1, started = now, outcome "") and returns it: 0 claimed, 1 none, -1 error. */
-int tq_claim_next(struct tq *q, struct tq_job *out);
-int tq_set_pid(struct tq *q, const char *id, long pid);
-int tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
-                       double end_time, long step, double eta);
+ * (attempts+1, started = now, outcome "") and returns it: TQ_OK claimed,
+ * TQ_NOT_FOUND none queued, TQ_ERROR. */
+enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out);
+/* These two change a running run job only (else TQ_NOT_FOUND). */
+enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid);
+enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
+                              double end_time, long step, double eta);
 /* Final state of a run job: status successful/failed/dismissed, outcome, message, cost (may be NULL).
- * Only jobs that are running or accepted change (else 1); finished = now, pid = 0,
+ * Only jobs that are running or accepted change (else TQ_NOT_FOUND); finished = now, pid = 0,
  * progress = 100 when successful; cost NULL keeps the stored cost.  A study child
  * refreshes its study in the same transaction. */
-int tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
-              const char *message, const char *cost_json);
+enum tq_rc tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
+                     const char *message, const char *cost_json);
 /* Puts a running job back in the queue (daemon restart, shutdown): status accepted,
  * pid 0, progress reset; attempts is kept.  A running job with cancel_requested
- * is dismissed (outcome cancelled) instead.  0, 1 not running, -1. */
-int tq_requeue(struct tq *q, const char *id, const char *message);
+ * is dismissed (outcome cancelled) instead.  TQ_NOT_FOUND: not running. */
+enum tq_rc tq_requeue(struct tq *q, const char *id, const char *message);
 /* Cancel: accepted -> dismissed now (outcome cancelled); running -> cancel_requested = 1
  * (the supervisor stops it and finishes it as dismissed); final -> no change.
- * For a study, applies to every child.  0 done, 1 no such job, -1 error. */
-int tq_request_cancel(struct tq *q, const char *id);
-/* Ids of running jobs with cancel_requested = 1 (array of *n ids, free(*ids)). */
-int tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n);
-/* Removes a job in a final state (and a study's children). 0, 1 no such job, 2 not final, -1.
- * A study child whose study is not final is refused with 2 too. */
-int tq_delete(struct tq *q, const char *id);
+ * For a study, applies to every child.  TQ_OK, TQ_NOT_FOUND, TQ_ERROR. */
+enum tq_rc tq_request_cancel(struct tq *q, const char *id);
+/* Ids of running jobs with cancel_requested = 1 (array of *n ids, free(*ids)).
+ * TQ_OK or TQ_ERROR. */
+enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n);
+/* Removes a job in a final state (and a study's children): TQ_OK, TQ_NOT_FOUND,
+ * TQ_NOT_FINAL (also for a study child whose study is not final), TQ_ERROR. */
+enum tq_rc tq_delete(struct tq *q, const char *id);
 /* Start-up recovery: every job left "running" by a previous daemon is requeued
  * when attempts < max_attempts, else failed with outcome "interrupted".
  * Returns the number of jobs touched, or -1. */
@@ -110,10 +129,11 @@ int tq_recover(struct tq *q, int max_attempts);
  * All children final: successful if all successful, else failed ("k of n children
  * failed/dismissed"), or dismissed (outcome cancelled) if the study was cancelled.
  * All accepted: accepted.  Otherwise running.  progress = (100 * final + sum of
- * running children's progress) / n.  0, 1 no such study, -1 (also: not a study). */
-int tq_study_refresh(struct tq *q, const char *study_id);
+ * running children's progress) / n.  TQ_OK, TQ_NOT_FOUND, TQ_ERROR (also: not a study). */
+enum tq_rc tq_study_refresh(struct tq *q, const char *study_id);
 /* Number of jobs in each state (for /healthz and tests).  Counts run jobs only
- * (study children included, study parents not); any pointer may be NULL. */
-int tq_counts(struct tq *q, long *accepted, long *running, long *final);
+ * (study children included, study parents not); any pointer may be NULL.
+ * TQ_OK or TQ_ERROR. */
+enum tq_rc tq_counts(struct tq *q, long *accepted, long *running, long *final);
 
 #endif

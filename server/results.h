@@ -9,6 +9,14 @@
 #include <stddef.h>
 #include <jansson.h>
 
+/* What tres_field and tres_series_reduce return (errmsg.h). */
+enum tres_rc {
+    TRES_ERROR = -1,       /* err says why */
+    TRES_OK = 0,
+    TRES_NOT_FOUND = 1,    /* no such series or field */
+    TRES_NO_SUCH_FRAME = 2 /* tres_field: the frame is out of range */
+};
+
 /* Names of the available series: "kinetic_energy", ..., "groups/<bc>/reaction_force".
  * Returns a JSON array of {"name","units","components"} or NULL with err. */
 json_t *tres_series_list(const char *h5path, char *err, size_t errsize);
@@ -33,23 +41,27 @@ struct tres_field {
     long step;
 };
 /* Field `name` (a frame field) at frame k (negative: from the end, -1 = last);
- * reference fields (id, volume, ...) ignore frame.  0 ok, 1 no such field,
- * 2 no such frame, -1 error (err). */
-int tres_field(const char *h5path, const char *name, long frame, struct tres_field *out,
-               char *err, size_t errsize);
+ * reference fields (id, volume, ...) ignore frame. */
+enum tres_rc tres_field(const char *h5path, const char *name, long frame,
+                        struct tres_field *out, char *err, size_t errsize);
 void tres_field_free(struct tres_field *f);
 /* The field as JSON {"name","units","frame","time","shape":[N,C],"data":[...]} (small N). */
 json_t *tres_field_json(const struct tres_field *f, const char *name, long frame);
 /* Frames: [{"index","step","time"}]. */
 json_t *tres_frames(const char *h5path, char *err, size_t errsize);
 /* Final value (last row), max and min of a scalar series or of component c of a
- * vector series (c = -1 for the magnitude). 0 ok, 1 not found, -1 error. */
-int tres_series_reduce(const char *h5path, const char *name, int component, double *final,
-                       double *max, double *min, char *err, size_t errsize);
+ * vector series (c = -1 for the magnitude): TRES_OK, TRES_NOT_FOUND, TRES_ERROR. */
+enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
+                                double *final, double *max, double *min, char *err,
+                                size_t errsize);
 
-/* [added] Name checks applied before any HDF5 path is built (1 ok, 0 rejected).
+/* The one definition of a valid result name, checked before any HDF5 path is
+ * built (1 ok, 0 rejected); the routes refuse other names up front with the
+ * same words (TRES_NO_SERIES, TRES_NO_FIELD, printf formats of the name).
  * Series: [A-Za-z0-9_./-], at most 200 characters, no "..", no leading or
  * trailing "/", no empty or "." segment.  Field: [A-Za-z0-9_], at most 64. */
+#define TRES_NO_SERIES "no series named \"%.60s\""
+#define TRES_NO_FIELD "no field named \"%.60s\""
 int tres_series_name_ok(const char *name);
 int tres_field_name_ok(const char *name);
 

@@ -1,5 +1,7 @@
-/* The tlsphd API (server/routes.c): OGC API - Processes 1.0 style resources
- * over the queue, the supervisor, results.c and study.c.
+/* The tlsphd API: OGC API - Processes 1.0 style resources over the jobs
+ * service, the queue, results.c and study.c.  One route table and its matcher
+ * in routes.c; the handlers by resource in routes_meta.c, routes_jobs.c and
+ * routes_results.c (route.h is their shared interface).
  *
  * Threads (see http.h): routes run on the MHD thread with app->q (its own
  * queue handle) and only do short queue reads/writes and file opens; scene

@@ -12,6 +12,7 @@
 #include <string.h>
 
 #include "results.h"
+#include "strbuf.h"
 
 #define MAX_PARAMETERS 16
 #define MAX_VALUES 1000
@@ -645,7 +646,8 @@ json_t *tstudy_summary(const json_t *study, const struct tstudy_row *rows, size_
             char err[256];
             json_t *cell = json_null();
             if (row->h5path && series &&
-                tres_series_reduce(row->h5path, series, comp, &fin, &mx, &mn, err, sizeof err) == 0) {
+                tres_series_reduce(row->h5path, series, comp, &fin, &mx, &mn, err,
+                                   sizeof err) == TRES_OK) {
                 json_decref(cell);
                 if (reduce && strcmp(reduce, "max") == 0)
                     cell = real_or_null(mx);
@@ -672,49 +674,21 @@ fail:
     return NULL;
 }
 
-/* Growing text buffer. */
-struct sbuf {
-    char *p;
-    size_t len, cap;
-    int oom;
-};
-
-static void sb_add(struct sbuf *b, const char *s, size_t n)
-{
-    if (b->oom)
-        return;
-    if (b->len + n + 1 > b->cap) {
-        size_t cap = b->cap ? b->cap : 1024;
-        while (cap < b->len + n + 1)
-            cap *= 2;
-        char *q = realloc(b->p, cap);
-        if (!q) {
-            b->oom = 1;
-            return;
-        }
-        b->p = q;
-        b->cap = cap;
-    }
-    memcpy(b->p + b->len, s, n);
-    b->len += n;
-    b->p[b->len] = '\0';
-}
-
 /* RFC 4180 field: quoted when it contains , " CR or LF (quotes doubled). */
-static void csv_field(struct sbuf *b, const char *s)
+static void csv_field(struct strbuf *b, const char *s)
 {
     if (!strpbrk(s, ",\"\r\n")) {
-        sb_add(b, s, strlen(s));
+        strbuf_add(b, s, strlen(s));
         return;
     }
-    sb_add(b, "\"", 1);
+    strbuf_add(b, "\"", 1);
     for (const char *q = s; *q; q++) {
         if (*q == '"')
-            sb_add(b, "\"\"", 2);
+            strbuf_add(b, "\"\"", 2);
         else
-            sb_add(b, q, 1);
+            strbuf_add(b, q, 1);
     }
-    sb_add(b, "\"", 1);
+    strbuf_add(b, "\"", 1);
 }
 
 /* Shortest %.Ng (N = 15..17) that reads back exactly. */
@@ -727,7 +701,7 @@ static void fmt_real(char *buf, size_t size, double v)
     }
 }
 
-static void csv_value(struct sbuf *b, const json_t *v)
+static void csv_value(struct strbuf *b, const json_t *v)
 {
     char buf[64];
     switch (json_typeof(v)) {
@@ -736,17 +710,17 @@ static void csv_value(struct sbuf *b, const json_t *v)
         break;
     case JSON_INTEGER:
         snprintf(buf, sizeof buf, "%" JSON_INTEGER_FORMAT, json_integer_value(v));
-        sb_add(b, buf, strlen(buf));
+        strbuf_add(b, buf, strlen(buf));
         break;
     case JSON_REAL:
         fmt_real(buf, sizeof buf, json_real_value(v));
-        sb_add(b, buf, strlen(buf));
+        strbuf_add(b, buf, strlen(buf));
         break;
     case JSON_TRUE:
-        sb_add(b, "true", 4);
+        strbuf_add(b, "true", 4);
         break;
     case JSON_FALSE:
-        sb_add(b, "false", 5);
+        strbuf_add(b, "false", 5);
         break;
     case JSON_NULL:
         break;
@@ -756,7 +730,7 @@ static void csv_value(struct sbuf *b, const json_t *v)
             csv_field(b, s);
             free(s);
         } else {
-            b->oom = 1;
+            b->oom = true;
         }
     }
     }
@@ -767,27 +741,22 @@ char *tstudy_summary_csv(const json_t *summary)
     json_t *columns = json_object_get(summary, "columns"), *rows = json_object_get(summary, "rows");
     if (!json_is_array(columns) || !json_is_array(rows))
         return NULL;
-    struct sbuf b = {0};
-    sb_add(&b, "", 0);
+    struct strbuf b = {0};
     size_t i, r;
     json_t *v, *row;
     json_array_foreach(columns, i, v) {
         if (i)
-            sb_add(&b, ",", 1);
+            strbuf_add(&b, ",", 1);
         csv_value(&b, v);
     }
-    sb_add(&b, "\r\n", 2);
+    strbuf_add(&b, "\r\n", 2);
     json_array_foreach(rows, r, row) {
         json_array_foreach(row, i, v) {
             if (i)
-                sb_add(&b, ",", 1);
+                strbuf_add(&b, ",", 1);
             csv_value(&b, v);
         }
-        sb_add(&b, "\r\n", 2);
+        strbuf_add(&b, "\r\n", 2);
     }
-    if (b.oom) {
-        free(b.p);
-        return NULL;
-    }
-    return b.p;
+    return strbuf_take(&b);
 }

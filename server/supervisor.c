@@ -12,21 +12,18 @@
 #ifndef _GNU_SOURCE
 #define _GNU_SOURCE
 #endif
-#include <stddef.h> /* supervisor.h uses size_t without including it */
-
 #include "supervisor.h"
-#include "queue.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <jansson.h>
 #include <limits.h>
 #include <poll.h>
 #include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdatomic.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,40 +32,32 @@
 #include <sys/stat.h>
 #include <sys/types.h>
 #include <sys/wait.h>
-#include <time.h>
 #include <unistd.h>
+
+#include "engine_report.h"
+#include "errmsg.h"
+#include "jobdir.h"
+#include "queue.h"
+#include "util/clock.h"
 
 #define TSUP_TICK_MS 200             /* poll timeout: reaping, limits, cancels */
 #define TSUP_CLAIM_INTERVAL 1.0      /* s between claim attempts when not woken */
 #define TSUP_PROGRESS_INTERVAL 0.25  /* s between queue progress writes per job */
-#define TSUP_LINE_MAX (256 * 1024)   /* longest progress line kept */
-#define TSUP_LOG_TAIL 4096           /* bytes of log.txt read for messages */
 #define TSUP_NOFILE 256              /* RLIMIT_NOFILE of an engine */
 
-enum stop_reason { R_NONE = 0, R_CANCEL, R_TIMEOUT, R_SHUTDOWN };
-
 struct child {
-    int used;
-    char id[TQ_ID_LEN + 1];
+    bool used;
+    char id[JOB_ID_LEN + 1];
     pid_t pid;
     int fd;                  /* progress pipe read end, -1 once closed */
-    char *line;              /* partial line */
-    size_t len, cap;
-    int overflow;            /* discarding an over-long line */
     double t_start;          /* monotonic */
     double wall_limit;       /* s, <= 0 none */
-    enum stop_reason reason;
+    enum engine_stop reason;
     double t_term;           /* monotonic time SIGTERM was sent, 0 none */
-    int killed;              /* SIGKILL sent */
-    /* progress */
-    double end_time, sim_time, eta;
-    long step;
-    int pending;             /* progress not yet written to the queue */
+    bool killed;             /* SIGKILL sent */
+    struct engine_report report;
+    bool pending;            /* progress not yet written to the queue */
     double t_update;         /* monotonic time of the last queue write */
-    /* finished line */
-    char *fin_status;
-    char *cost;              /* JSON text */
-    char *diag;              /* diagnostic message */
 };
 
 struct tsup {
@@ -96,207 +85,11 @@ struct tsup {
     pid_t self;
 };
 
-/* ------------------------------------------------------------------ helpers */
-
-static double now_mono(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + (double)ts.tv_nsec * 1e-9;
-}
-
-static void set_err(char *err, size_t errsize, const char *fmt, ...)
-    __attribute__((format(printf, 3, 4)));
-static void set_err(char *err, size_t errsize, const char *fmt, ...)
-{
-    if (!err || errsize == 0)
-        return;
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(err, errsize, fmt, ap);
-    va_end(ap);
-}
-
-static void logmsg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static void logmsg(const char *fmt, ...)
-{
-    char buf[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(buf, sizeof buf, fmt, ap);
-    va_end(ap);
-    fprintf(stderr, "tlsphd: supervisor: %s\n", buf);
-}
-
-static int valid_id(const char *id)
-{
-    if (!id)
-        return 0;
-    size_t i;
-    for (i = 0; id[i]; i++) {
-        if (i >= TQ_ID_LEN)
-            return 0;
-        char c = id[i];
-        if (!((c >= '0' && c <= '9') || (c >= 'a' && c <= 'f')))
-            return 0;
-    }
-    return i == TQ_ID_LEN;
-}
-
-/* jobs_dir/id[/name] into buf; 0 or -1 if too long */
-static int job_path(char *buf, size_t size, const char *jobs_dir, const char *id, const char *name)
-{
-    int n = name ? snprintf(buf, size, "%s/%s/%s", jobs_dir, id, name)
-                 : snprintf(buf, size, "%s/%s", jobs_dir, id);
-    return (n < 0 || (size_t)n >= size) ? -1 : 0;
-}
-
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-static int fsync_dir(const char *path)
-{
-    int fd = open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0)
-        return -1;
-    int rc = fsync(fd);
-    int e = errno;
-    close(fd);
-    errno = e;
-    return rc;
-}
-
-/* ------------------------------------------------------------------ job dirs */
-
-int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene_json,
-                         char *err, size_t errsize)
-{
-    char dir[PATH_MAX], tmp[PATH_MAX], dst[PATH_MAX];
-    if (!jobs_dir || !*jobs_dir || !scene_json) {
-        set_err(err, errsize, "missing jobs directory or scene");
-        return -1;
-    }
-    if (!valid_id(id)) {
-        set_err(err, errsize, "invalid job id");
-        return -1;
-    }
-    if (job_path(dir, sizeof dir, jobs_dir, id, NULL) < 0 ||
-        job_path(tmp, sizeof tmp, jobs_dir, id, "scene.json.XXXXXX.tmp") < 0 ||
-        job_path(dst, sizeof dst, jobs_dir, id, "scene.json") < 0) {
-        set_err(err, errsize, "job directory path too long");
-        return -1;
-    }
-    if (mkdir(jobs_dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", jobs_dir, strerror(errno));
-        return -1;
-    }
-    if (mkdir(dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", dir, strerror(errno));
-        return -1;
-    }
-    struct stat st;
-    if (lstat(dir, &st) < 0 || !S_ISDIR(st.st_mode)) {
-        set_err(err, errsize, "%s is not a directory", dir);
-        return -1;
-    }
-    int fd = mkostemps(tmp, 4, O_CLOEXEC);
-    if (fd < 0) {
-        set_err(err, errsize, "cannot create %s: %s", tmp, strerror(errno));
-        return -1;
-    }
-    if (write_all(fd, scene_json, strlen(scene_json)) < 0 || fsync(fd) < 0) {
-        set_err(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        close(fd);
-        unlink(tmp);
-        return -1;
-    }
-    if (close(fd) < 0) {
-        set_err(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (rename(tmp, dst) < 0) {
-        set_err(err, errsize, "cannot rename %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (fsync_dir(dir) < 0) {
-        set_err(err, errsize, "cannot sync %s: %s", dir, strerror(errno));
-        return -1;
-    }
-    return 0;
-}
-
-static int ends_with(const char *s, const char *suffix)
-{
-    size_t a = strlen(s), b = strlen(suffix);
-    return a >= b && strcmp(s + a - b, suffix) == 0;
-}
-
-/* Removes the daemon's files from an open job directory. -1 on a real error. */
-static int remove_known_files(int dfd)
-{
-    static const char *const known[] = {"scene.json", "result.h5", "result.xmf", "log.txt"};
-    int rc = 0;
-    for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
-        if (unlinkat(dfd, known[i], 0) < 0 && errno != ENOENT)
-            rc = -1;
-    int d2 = dup(dfd);
-    if (d2 < 0)
-        return -1;
-    DIR *d = fdopendir(d2);
-    if (!d) {
-        close(d2);
-        return -1;
-    }
-    struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (e->d_name[0] == '.' && (e->d_name[1] == 0 || (e->d_name[1] == '.' && !e->d_name[2])))
-            continue;
-        if (ends_with(e->d_name, ".tmp") && unlinkat(dfd, e->d_name, 0) < 0 && errno != ENOENT)
-            rc = -1;
-    }
-    closedir(d);
-    return rc;
-}
-
-int tsup_remove_job_dir(const char *jobs_dir, const char *id)
-{
-    char dir[PATH_MAX];
-    if (!jobs_dir || !*jobs_dir || !valid_id(id) || strchr(id, '/') || strstr(id, ".."))
-        return -1;
-    if (job_path(dir, sizeof dir, jobs_dir, id, NULL) < 0)
-        return -1;
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (dfd < 0)
-        return errno == ENOENT ? 0 : -1;
-    int rc = remove_known_files(dfd);
-    close(dfd);
-    if (rmdir(dir) < 0 && errno != ENOENT)
-        rc = -1;
-    return rc;
-}
-
 /* ------------------------------------------------------------------ children */
 
 static void child_clear(struct child *c)
 {
-    free(c->line);
-    free(c->fin_status);
-    free(c->cost);
-    free(c->diag);
+    engine_report_free(&c->report);
     memset(c, 0, sizeof *c);
     c->fd = -1;
 }
@@ -305,74 +98,17 @@ static void flush_progress(struct tsup *s, struct child *c, double now)
 {
     if (!c->pending)
         return;
-    double p = c->end_time > 0 ? 100.0 * c->sim_time / c->end_time : 0.0;
+    const struct engine_report *r = &c->report;
+    double p = r->end_time > 0 ? 100.0 * r->sim_time / r->end_time : 0.0;
     if (p < 0)
         p = 0;
     if (p > 100)
         p = 100;
-    if (tq_update_progress(s->q, c->id, p, c->sim_time, c->end_time, c->step, c->eta) < 0)
-        logmsg("job %s: cannot update progress", c->id);
-    c->pending = 0;
+    if (tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) ==
+        TQ_ERROR)
+        tlog("supervisor: job %s: cannot update progress", c->id);
+    c->pending = false;
     c->t_update = now;
-}
-
-static char *dup_str(const char *s)
-{
-    return s ? strdup(s) : NULL;
-}
-
-static void handle_line(struct tsup *s, struct child *c, const char *line, size_t len)
-{
-    json_error_t jerr;
-    json_t *o = json_loadb(line, len, 0, &jerr);
-    if (!o)
-        return;
-    if (!json_is_object(o)) {
-        json_decref(o);
-        return;
-    }
-    const char *ev = json_string_value(json_object_get(o, "event"));
-    if (!ev) {
-        json_decref(o);
-        return;
-    }
-    json_t *v;
-    if (strcmp(ev, "started") == 0) {
-        if (json_is_number(v = json_object_get(o, "end_time")))
-            c->end_time = json_number_value(v);
-        c->pending = 1;
-    } else if (strcmp(ev, "progress") == 0) {
-        if (json_is_number(v = json_object_get(o, "end_time")))
-            c->end_time = json_number_value(v);
-        if (json_is_number(v = json_object_get(o, "time")))
-            c->sim_time = json_number_value(v);
-        if (json_is_integer(v = json_object_get(o, "step")))
-            c->step = (long)json_integer_value(v);
-        if (json_is_number(v = json_object_get(o, "eta_seconds")))
-            c->eta = json_number_value(v);
-        c->pending = 1;
-        double now = now_mono();
-        if (now - c->t_update >= TSUP_PROGRESS_INTERVAL)
-            flush_progress(s, c, now);
-    } else if (strcmp(ev, "finished") == 0) {
-        free(c->fin_status);
-        c->fin_status = dup_str(json_string_value(json_object_get(o, "status")));
-        if (json_is_integer(v = json_object_get(o, "step")))
-            c->step = (long)json_integer_value(v);
-        if (json_is_number(v = json_object_get(o, "time")))
-            c->sim_time = json_number_value(v);
-        json_t *cost = json_object_get(o, "cost");
-        if (json_is_object(cost)) {
-            free(c->cost);
-            c->cost = json_dumps(cost, JSON_COMPACT);
-        }
-        json_t *diag = json_object_get(o, "diagnostic");
-        if (json_is_object(diag)) {
-            free(c->diag);
-            c->diag = dup_str(json_string_value(json_object_get(diag, "message")));
-        }
-    }
-    json_decref(o);
 }
 
 /* Reads what is available. Closes the fd on EOF/error. */
@@ -386,147 +122,22 @@ static void read_progress(struct tsup *s, struct child *c)
                 continue;
             if (errno == EAGAIN || errno == EWOULDBLOCK)
                 return;
-            logmsg("job %s: progress pipe: %s", c->id, strerror(errno));
+            tlog("supervisor: job %s: progress pipe: %s", c->id, strerror(errno));
             n = 0;
         }
         if (n == 0) {
             close(c->fd);
             c->fd = -1;
-            /* an unterminated last line still counts */
-            if (c->len > 0 && !c->overflow)
-                handle_line(s, c, c->line, c->len);
-            c->len = 0;
+            engine_report_eof(&c->report);
             return;
         }
-        for (ssize_t i = 0; i < n; i++) {
-            char ch = buf[i];
-            if (ch == '\n') {
-                if (!c->overflow && c->len > 0)
-                    handle_line(s, c, c->line, c->len);
-                c->len = 0;
-                c->overflow = 0;
-                continue;
-            }
-            if (c->overflow)
-                continue;
-            if (c->len >= TSUP_LINE_MAX) {
-                c->overflow = 1;
-                c->len = 0;
-                continue;
-            }
-            if (c->len + 1 > c->cap) {
-                size_t nc = c->cap ? c->cap * 2 : 1024;
-                char *p = realloc(c->line, nc);
-                if (!p) {
-                    c->overflow = 1;
-                    c->len = 0;
-                    continue;
-                }
-                c->line = p;
-                c->cap = nc;
-            }
-            c->line[c->len++] = ch;
+        if (engine_report_feed(&c->report, buf, (size_t)n)) {
+            c->pending = true;
+            const double now = tlsph_monotonic_seconds();
+            if (now - c->t_update >= TSUP_PROGRESS_INTERVAL)
+                flush_progress(s, c, now);
         }
     }
-}
-
-/* Appends line p[0..l) to out (newline-separated). */
-static void append_line(char *out, size_t size, size_t *olen, const char *p, size_t l)
-{
-    if (*olen + l + 2 >= size)
-        return;
-    if (*olen)
-        out[(*olen)++] = '\n';
-    memcpy(out + *olen, p, l);
-    *olen += l;
-    out[*olen] = 0;
-}
-
-/* Message from the tail (<= 4 KiB) of log.txt: up to 5 lines starting with
- * prefer, else the last 3 non-empty lines.  Returns malloc'd text or NULL. */
-static char *log_excerpt(const struct tsup *s, const char *id, const char *prefer)
-{
-    char path[PATH_MAX];
-    if (job_path(path, sizeof path, s->jobs_dir, id, "log.txt") < 0)
-        return NULL;
-    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-    if (fd < 0)
-        return NULL;
-    char buf[TSUP_LOG_TAIL + 1];
-    off_t end = lseek(fd, 0, SEEK_END);
-    off_t start = end > TSUP_LOG_TAIL ? end - TSUP_LOG_TAIL : 0;
-    size_t got = 0;
-    if (end >= 0 && lseek(fd, start, SEEK_SET) >= 0) {
-        while (got < TSUP_LOG_TAIL) {
-            ssize_t n = read(fd, buf + got, TSUP_LOG_TAIL - got);
-            if (n < 0 && errno == EINTR)
-                continue;
-            if (n <= 0)
-                break;
-            got += (size_t)n;
-        }
-    }
-    close(fd);
-    buf[got] = 0;
-    for (size_t i = 0; i < got; i++)
-        if (buf[i] == 0 || buf[i] == '\r')
-            buf[i] = ' ';
-    char *text = buf;
-    if (start > 0) { /* drop the partial first line */
-        char *nl = strchr(text, '\n');
-        text = nl ? nl + 1 : text + got;
-    }
-    char out[2048];
-    size_t olen = 0;
-    out[0] = 0;
-    size_t plen = prefer ? strlen(prefer) : 0;
-    int count = 0;
-    const char *last[3] = {NULL, NULL, NULL};
-    size_t lastl[3] = {0, 0, 0};
-    for (char *p = text; *p;) {
-        char *nl = strchr(p, '\n');
-        size_t l = nl ? (size_t)(nl - p) : strlen(p);
-        if (l > 0) {
-            if (plen && count < 5 && l >= plen && strncmp(p, prefer, plen) == 0) {
-                size_t skip = 0; /* "error: x" -> "x" */
-                if (strcmp(prefer, "error:") == 0)
-                    for (skip = plen; skip < l && p[skip] == ' '; skip++)
-                        ;
-                append_line(out, sizeof out, &olen, p + skip, l - skip);
-                count++;
-            }
-            last[0] = last[1];
-            lastl[0] = lastl[1];
-            last[1] = last[2];
-            lastl[1] = lastl[2];
-            last[2] = p;
-            lastl[2] = l;
-        }
-        p = nl ? nl + 1 : p + l;
-    }
-    if (count == 0)
-        for (int k = 0; k < 3; k++)
-            if (last[k])
-                append_line(out, sizeof out, &olen, last[k], lastl[k]);
-    return olen ? strdup(out) : NULL;
-}
-
-static char *fmt_msg(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-static char *fmt_msg(const char *fmt, ...)
-{
-    char *out = NULL;
-    va_list ap;
-    va_start(ap, fmt);
-    if (vasprintf(&out, fmt, ap) < 0)
-        out = NULL;
-    va_end(ap);
-    return out;
-}
-
-static const char *sig_name(int sig)
-{
-    const char *n = sigabbrev_np(sig);
-    return n ? n : "?";
 }
 
 /* The leader has exited (zombie, not yet reaped): finish the job. */
@@ -534,10 +145,10 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
 {
     /* Drain the pipe.  The group has just been SIGKILLed, so any member still
      * holding the write end goes away within moments: wait briefly for EOF. */
-    double t_end = now_mono() + 0.2;
+    double t_end = tlsph_monotonic_seconds() + 0.2;
     read_progress(s, c);
     while (c->fd >= 0) {
-        double left = t_end - now_mono();
+        double left = t_end - tlsph_monotonic_seconds();
         if (left <= 0)
             break;
         struct pollfd pfd = {.fd = c->fd, .events = POLLIN};
@@ -550,131 +161,81 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
     if (c->fd >= 0) {
         close(c->fd);
         c->fd = -1;
-        if (c->len > 0 && !c->overflow) /* the leader is dead: its last words count */
-            handle_line(s, c, c->line, c->len);
-        c->len = 0;
+        engine_report_eof(&c->report); /* the leader is dead: its last words count */
     }
 
-    const char *status = TQ_FAILED, *outcome = "crashed";
-    char *msg = NULL;
-    int requeue = 0;
-    int lost = wstatus == -1; /* the exit status was reaped elsewhere */
-    int code = !lost && WIFEXITED(wstatus) ? WEXITSTATUS(wstatus) : -1;
-    int sig = !lost && WIFSIGNALED(wstatus) ? WTERMSIG(wstatus) : 0;
-
-    if (code == 0) {
-        status = TQ_SUCCESSFUL;
-        outcome = "successful";
-    } else if (c->reason == R_CANCEL) {
-        status = TQ_DISMISSED;
-        outcome = "cancelled";
-        msg = strdup("cancelled");
-    } else if (c->reason == R_SHUTDOWN) {
-        requeue = 1;
-    } else if (c->reason == R_TIMEOUT) {
-        outcome = "timed_out";
-        msg = fmt_msg("wall-clock limit of %g s exceeded", c->wall_limit);
-    } else if (code == 2) {
-        outcome = "invalid";
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = ex ? ex : strdup("invalid scene");
-    } else if (code == 3) {
-        outcome = "unstable";
-        if (c->diag)
-            msg = strdup(c->diag);
-        else {
-            char *ex = log_excerpt(s, c->id, "tlsph: numerically unstable");
-            msg = ex ? ex : strdup("numerically unstable");
-        }
-    } else if (code == 4) {
-        outcome = "io_error";
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = ex ? fmt_msg("I/O failure: %s", ex) : strdup("I/O failure");
-        free(ex);
-    } else if (code == 5) {
-        status = TQ_DISMISSED;
-        outcome = "cancelled";
-        msg = strdup("cancelled");
-    } else if (lost) {
-        msg = strdup("engine ended, but its exit status was lost (reaped elsewhere)");
-    } else if (sig) {
-        msg = fmt_msg("killed by signal %d (SIG%s)%s", sig, sig_name(sig),
-                      sig == SIGKILL ? ": killed externally or out of memory" : "");
+    struct engine_outcome out;
+    engine_outcome(&c->report, wstatus, c->reason, c->wall_limit, &out);
+    if (out.requeue) {
+        if (tq_requeue(s->q, c->id, "interrupted by daemon shutdown") == TQ_ERROR)
+            tlog("supervisor: job %s: cannot requeue", c->id);
     } else {
-        char *ex = log_excerpt(s, c->id, "error:");
-        msg = fmt_msg("engine exited with unexpected status %d%s%s", code, ex ? ": " : "",
-                      ex ? ex : "");
-        free(ex);
-    }
-
-    if (requeue) {
-        if (tq_requeue(s->q, c->id, "interrupted by daemon shutdown") < 0)
-            logmsg("job %s: cannot requeue", c->id);
-    } else {
-        if (code == 0) {
-            c->sim_time = c->end_time > 0 ? c->end_time : c->sim_time;
-            c->eta = 0;
-            c->pending = 1;
-            if (c->end_time > 0) {
-                flush_progress(s, c, now_mono());
-            } else if (tq_update_progress(s->q, c->id, 100.0, c->sim_time, c->end_time, c->step,
-                                          0.0) < 0) {
-                logmsg("job %s: cannot update progress", c->id);
+        struct engine_report *r = &c->report;
+        if (!strcmp(out.status, TQ_SUCCESSFUL)) {
+            r->sim_time = r->end_time > 0 ? r->end_time : r->sim_time;
+            r->eta = 0;
+            c->pending = true;
+            if (r->end_time > 0) {
+                flush_progress(s, c, tlsph_monotonic_seconds());
+            } else if (tq_update_progress(s->q, c->id, 100.0, r->sim_time, r->end_time, r->step,
+                                          0.0) == TQ_ERROR) {
+                tlog("supervisor: job %s: cannot update progress", c->id);
             }
         } else {
-            flush_progress(s, c, now_mono());
+            flush_progress(s, c, tlsph_monotonic_seconds());
         }
-        if (tq_finish(s->q, c->id, status, outcome, msg, c->cost) < 0)
-            logmsg("job %s: cannot record the final state", c->id);
+        if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) == TQ_ERROR)
+            tlog("supervisor: job %s: cannot record the final state", c->id);
     }
-    free(msg);
+    free(out.message);
     child_clear(c);
     s->nrunning--;
 }
 
-/* Checks one child for exit; kills the rest of its group and reaps it. */
-static int check_child(struct tsup *s, struct child *c)
+/* Checks one child for exit; kills the rest of its group and reaps it.
+ * True when the slot became free. */
+static bool check_child(struct tsup *s, struct child *c)
 {
     siginfo_t si;
     memset(&si, 0, sizeof si);
     if (waitid(P_PID, (id_t)c->pid, &si, WEXITED | WNOHANG | WNOWAIT) < 0) {
         if (errno == EINTR)
-            return 0;
-        logmsg("job %s: waitid(%ld): %s", c->id, (long)c->pid, strerror(errno));
+            return false;
+        tlog("supervisor: job %s: waitid(%ld): %s", c->id, (long)c->pid, strerror(errno));
         /* ECHILD: reaped elsewhere (waitpid(-1) or SIGCHLD ignored) */
         if (errno == ECHILD) {
             finish_child(s, c, -1);
-            return 1;
+            return true;
         }
-        return 0;
+        return false;
     }
     if (si.si_pid == 0)
-        return 0; /* still running */
+        return false; /* still running */
     /* the leader is a zombie: the pgid cannot be reused yet, so take the group down */
     if (kill(-c->pid, SIGKILL) < 0 && errno != ESRCH)
-        logmsg("job %s: kill(-%ld): %s", c->id, (long)c->pid, strerror(errno));
+        tlog("supervisor: job %s: kill(-%ld): %s", c->id, (long)c->pid, strerror(errno));
     int st = 0;
     pid_t r;
     do {
         r = waitpid(c->pid, &st, 0);
     } while (r < 0 && errno == EINTR);
     if (r < 0) {
-        logmsg("job %s: waitpid: %s", c->id, strerror(errno));
+        tlog("supervisor: job %s: waitpid: %s", c->id, strerror(errno));
         st = -1; /* status unknown */
     }
     finish_child(s, c, st);
-    return 1;
+    return true;
 }
 
 static void signal_group(struct child *c, int sig)
 {
     if (kill(-c->pid, sig) < 0 && errno != ESRCH)
-        logmsg("job %s: kill(-%ld, %d): %s", c->id, (long)c->pid, sig, strerror(errno));
+        tlog("supervisor: job %s: kill(-%ld, %d): %s", c->id, (long)c->pid, sig, strerror(errno));
 }
 
-static void request_stop(struct child *c, enum stop_reason why, double now)
+static void request_stop(struct child *c, enum engine_stop why, double now)
 {
-    if (c->reason == R_NONE || (why == R_CANCEL && c->reason != R_CANCEL))
+    if (c->reason == ENGINE_NOT_STOPPED || (why == ENGINE_STOP_CANCEL && c->reason != ENGINE_STOP_CANCEL))
         c->reason = why;
     if (c->t_term == 0) {
         c->t_term = now;
@@ -787,21 +348,19 @@ static void run_child(const struct spawn_args *a)
     child_fail(2, "execv failed");
 }
 
-static int remove_stale(const struct tsup *s, const char *id)
+/* A claimed job that could not be started ends as failed with outcome and a
+ * message for its user. */
+static void fail_start(struct tsup *s, const char *id, const char *outcome, const char *fmt, ...)
+    __attribute__((format(printf, 4, 5)));
+static void fail_start(struct tsup *s, const char *id, const char *outcome, const char *fmt, ...)
 {
-    char dir[PATH_MAX];
-    if (job_path(dir, sizeof dir, s->jobs_dir, id, NULL) < 0)
-        return -1;
-    int dfd = open(dir, O_RDONLY | O_DIRECTORY | O_NOFOLLOW | O_CLOEXEC);
-    if (dfd < 0)
-        return -1;
-    static const char *const stale[] = {"result.h5", "result.xmf", "log.txt", "result.xmf.tmp"};
-    int rc = 0;
-    for (size_t i = 0; i < sizeof stale / sizeof stale[0]; i++)
-        if (unlinkat(dfd, stale[i], 0) < 0 && errno != ENOENT)
-            rc = -1;
-    close(dfd);
-    return rc;
+    char message[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(message, sizeof message, fmt, ap);
+    va_end(ap);
+    if (tq_finish(s->q, id, TQ_FAILED, outcome, message, NULL) == TQ_ERROR)
+        tlog("supervisor: job %s: cannot record the final state", id);
 }
 
 /* Starts a claimed job in slot c. On failure the job is finished as failed. */
@@ -809,31 +368,25 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 {
     char dir[PATH_MAX], scene[PATH_MAX], logp[PATH_MAX];
     const char *id = j->id;
-    if (!valid_id(id)) {
-        logmsg("refusing job with invalid id");
-        tq_finish(s->q, id, TQ_FAILED, "crashed", "invalid job id", NULL);
+    if (!job_id_valid(id)) {
+        tlog("supervisor: refusing job with invalid id");
+        fail_start(s, id, "crashed", "invalid job id");
         return;
     }
-    if (job_path(dir, sizeof dir, s->jobs_dir, id, NULL) < 0 ||
-        job_path(scene, sizeof scene, s->jobs_dir, id, "scene.json") < 0 ||
-        job_path(logp, sizeof logp, s->jobs_dir, id, "log.txt") < 0) {
-        tq_finish(s->q, id, TQ_FAILED, "crashed", "job directory path too long", NULL);
+    if (jobdir_path(dir, sizeof dir, s->jobs_dir, id, JOBDIR_FILES) < 0 ||
+        jobdir_path(scene, sizeof scene, s->jobs_dir, id, JOBDIR_SCENE) < 0 ||
+        jobdir_path(logp, sizeof logp, s->jobs_dir, id, JOBDIR_LOG) < 0) {
+        fail_start(s, id, "crashed", "job directory path too long");
         return;
     }
     struct stat st;
     int serr = stat(scene, &st) < 0 ? errno : (!S_ISREG(st.st_mode) ? EINVAL : 0);
     if (serr) {
-        char *m = fmt_msg("job directory or scene.json missing (%s)", strerror(serr));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m ? m : "scene.json missing", NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "job directory or scene.json missing (%s)", strerror(serr));
         return;
     }
-    if (remove_stale(s, id) < 0) {
-        char *m = fmt_msg("cannot remove stale results: %s", strerror(errno));
-        if (tq_finish(s->q, id, TQ_FAILED, "io_error", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+    if (jobdir_clear_outputs(s->jobs_dir, id) < 0) {
+        fail_start(s, id, "io_error", "cannot remove stale results: %s", strerror(errno));
         return;
     }
 
@@ -847,10 +400,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
 
     int pfd[2];
     if (pipe2(pfd, O_CLOEXEC) < 0) {
-        char *m = fmt_msg("cannot create the progress pipe: %s", strerror(errno));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "cannot create the progress pipe: %s", strerror(errno));
         return;
     }
     struct spawn_args a = {.parent = s->self,
@@ -866,10 +416,7 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         int e = errno;
         close(pfd[0]);
         close(pfd[1]);
-        char *m = fmt_msg("cannot fork the engine: %s", strerror(e));
-        if (tq_finish(s->q, id, TQ_FAILED, "crashed", m, NULL) < 0)
-            logmsg("job %s: cannot record the final state", id);
-        free(m);
+        fail_start(s, id, "crashed", "cannot fork the engine: %s", strerror(e));
         return;
     }
     if (pid == 0)
@@ -878,23 +425,22 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
     /* parent */
     close(pfd[1]);
     if (setpgid(pid, pid) < 0 && errno != EACCES && errno != ESRCH)
-        logmsg("job %s: setpgid: %s", id, strerror(errno));
+        tlog("supervisor: job %s: setpgid: %s", id, strerror(errno));
     int fl = fcntl(pfd[0], F_GETFL);
     if (fl < 0 || fcntl(pfd[0], F_SETFL, fl | O_NONBLOCK) < 0)
-        logmsg("job %s: cannot make the pipe non-blocking: %s", id, strerror(errno));
+        tlog("supervisor: job %s: cannot make the pipe non-blocking: %s", id, strerror(errno));
 
     child_clear(c);
-    c->used = 1;
-    memcpy(c->id, id, TQ_ID_LEN + 1);
+    c->used = true;
+    memcpy(c->id, id, JOB_ID_LEN + 1);
     c->pid = pid;
     c->fd = pfd[0];
-    c->t_start = now_mono();
+    c->t_start = tlsph_monotonic_seconds();
     c->wall_limit = j->wall_limit > 0 ? j->wall_limit : s->wall_limit;
-    c->end_time = j->end_time;
-    c->eta = -1;
+    engine_report_init(&c->report, j->end_time);
     s->nrunning++;
-    if (tq_set_pid(s->q, id, (long)pid) < 0)
-        logmsg("job %s: cannot record pid", id);
+    if (tq_set_pid(s->q, id, (long)pid) == TQ_ERROR)
+        tlog("supervisor: job %s: cannot record pid", id);
 }
 
 static void claim_jobs(struct tsup *s)
@@ -910,10 +456,10 @@ static void claim_jobs(struct tsup *s)
             return;
         struct tq_job j;
         memset(&j, 0, sizeof j);
-        int rc = tq_claim_next(s->q, &j);
-        if (rc != 0) {
-            if (rc < 0)
-                logmsg("cannot claim a job");
+        enum tq_rc rc = tq_claim_next(s->q, &j);
+        if (rc != TQ_OK) {
+            if (rc == TQ_ERROR)
+                tlog("supervisor: cannot claim a job");
             return;
         }
         start_job(s, slot, &j);
@@ -927,16 +473,16 @@ static void check_cancels(struct tsup *s, double now)
         return;
     char (*ids)[TQ_ID_LEN + 1] = NULL;
     size_t n = 0;
-    if (tq_cancel_requests(s->q, &ids, &n) < 0) {
-        logmsg("cannot read cancel requests");
+    if (tq_cancel_requests(s->q, &ids, &n) == TQ_ERROR) {
+        tlog("supervisor: cannot read cancel requests");
         return;
     }
     for (size_t k = 0; k < n; k++)
         for (int i = 0; i < s->max_jobs; i++) {
             struct child *c = &s->kids[i];
-            if (c->used && strcmp(c->id, ids[k]) == 0 && c->reason != R_CANCEL) {
-                c->reason = R_NONE;
-                request_stop(c, R_CANCEL, now);
+            if (c->used && strcmp(c->id, ids[k]) == 0 && c->reason != ENGINE_STOP_CANCEL) {
+                c->reason = ENGINE_NOT_STOPPED;
+                request_stop(c, ENGINE_STOP_CANCEL, now);
             }
         }
     free(ids);
@@ -961,7 +507,7 @@ static void *sup_main(void *arg)
 
     int rc = tq_open(s->db_path, &s->q, err, sizeof err);
     if (rc == 0 && tq_recover(s->q, s->max_attempts) < 0)
-        logmsg("start-up recovery failed");
+        tlog("supervisor: start-up recovery failed");
     pthread_mutex_lock(&s->mu);
     s->init_done = 1;
     s->init_rc = rc;
@@ -975,7 +521,7 @@ static void *sup_main(void *arg)
     struct pollfd *pfds = calloc((size_t)s->max_jobs + 1, sizeof *pfds);
     int *idx = calloc((size_t)s->max_jobs + 1, sizeof *idx);
     if (!pfds || !idx) {
-        logmsg("out of memory");
+        tlog("supervisor: out of memory");
         free(pfds);
         free(idx);
         tq_close(s->q);
@@ -986,12 +532,12 @@ static void *sup_main(void *arg)
     int want_claim = 1, stopping = 0;
     double last_claim = 0;
     for (;;) {
-        double now = now_mono();
+        double now = tlsph_monotonic_seconds();
         if (!stopping && atomic_load(&s->stop)) {
             stopping = 1;
             for (int i = 0; i < s->max_jobs; i++)
                 if (s->kids[i].used)
-                    request_stop(&s->kids[i], R_SHUTDOWN, now);
+                    request_stop(&s->kids[i], ENGINE_STOP_SHUTDOWN, now);
         }
         if (stopping && s->nrunning == 0)
             break;
@@ -1013,7 +559,7 @@ static void *sup_main(void *arg)
             }
         int pr = poll(pfds, n, TSUP_TICK_MS);
         if (pr < 0 && errno != EINTR)
-            logmsg("poll: %s", strerror(errno));
+            tlog("supervisor: poll: %s", strerror(errno));
         if (pr > 0) {
             for (nfds_t k = 0; k < n; k++) {
                 if (!pfds[k].revents)
@@ -1029,18 +575,18 @@ static void *sup_main(void *arg)
         }
 
         /* the tick: cancels, limits, escalation, progress, reaping */
-        now = now_mono();
+        now = tlsph_monotonic_seconds();
         if (!stopping)
             check_cancels(s, now);
         for (int i = 0; i < s->max_jobs; i++) {
             struct child *c = &s->kids[i];
             if (!c->used)
                 continue;
-            if (c->wall_limit > 0 && c->reason == R_NONE && now - c->t_start > c->wall_limit)
-                request_stop(c, R_TIMEOUT, now);
+            if (c->wall_limit > 0 && c->reason == ENGINE_NOT_STOPPED && now - c->t_start > c->wall_limit)
+                request_stop(c, ENGINE_STOP_TIMEOUT, now);
             if (c->t_term > 0 && !c->killed && now - c->t_term >= s->kill_grace) {
                 signal_group(c, SIGKILL);
-                c->killed = 1;
+                c->killed = true;
             }
             if (c->pending && now - c->t_update >= TSUP_PROGRESS_INTERVAL)
                 flush_progress(s, c, now);
@@ -1086,7 +632,7 @@ static char *absolute_path(const char *p)
     char *cwd = getcwd(NULL, 0);
     if (!cwd)
         return NULL;
-    char *out = fmt_msg("%s/%s", cwd, p);
+    char *out = errmsg_format("%s/%s", cwd, p);
     free(cwd);
     return out;
 }
@@ -1095,17 +641,17 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
 {
     if (!cfg || !out || !cfg->db_path || !cfg->engine_path || !cfg->jobs_dir ||
         !*cfg->jobs_dir || !*cfg->engine_path) {
-        set_err(err, errsize, "incomplete supervisor configuration");
+        errmsg_set(err, errsize, "incomplete supervisor configuration");
         return -1;
     }
     if (cfg->max_jobs < 1 || cfg->threads_per_job < 1) {
-        set_err(err, errsize, "max_jobs and threads_per_job must be >= 1");
+        errmsg_set(err, errsize, "max_jobs and threads_per_job must be >= 1");
         return -1;
     }
     *out = NULL;
     struct tsup *s = calloc(1, sizeof *s);
     if (!s) {
-        set_err(err, errsize, "out of memory");
+        errmsg_set(err, errsize, "out of memory");
         return -1;
     }
     s->wake_rd = s->wake_wr = -1;
@@ -1126,19 +672,19 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->jobs_dir = absolute_path(cfg->jobs_dir);
     s->kids = calloc((size_t)cfg->max_jobs, sizeof *s->kids);
     if (!s->db_path || !s->engine_path || !s->jobs_dir || !s->kids) {
-        set_err(err, errsize, "out of memory");
+        errmsg_set(err, errsize, "out of memory");
         tsup_free(s);
         return -1;
     }
     for (int i = 0; i < s->max_jobs; i++)
         s->kids[i].fd = -1;
     if (access(s->engine_path, X_OK) < 0) {
-        set_err(err, errsize, "engine %s is not executable: %s", s->engine_path, strerror(errno));
+        errmsg_set(err, errsize, "engine %s is not executable: %s", s->engine_path, strerror(errno));
         tsup_free(s);
         return -1;
     }
     if (mkdir(s->jobs_dir, 0750) < 0 && errno != EEXIST) {
-        set_err(err, errsize, "cannot create %s: %s", s->jobs_dir, strerror(errno));
+        errmsg_set(err, errsize, "cannot create %s: %s", s->jobs_dir, strerror(errno));
         tsup_free(s);
         return -1;
     }
@@ -1152,11 +698,11 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
         dfl.sa_handler = SIG_DFL;
         sigemptyset(&dfl.sa_mask);
         if (sigaction(SIGCHLD, &dfl, NULL) == 0)
-            logmsg("SIGCHLD was ignored; restored the default so engines can be reaped");
+            tlog("supervisor: SIGCHLD was ignored; restored the default so engines can be reaped");
     }
     int wp[2];
     if (pipe2(wp, O_CLOEXEC | O_NONBLOCK) < 0) {
-        set_err(err, errsize, "pipe: %s", strerror(errno));
+        errmsg_set(err, errsize, "pipe: %s", strerror(errno));
         tsup_free(s);
         return -1;
     }
@@ -1164,7 +710,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->wake_wr = wp[1];
     int e = pthread_create(&s->thread, NULL, sup_main, s);
     if (e != 0) {
-        set_err(err, errsize, "pthread_create: %s", strerror(e));
+        errmsg_set(err, errsize, "pthread_create: %s", strerror(e));
         tsup_free(s);
         return -1;
     }
@@ -1174,7 +720,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     int rc = s->init_rc;
     pthread_mutex_unlock(&s->mu);
     if (rc < 0) {
-        set_err(err, errsize, "%s", s->init_err);
+        errmsg_set(err, errsize, "%s", s->init_err);
         pthread_join(s->thread, NULL);
         tsup_free(s);
         return -1;

@@ -5,16 +5,13 @@
  *   tlsph-run JOBDIR/scene.json -o JOBDIR --progress-fd 3 --threads N
  * in its own process group, with PR_SET_PDEATHSIG(SIGKILL) (so a dying daemon
  * takes its engines along), rlimits (address space, core dumps off, open files),
- * stdout+stderr to JOBDIR/log.txt, and a wall-clock limit.  It reads the JSON
- * progress lines from fd 3, writes progress to the queue, and classifies the
- * outcome from the exit status:
- *   0 -> successful; 2 -> failed/invalid; 3 -> failed/unstable (diagnostic message);
- *   4 -> failed/io_error; 5 or cancel -> dismissed/cancelled;
- *   wall limit -> failed/timed_out; killed by a signal / other -> failed/crashed.
+ * stdout+stderr to JOBDIR/log.txt (for people only), and a wall-clock limit.
+ * It hands the progress lines from fd 3 to engine_report.h, which keeps the
+ * progress (written to the queue) and the final event, and turns the exit
+ * status into the job's final state (docs/protocol.md).
  * Cancellation: SIGTERM to the process group, SIGKILL after a grace period.
  *
- * Job directories: jobs_dir/<id>/ (the id is validated hex, never a raw path
- * from a request). */
+ * Job directories: jobdir.h. */
 #ifndef TLSPHD_SUPERVISOR_H
 #define TLSPHD_SUPERVISOR_H
 
@@ -41,10 +38,4 @@ void tsup_wake(struct tsup *s);
 /* Stops: running engines get SIGTERM (then SIGKILL after the grace period) and
  * their jobs are requeued so the next daemon runs them again; joins the thread. */
 void tsup_stop(struct tsup *s);
-/* Writes the scene file for a job: jobs_dir/<id>/scene.json (0 or -1). */
-int tsup_prepare_job_dir(const char *jobs_dir, const char *id, const char *scene_json,
-                         char *err, size_t errsize);
-/* Removes jobs_dir/<id> recursively (only files the daemon writes). */
-int tsup_remove_job_dir(const char *jobs_dir, const char *id);
-
 #endif

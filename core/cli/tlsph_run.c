@@ -2,10 +2,12 @@
  *
  *   tlsph-run SCENE.json -o DIR [--progress-fd N] [--threads N] [--validate] [--quiet]
  *
- * Exit codes (enum tlsph_exit): 0 success, 1 usage/internal, 2 invalid scene
- * (errors on stderr as {"errors":[{"pointer","detail"}]}; nothing written),
- * 3 numerically unstable (diagnostic in the log and in DIR/result.h5),
- * 4 I/O failure, 5 cancelled by SIGTERM/SIGINT (current frame finished, file closed). */
+ * Exit codes (enum tlsph_exit in run/protocol.h): 0 success, 1 usage/internal,
+ * 2 invalid scene (errors on stderr as {"errors":[{"pointer","detail"}]}; nothing
+ * written), 3 numerically unstable (diagnostic in the log and in DIR/result.h5),
+ * 4 I/O failure, 5 cancelled by SIGTERM/SIGINT (current frame finished, file closed).
+ * With --progress-fd every outcome but 1 ends with a final event that carries
+ * the errors or the diagnostic (docs/protocol.md); stderr is for people. */
 #include <errno.h>
 #include <signal.h>
 #include <stdio.h>
@@ -17,6 +19,7 @@
 #endif
 
 #include "run/model.h"
+#include "run/progress.h"
 #include "run/run.h"
 
 static volatile sig_atomic_t cancel_requested;
@@ -49,6 +52,15 @@ static void print_errors(const struct tlsph_errors *err)
                 err->items[k].message);
 }
 
+/* The final event of a run that never started (invalid scene, no output
+ * directory): the errors are all the caller gets. */
+static void emit_final(int fd, enum tlsph_exit code, const struct tlsph_errors *err)
+{
+    json_t *o = tlsph_progress_final(code, err);
+    tlsph_progress_emit(fd, o);
+    json_decref(o);
+}
+
 static int parse_int(const char *s, long lo, long hi, long *out)
 {
     char *end;
@@ -74,7 +86,7 @@ int main(int argc, char **argv)
                 return TLSPH_EXIT_USAGE;
             }
         } else if (strcmp(argv[a], "--threads") == 0 && a + 1 < argc) {
-            if (parse_int(argv[++a], 1, 1024, &threads) != 0) {
+            if (parse_int(argv[++a], 1, TLSPH_MAX_THREADS, &threads) != 0) {
                 usage(stderr);
                 return TLSPH_EXIT_USAGE;
             }
@@ -112,14 +124,13 @@ int main(int argc, char **argv)
     struct tlsph_errors err;
     tlsph_errors_init(&err);
     struct tlsph_scene scene;
-    if (tlsph_scene_load_file(scene_path, &scene, &err) != 0) {
-        print_errors(&err);
-        tlsph_errors_free(&err);
-        return TLSPH_EXIT_INVALID;
-    }
     struct tlsph_model *m = NULL;
-    if (tlsph_model_create(&scene, &m, &err) != 0) {
+    if (tlsph_scene_load_file(scene_path, &scene, &err) != 0 ||
+        tlsph_model_create(&scene, &m, &err) != 0) {
         print_errors(&err);
+        if (err.count == 0) /* the event promises at least one error */
+            tlsph_errors_add(&err, "", "the scene was rejected");
+        emit_final((int)progress_fd, TLSPH_EXIT_INVALID, &err);
         tlsph_errors_free(&err);
         return TLSPH_EXIT_INVALID;
     }
@@ -130,7 +141,10 @@ int main(int argc, char **argv)
         return TLSPH_EXIT_SUCCESS;
     }
     if (mkdir(out_dir, 0777) != 0 && errno != EEXIST) {
-        fprintf(stderr, "error: cannot create output directory '%s': %s\n", out_dir, strerror(errno));
+        const int e = errno;
+        fprintf(stderr, "error: cannot create output directory '%s': %s\n", out_dir, strerror(e));
+        tlsph_errors_add(&err, "", "cannot create output directory '%s': %s", out_dir, strerror(e));
+        emit_final((int)progress_fd, TLSPH_EXIT_IO, &err);
         tlsph_model_free(m);
         tlsph_errors_free(&err);
         return TLSPH_EXIT_IO;

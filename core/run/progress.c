@@ -32,3 +32,19 @@ void tlsph_progress_emit(int fd, const json_t *obj)
     }
     free(text);
 }
+
+json_t *tlsph_progress_final(enum tlsph_exit code, const struct tlsph_errors *err)
+{
+    const char *status = tlsph_exit_status(code);
+    if (!status)
+        return NULL;
+    json_t *o = json_pack("{s:s, s:s}", "event", TLSPH_EVENT_FINISHED, "status", status);
+    if (o && err && err->count > 0) {
+        json_t *list = tlsph_errors_to_json(err);
+        if (!list || json_object_set_new(o, "errors", list) != 0) {
+            json_decref(o);
+            return NULL;
+        }
+    }
+    return o;
+}

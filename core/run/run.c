@@ -8,13 +8,7 @@
 #include "bc/boundary.h"
 #include "io/output/output.h"
 #include "run/progress.h"
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
+#include "util/clock.h"
 
 static size_t peak_rss_bytes(void)
 {
@@ -60,7 +54,7 @@ static void emit_started(const struct tlsph_model *m, int fd)
     json_t *mods = json_array();
     for (int k = 0; mods && k < m->nmodules; k++)
         json_array_append_new(mods, json_string(m->modules[k]));
-    json_t *o = json_pack("{s:s, s:I, s:I, s:f, s:o, s:I, s:f}", "event", "started", "particles",
+    json_t *o = json_pack("{s:s, s:I, s:I, s:f, s:o, s:I, s:f}", "event", TLSPH_EVENT_STARTED, "particles",
                           (json_int_t)m->p.n, "pairs", (json_int_t)m->pairs.npairs, "end_time",
                           m->scene.end_time, "modules", mods ? mods : json_array(),
                           "deficient_supports", (json_int_t)m->deficient_supports, "dt", m->dt);
@@ -72,20 +66,26 @@ static void emit_progress(const struct tlsph_model *m, int fd, double wall, long
 {
     const double frac = m->scene.end_time > 0 ? m->t / m->scene.end_time : 1.0;
     const double eta = frac > 0 ? wall * (1.0 - frac) / frac : -1.0;
-    json_t *o = json_pack("{s:s, s:I, s:f, s:f, s:f, s:f, s:I}", "event", "progress", "step",
+    json_t *o = json_pack("{s:s, s:I, s:f, s:f, s:f, s:f, s:I}", "event", TLSPH_EVENT_PROGRESS, "step",
                           (json_int_t)m->step, "time", m->t, "end_time", m->scene.end_time,
                           "wall_seconds", wall, "eta_seconds", eta, "frames", (json_int_t)frames);
     tlsph_progress_emit(fd, o);
     json_decref(o);
 }
 
-static void emit_finished(const struct tlsph_model *m, int fd, const char *status,
-                          const struct tlsph_cost *c, const struct tlsph_diagnostic *d)
+/* The final event; err adds the errors (io_error), d the diagnostic (unstable). */
+static void emit_finished(const struct tlsph_model *m, int fd, enum tlsph_exit code,
+                          const struct tlsph_cost *c, const struct tlsph_diagnostic *d,
+                          const struct tlsph_errors *err)
 {
-    json_t *o = json_pack("{s:s, s:s, s:I, s:f, s:o}", "event", "finished", "status", status,
-                          "step", (json_int_t)m->step, "time", m->t, "cost", cost_json(c));
-    if (o && d)
-        json_object_set_new(o, "diagnostic", diagnostic_json(d));
+    json_t *o = tlsph_progress_final(code, err);
+    if (o) {
+        json_object_set_new(o, "step", json_integer((json_int_t)m->step));
+        json_object_set_new(o, "time", json_real(m->t));
+        json_object_set_new(o, "cost", cost_json(c));
+        if (d)
+            json_object_set_new(o, "diagnostic", diagnostic_json(d));
+    }
     tlsph_progress_emit(fd, o);
     json_decref(o);
 }
@@ -101,10 +101,16 @@ static int write_frame(struct tlsph_output *out, struct tlsph_model *m, long *fr
 int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
               struct tlsph_diagnostic *d, struct tlsph_errors *err)
 {
-    const double t0 = now_seconds();
+    const double t0 = tlsph_monotonic_seconds();
     struct tlsph_output *out = tlsph_output_open(o->output_dir, m, err);
-    if (!out)
+    if (!out) {
+        struct tlsph_cost none;
+        if (err->count == 0)
+            tlsph_errors_add(err, "", "cannot create the result file");
+        fill_cost(m, tlsph_monotonic_seconds() - t0, &none);
+        emit_finished(m, o->progress_fd, TLSPH_EXIT_IO, &none, NULL, err);
         return TLSPH_EXIT_IO;
+    }
     emit_started(m, o->progress_fd);
     if (o->log)
         fprintf(o->log,
@@ -116,8 +122,7 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
     const struct tlsph_scene *s = &m->scene;
     const double frame_dt = s->end_time / (double)s->frames;
     long frames = 0, next_frame = 1;
-    const char *status = "successful";
-    int code = TLSPH_EXIT_SUCCESS;
+    enum tlsph_exit code = TLSPH_EXIT_SUCCESS;
     int have_diag = 0;
     double last_progress = t0;
 
@@ -137,10 +142,8 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
             tlsph_boundary_displacements(m);
             if (write_frame(out, m, &frames) != 0 || tlsph_output_series(out, m) != 0)
                 goto io_error;
-            if (cancelled && !at_end) {
-                status = "cancelled";
+            if (cancelled && !at_end)
                 code = TLSPH_EXIT_CANCELLED;
-            }
             break;
         }
         tlsph_model_step(m);
@@ -163,7 +166,7 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
             while ((double)next_frame * frame_dt <= m->t * (1.0 + 1e-12))
                 next_frame++;
         }
-        const double wall = now_seconds();
+        const double wall = tlsph_monotonic_seconds();
         if (frame_due || wall - last_progress > 0.5) {
             emit_progress(m, o->progress_fd, wall - t0, frames);
             last_progress = wall;
@@ -171,20 +174,20 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
     }
 
     if (have_diag) {
-        status = "unstable";
         code = TLSPH_EXIT_UNSTABLE;
         if (o->log)
             fprintf(o->log, "tlsph: %s\n", d->message);
     }
     struct tlsph_cost cost;
-    m->wall_seconds = now_seconds() - t0;
+    m->wall_seconds = tlsph_monotonic_seconds() - t0;
     fill_cost(m, m->wall_seconds, &cost);
+    const char *status = tlsph_exit_status(code);
     if (tlsph_output_close(out, m, &cost, status, have_diag ? d : NULL) != 0) {
         tlsph_errors_add(err, "", "could not finish writing the result file");
-        emit_finished(m, o->progress_fd, "io_error", &cost, NULL);
+        emit_finished(m, o->progress_fd, TLSPH_EXIT_IO, &cost, NULL, err);
         return TLSPH_EXIT_IO;
     }
-    emit_finished(m, o->progress_fd, status, &cost, have_diag ? d : NULL);
+    emit_finished(m, o->progress_fd, code, &cost, have_diag ? d : NULL, NULL);
     if (o->log && m->p.eps_p)
         fprintf(o->log,
                 "tlsph: plasticity: %lld plastic point-steps (%.1f %% of all), %.2f return-mapping "
@@ -205,12 +208,12 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
 
 io_error:
     tlsph_output_abort(out);
-    {
-        struct tlsph_cost partial;
-        fill_cost(m, now_seconds() - t0, &partial);
-        emit_finished(m, o->progress_fd, "io_error", &partial, NULL);
-    }
     if (err->count == 0)
         tlsph_errors_add(err, "", "writing the result file failed");
+    {
+        struct tlsph_cost partial;
+        fill_cost(m, tlsph_monotonic_seconds() - t0, &partial);
+        emit_finished(m, o->progress_fd, TLSPH_EXIT_IO, &partial, NULL, err);
+    }
     return TLSPH_EXIT_IO;
 }

@@ -8,16 +8,7 @@
 
 #include "util/errors.h"
 #include "run/model.h"
-
-/* Process exit codes of tlsph-run (documented in docs/cli.md). */
-enum tlsph_exit {
-    TLSPH_EXIT_SUCCESS = 0,
-    TLSPH_EXIT_USAGE = 1,     /* bad command line or internal error */
-    TLSPH_EXIT_INVALID = 2,   /* the scene was rejected; nothing was written */
-    TLSPH_EXIT_UNSTABLE = 3,  /* the stability contract stopped the run */
-    TLSPH_EXIT_IO = 4,        /* the result could not be written */
-    TLSPH_EXIT_CANCELLED = 5  /* SIGTERM/SIGINT: the current frame was finished, file closed */
-};
+#include "run/protocol.h"
 
 struct tlsph_run_options {
     const char *output_dir;             /* must exist */
@@ -27,7 +18,8 @@ struct tlsph_run_options {
 };
 
 /* Runs m to its end time.  Returns a tlsph_exit code; on TLSPH_EXIT_UNSTABLE d
- * holds the diagnostic, on TLSPH_EXIT_IO err says why. */
+ * holds the diagnostic, on TLSPH_EXIT_IO err says why.  Emits the started,
+ * progress and final events of run/protocol.h on o->progress_fd. */
 int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
               struct tlsph_diagnostic *d, struct tlsph_errors *err);
 

@@ -329,8 +329,8 @@ END_TEST
 START_TEST(new_ids)
 {
     char a[TQ_ID_LEN + 1], b[TQ_ID_LEN + 1];
-    ck_assert_int_eq(tq_new_id(a), 0);
-    ck_assert_int_eq(tq_new_id(b), 0);
+    ck_assert_int_eq(job_id_new(a), 0);
+    ck_assert_int_eq(job_id_new(b), 0);
     ck_assert_uint_eq(strlen(a), TQ_ID_LEN);
     ck_assert_uint_eq(strspn(a, "0123456789abcdef"), TQ_ID_LEN);
     ck_assert_str_ne(a, b);

@@ -5,6 +5,7 @@
 #endif
 #include <stddef.h>
 
+#include "jobdir.h"
 #include "queue.h"
 #include "supervisor.h"
 
@@ -230,8 +231,8 @@ static void add_job(char id[TQ_ID_LEN + 1], const char *scene, double wall_limit
     make_id(id);
     if (write_dir) {
         char err[256] = "";
-        int rc = tsup_prepare_job_dir(jobs_dir, id, scene, err, sizeof err);
-        ck_assert_msg(rc == 0, "tsup_prepare_job_dir: %s", err);
+        int rc = jobdir_create(jobs_dir, id, scene, err, sizeof err);
+        ck_assert_msg(rc == 0, "jobdir_create: %s", err);
     }
     struct tq_job j;
     memset(&j, 0, sizeof j);
@@ -404,7 +405,7 @@ START_TEST(test_successful)
     ck_assert_int_eq(errno, ECHILD);
 
     /* the job dir can be removed afterwards */
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, id), 0);
+    ck_assert_int_eq(jobdir_remove(jobs_dir, id), 0);
     job_file(p, sizeof p, id, "");
     ck_assert_int_lt(stat(p, &st), 0);
     free(scene);
@@ -657,24 +658,24 @@ START_TEST(test_job_dirs)
 {
     char err[256];
     const char *scene = "{\"x\": 1}";
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, "../../etc", scene, err, sizeof err), -1);
+    ck_assert_int_eq(jobdir_create(jobs_dir, "../../etc", scene, err, sizeof err), -1);
     ck_assert_int_eq(
-        tsup_prepare_job_dir(jobs_dir, "0123456789ABCDEF0123456789abcdef", scene, err, sizeof err),
+        jobdir_create(jobs_dir, "0123456789ABCDEF0123456789abcdef", scene, err, sizeof err),
         -1);
     ck_assert_int_eq(
-        tsup_prepare_job_dir(jobs_dir, "0123456789abcdef0123456789abcde", scene, err, sizeof err),
+        jobdir_create(jobs_dir, "0123456789abcdef0123456789abcde", scene, err, sizeof err),
         -1);
     ck_assert_int_eq(
-        tsup_prepare_job_dir(jobs_dir, "0123456789abcdef0123456789abcdef0", scene, err, sizeof err),
+        jobdir_create(jobs_dir, "0123456789abcdef0123456789abcdef0", scene, err, sizeof err),
         -1);
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, "", scene, err, sizeof err), -1);
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, NULL, scene, err, sizeof err), -1);
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, ".."), -1);
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, "a/b"), -1);
+    ck_assert_int_eq(jobdir_create(jobs_dir, "", scene, err, sizeof err), -1);
+    ck_assert_int_eq(jobdir_create(jobs_dir, NULL, scene, err, sizeof err), -1);
+    ck_assert_int_eq(jobdir_remove(jobs_dir, ".."), -1);
+    ck_assert_int_eq(jobdir_remove(jobs_dir, "a/b"), -1);
 
     const char *id = "0123456789abcdef0123456789abcdef";
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, id, scene, err, sizeof err), 0);
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, id, "{\"x\": 2}", err, sizeof err), 0);
+    ck_assert_int_eq(jobdir_create(jobs_dir, id, scene, err, sizeof err), 0);
+    ck_assert_int_eq(jobdir_create(jobs_dir, id, "{\"x\": 2}", err, sizeof err), 0);
     char p[PATH_MAX];
     job_file(p, sizeof p, id, "scene.json");
     char *text = read_text(p);
@@ -704,18 +705,18 @@ START_TEST(test_job_dirs)
         ck_assert_ptr_nonnull(f);
         fclose(f);
     }
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, id), 0);
+    ck_assert_int_eq(jobdir_remove(jobs_dir, id), 0);
     job_file(p, sizeof p, id, "");
     ck_assert_int_lt(stat(p, &st), 0);
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, id), 0); /* already gone */
+    ck_assert_int_eq(jobdir_remove(jobs_dir, id), 0); /* already gone */
 
     /* a foreign file is not deleted: the dir stays and the call fails */
-    ck_assert_int_eq(tsup_prepare_job_dir(jobs_dir, id, scene, err, sizeof err), 0);
+    ck_assert_int_eq(jobdir_create(jobs_dir, id, scene, err, sizeof err), 0);
     job_file(p, sizeof p, id, "foreign.dat");
     FILE *f = fopen(p, "w");
     ck_assert_ptr_nonnull(f);
     fclose(f);
-    ck_assert_int_eq(tsup_remove_job_dir(jobs_dir, id), -1);
+    ck_assert_int_eq(jobdir_remove(jobs_dir, id), -1);
     ck_assert_int_eq(stat(p, &st), 0);
 }
 END_TEST

@@ -47,6 +47,7 @@
 
 #include "io/fields.h"
 #include "io/output/xdmf.h"
+#include "util/clock.h"
 
 #define H5_NAME "result.h5"
 #define XMF_NAME "result.xmf"
@@ -108,13 +109,6 @@ struct tlsph_output {
 };
 
 /* ------------------------------------------------------------ helpers */
-
-static double now_seconds(void)
-{
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 static herr_t first_error(unsigned n, const H5E_error2_t *e, void *data)
 {
@@ -890,7 +884,7 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     }
     H5Pclose(fapl);
     fapl = H5I_INVALID_HID;
-    o->last_series_write = now_seconds();
+    o->last_series_write = tlsph_monotonic_seconds();
     if (tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, 0, o->frame_times, o->present,
                          o->npresent) < 0) {
         tlsph_errors_add(err, "", "output: cannot write %s: %s", o->xmf_path, strerror(errno));
@@ -971,7 +965,7 @@ static int flush_series(struct tlsph_output *o)
     o->nsamples += o->nrows;
     o->last_step_written = o->row_step[o->nrows - 1];
     o->nrows = 0;
-    o->last_series_write = now_seconds();
+    o->last_series_write = tlsph_monotonic_seconds();
     rc = 0;
 done:
     H5Sclose(ms);
@@ -1005,7 +999,7 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
     o->row_step[slot] = m->step;
     o->row_time[slot] = m->t;
     o->nrows = slot + 1;
-    if (o->nrows == SERIES_CHUNK || now_seconds() - o->last_series_write >= SERIES_MAX_AGE)
+    if (o->nrows == SERIES_CHUNK || tlsph_monotonic_seconds() - o->last_series_write >= SERIES_MAX_AGE)
         return flush_series(o);
     return 0;
 }
@@ -1046,11 +1040,11 @@ int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
      * O(frames^2) bytes over a run; ParaView cannot open the HDF5 file before
      * the writer closes it anyway.  Rewrite it at most every XMF_MAX_AGE seconds
      * (so a killed run still leaves a recent one) and always at close. */
-    if (now_seconds() - o->last_xmf_write >= XMF_MAX_AGE) {
+    if (tlsph_monotonic_seconds() - o->last_xmf_write >= XMF_MAX_AGE) {
         if (tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, o->nframes, o->frame_times, o->present,
                              o->npresent) < 0)
             return -1;
-        o->last_xmf_write = now_seconds();
+        o->last_xmf_write = tlsph_monotonic_seconds();
     }
     return 0;
 }

@@ -1,0 +1,38 @@
+/* A job's directory (server/jobdir.c): the only code that knows which files a
+ * job has and where they are.
+ *
+ *   <jobs_dir>/<id>/scene.json   the scene as submitted (written here, atomically)
+ *   <jobs_dir>/<id>/result.h5    the engine's result (docs/output.md)
+ *   <jobs_dir>/<id>/result.xmf   its XDMF sidecar (written as result.xmf.tmp, renamed)
+ *   <jobs_dir>/<id>/log.txt      the engine's stdout and stderr, for people
+ *
+ * Only ids that pass job_id_valid (jobid.h) become paths, and only these
+ * files (plus leftover *.tmp) are ever removed.  Every function returns 0 or
+ * -1 (errmsg.h); jobdir_create says why in err. */
+#ifndef TLSPHD_JOBDIR_H
+#define TLSPHD_JOBDIR_H
+
+#include <stddef.h>
+
+enum jobdir_file {
+    JOBDIR_SCENE,   /* input: the engine reads it */
+    JOBDIR_RESULT,  /* output: result.h5 */
+    JOBDIR_SIDECAR, /* output: result.xmf */
+    JOBDIR_LOG,     /* output: the engine's log */
+    JOBDIR_FILES
+};
+
+/* The directory (file = JOBDIR_FILES) or one file of job id into buf.
+ * -1 when the id is not valid or the path does not fit. */
+int jobdir_path(char *buf, size_t size, const char *jobs_dir, const char *id,
+                enum jobdir_file file);
+/* Creates the directory (and jobs_dir) and writes scene.json durably:
+ * a temporary file, fsync, rename, fsync of the directory. */
+int jobdir_create(const char *jobs_dir, const char *id, const char *scene_json, char *err,
+                  size_t errsize);
+/* Removes the outputs of an earlier attempt before the engine runs (again). */
+int jobdir_clear_outputs(const char *jobs_dir, const char *id);
+/* Removes the job's files and its directory; a missing directory is fine. */
+int jobdir_remove(const char *jobs_dir, const char *id);
+
+#endif

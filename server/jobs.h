@@ -1,0 +1,75 @@
+/* The jobs service (server/jobs.c): submitting a run or a study, cancelling
+ * and removing jobs, with no HTTP in sight (the routes translate its answers
+ * into status codes and problem documents; a test or a tool can call it
+ * directly).
+ *
+ * Submitting validates everything first and collects every problem (the
+ * engine's scene validator, the daemon's particle limit, the study's sweep,
+ * every child scene), then issues ids, creates each job's directory before
+ * its row (the supervisor never claims a job without its scene), inserts the
+ * rows in one transaction, removes the directories again if the insert
+ * fails, and wakes the supervisor.
+ *
+ * Threads: each call uses the caller's queue handle (env->q). */
+#ifndef TLSPHD_JOBS_H
+#define TLSPHD_JOBS_H
+
+#include <stddef.h>
+
+#include <jansson.h>
+
+#include "config.h"
+#include "jobid.h"
+#include "queue.h"
+#include "util/errors.h"
+
+struct tsup;
+
+struct jobs_env {
+    struct tq *q;            /* the calling thread's queue handle */
+    const struct tcfg *cfg;  /* jobs_dir, max_particles, max_children, per-job defaults */
+    struct tsup *sup;        /* woken after a submit or a cancel; NULL: nobody to wake */
+};
+
+enum jobs_rc {
+    JOBS_OK,
+    JOBS_INVALID,      /* refused: the error list says why, pointers relative to the inputs */
+    JOBS_NO_MEMORY,
+    JOBS_NO_DIRECTORY, /* a job directory could not be made */
+    JOBS_NOT_QUEUED,   /* the queue did not take the rows (tq_last_error says why) */
+    JOBS_NO_SUCH_JOB,
+    JOBS_NOT_FINAL,    /* the job, or its study, is still accepted or running */
+    JOBS_BUSY          /* the database did not answer in time */
+};
+
+/* Most errors reported for one study (the rest are left out). */
+#define JOBS_MAX_REPORTED_ERRORS 50
+
+/* What a submit produced. */
+struct jobs_submitted {
+    char id[JOB_ID_LEN + 1];    /* JOBS_OK: the new job (a study: the study) */
+    struct tlsph_errors errors; /* JOBS_INVALID: every problem, pointers relative to the inputs */
+    char why[256];              /* other failures: one line for the log */
+};
+void jobs_submitted_init(struct jobs_submitted *s);
+void jobs_submitted_free(struct jobs_submitted *s);
+
+/* A run: inputs = {"scene": SCENE}.  The scene gets the daemon's particle
+ * limit when it sets none (inputs is modified). */
+enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct jobs_submitted *out);
+/* A study: inputs = {"base", "sweep", "outputs"} (study.h); its children are
+ * queued with it. */
+enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
+                               struct jobs_submitted *out);
+/* Asks for job id (a study: each child) to stop: JOBS_OK (also for a job that
+ * is final or unknown: nothing to do) or JOBS_BUSY. */
+enum jobs_rc jobs_cancel(const struct jobs_env *env, const char *id);
+/* Removes a final job, its files and, for a study, its children's files:
+ * JOBS_OK, JOBS_NO_SUCH_JOB, JOBS_NOT_FINAL or JOBS_BUSY. */
+enum jobs_rc jobs_remove(const struct jobs_env *env, const struct tq_job *job);
+/* The children of study id ordered by seq (at most max_children + 1); free
+ * with tq_jobs_free.  0 or -1 (busy). */
+int jobs_study_children(const struct jobs_env *env, const char *id, struct tq_job **out,
+                        size_t *n);
+
+#endif

@@ -1,0 +1,522 @@
+/* The queue's job operations (server/queue_jobs.c): inserts, reads and the
+ * state changes of run jobs (claim, pid, progress, finish, requeue, cancel,
+ * delete, start-up recovery), each in one write transaction; see queue.h for
+ * the contract and queue.c for the statements. */
+#include "queue_internal.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ------------------------------------------------------------------ insert */
+
+static int check_job_fields(struct tq *q, const char *fn, const struct tq_job *j,
+                            const char *want_process)
+{
+    if (!j) {
+        tqi_set_err(q, "%s: no job", fn);
+        return -1;
+    }
+    if (tqi_check_id(q, fn, j->id) < 0)
+        return -1;
+    if (strcmp(j->process, "run") != 0 && strcmp(j->process, "study") != 0) {
+        tqi_set_err(q, "%s: process must be \"run\" or \"study\"", fn);
+        return -1;
+    }
+    if (want_process && strcmp(j->process, want_process) != 0) {
+        tqi_set_err(q, "%s: job %s must have process \"%s\"", fn, j->id, want_process);
+        return -1;
+    }
+    if (!j->input) {
+        tqi_set_err(q, "%s: job %s has no input", fn, j->id);
+        return -1;
+    }
+    if (j->study_id[0] && tqi_check_id(q, fn, j->study_id) < 0)
+        return -1;
+    return 0;
+}
+
+static int insert_row(struct tq *q, const struct tq_job *j, const char *study_id, long seq,
+                      double created)
+{
+    sqlite3_stmt *st = q->st[S_INSERT];
+    tqi_bind_text(st, 1, j->id);
+    tqi_bind_text(st, 2, j->process);
+    tqi_bind_text(st, 3, study_id && study_id[0] ? study_id : NULL);
+    sqlite3_bind_int64(st, 4, seq);
+    tqi_bind_text(st, 5, j->message);
+    tqi_bind_text(st, 6, j->input);
+    tqi_bind_text(st, 7, j->params);
+    sqlite3_bind_double(st, 8, created);
+    sqlite3_bind_int64(st, 9, j->threads);
+    sqlite3_bind_double(st, 10, j->wall_limit);
+    char what[TQ_ID_LEN + 32];
+    snprintf(what, sizeof what, "inserting job %s", j->id);
+    return tqi_run_stmt(q, st, what);
+}
+
+enum tq_rc tq_insert(struct tq *q, const struct tq_job *j)
+{
+    NEED_Q(q);
+    if (check_job_fields(q, "tq_insert", j, NULL) < 0)
+        return -1;
+    if (tqi_tx_begin(q, "tq_insert") < 0)
+        return -1;
+    int rc = insert_row(q, j, j->study_id, j->study_id[0] ? j->seq : -1, tqi_now_seconds());
+    /* A child added to an existing study: the study must be one, and is refreshed. */
+    if (rc == 0 && j->study_id[0] && tqi_study_refresh_locked(q, j->study_id) != 0)
+        rc = -1;
+    return tqi_tx_end(q, "tq_insert", rc);
+}
+
+enum tq_rc tq_insert_study(struct tq *q, const struct tq_job *study,
+                           const struct tq_job *children, size_t n)
+{
+    NEED_Q(q);
+    if (check_job_fields(q, "tq_insert_study", study, "study") < 0)
+        return -1;
+    if (n == 0 || !children) {
+        tqi_set_err(q, "tq_insert_study: a study needs at least one child");
+        return -1;
+    }
+    for (size_t i = 0; i < n; i++)
+        if (check_job_fields(q, "tq_insert_study", &children[i], "run") < 0)
+            return -1;
+    if (tqi_tx_begin(q, "tq_insert_study") < 0)
+        return -1;
+    const double t = tqi_now_seconds();
+    int rc = insert_row(q, study, NULL, -1, t);
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        rc = insert_row(q, &children[i], study->id,
+                        children[i].seq >= 0 ? children[i].seq : (long)i, t);
+    if (rc == 0 && tqi_study_refresh_locked(q, study->id) < 0)
+        rc = -1;
+    return tqi_tx_end(q, "tq_insert_study", rc);
+}
+
+/* ------------------------------------------------------------------ reads */
+
+enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out)
+{
+    NEED_Q(q);
+    if (!out) {
+        tqi_set_err(q, "tq_get: no output");
+        return -1;
+    }
+    memset(out, 0, sizeof *out);
+    if (tqi_check_id(q, "tq_get", id) < 0)
+        return -1;
+    sqlite3_stmt *st = q->st[S_GET];
+    tqi_bind_text(st, 1, id);
+    int rc = sqlite3_step(st);
+    if (rc == SQLITE_DONE) {
+        tqi_done_stmt(st);
+        return 1;
+    }
+    if (rc != SQLITE_ROW) {
+        tqi_set_db_err(q, "tq_get");
+        tqi_done_stmt(st);
+        return -1;
+    }
+    if (tqi_read_job(q, st, out) < 0) {
+        tqi_done_stmt(st);
+        return -1;
+    }
+    rc = sqlite3_step(st);
+    tqi_done_stmt(st);
+    if (rc != SQLITE_DONE) {
+        tqi_set_db_err(q, "tq_get");
+        tq_job_free(out);
+        return -1;
+    }
+    return 0;
+}
+
+enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
+                   long limit, long offset, struct tq_job **out, size_t *n)
+{
+    NEED_Q(q);
+    if (!out || !n) {
+        tqi_set_err(q, "tq_list: no output");
+        return -1;
+    }
+    *out = NULL;
+    *n = 0;
+    if (limit < 1 || limit > 10000) {
+        tqi_set_err(q, "tq_list: limit must be in 1..10000 (got %ld)", limit);
+        return -1;
+    }
+    if (offset < 0) {
+        tqi_set_err(q, "tq_list: offset must be >= 0 (got %ld)", offset);
+        return -1;
+    }
+    const char *f[3] = {status, study_id, process};
+    int mask = 0;
+    for (int b = 0; b < 3; b++)
+        if (f[b] && f[b][0])
+            mask |= 1 << b;
+    sqlite3_stmt *st = q->st[S_LIST0 + mask];
+    for (int b = 0; b < 3; b++)
+        if (mask & (1 << b))
+            tqi_bind_text(st, b + 1, f[b]);
+    sqlite3_bind_int64(st, 4, limit);
+    sqlite3_bind_int64(st, 5, offset);
+
+    struct tq_job *a = NULL;
+    size_t cnt = 0, cap = 0;
+    int rc;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (cnt == cap) {
+            size_t ncap = cap ? 2 * cap : 16;
+            struct tq_job *na = realloc(a, ncap * sizeof *na);
+            if (!na) {
+                tqi_set_err(q, "tq_list: out of memory");
+                goto fail;
+            }
+            a = na;
+            cap = ncap;
+        }
+        if (tqi_read_job(q, st, &a[cnt]) < 0)
+            goto fail;
+        cnt++;
+    }
+    if (rc != SQLITE_DONE) {
+        tqi_set_db_err(q, "tq_list");
+        goto fail;
+    }
+    tqi_done_stmt(st);
+    *out = a;
+    *n = cnt;
+    return 0;
+fail:
+    tqi_done_stmt(st);
+    for (size_t i = 0; i < cnt; i++)
+        tq_job_free(&a[i]);
+    free(a);
+    return -1;
+}
+
+enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n)
+{
+    NEED_Q(q);
+    if (!ids || !n) {
+        tqi_set_err(q, "tq_cancel_requests: no output");
+        return -1;
+    }
+    *ids = NULL;
+    *n = 0;
+    sqlite3_stmt *st = q->st[S_CANCEL_REQUESTS];
+    char (*a)[TQ_ID_LEN + 1] = NULL;
+    size_t cnt = 0, cap = 0;
+    int rc;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (cnt == cap) {
+            size_t ncap = cap ? 2 * cap : 8;
+            char (*na)[TQ_ID_LEN + 1] = realloc(a, ncap * sizeof *na);
+            if (!na) {
+                tqi_set_err(q, "tq_cancel_requests: out of memory");
+                goto fail;
+            }
+            a = na;
+            cap = ncap;
+        }
+        if (tqi_copy_fixed(q, a[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0)
+            goto fail;
+        cnt++;
+    }
+    if (rc != SQLITE_DONE) {
+        tqi_set_db_err(q, "tq_cancel_requests");
+        goto fail;
+    }
+    tqi_done_stmt(st);
+    *ids = a;
+    *n = cnt;
+    return 0;
+fail:
+    tqi_done_stmt(st);
+    free(a);
+    return -1;
+}
+
+enum tq_rc tq_counts(struct tq *q, long *accepted, long *running, long *final)
+{
+    NEED_Q(q);
+    sqlite3_stmt *st = q->st[S_COUNTS];
+    int rc = sqlite3_step(st);
+    if (rc != SQLITE_ROW) {
+        tqi_set_db_err(q, "tq_counts");
+        tqi_done_stmt(st);
+        return -1;
+    }
+    if (accepted)
+        *accepted = (long)sqlite3_column_int64(st, 0);
+    if (running)
+        *running = (long)sqlite3_column_int64(st, 1);
+    if (final)
+        *final = (long)sqlite3_column_int64(st, 2);
+    tqi_done_stmt(st);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ state changes */
+
+enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out)
+{
+    NEED_Q(q);
+    if (!out) {
+        tqi_set_err(q, "tq_claim_next: no output");
+        return -1;
+    }
+    memset(out, 0, sizeof *out);
+    if (tqi_tx_begin(q, "tq_claim_next") < 0)
+        return -1;
+    sqlite3_stmt *st = q->st[S_CLAIM];
+    sqlite3_bind_double(st, 1, tqi_now_seconds());
+    int rc = sqlite3_step(st), ret;
+    if (rc == SQLITE_DONE) {
+        ret = 1;
+    } else if (rc == SQLITE_ROW) {
+        ret = tqi_read_job(q, st, out);
+        if (ret == 0 && (rc = sqlite3_step(st)) != SQLITE_DONE) {
+            tqi_set_db_err(q, "tq_claim_next");
+            ret = -1;
+        }
+    } else {
+        tqi_set_db_err(q, "tq_claim_next");
+        ret = -1;
+    }
+    tqi_done_stmt(st);
+    if (ret == 0)
+        ret = tqi_refresh_parent(q, out->study_id, 0);
+    ret = tqi_tx_end(q, "tq_claim_next", ret);
+    if (ret != 0)
+        tq_job_free(out);
+    return ret;
+}
+
+enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
+{
+    if (tqi_begin_for(q, "tq_set_pid", id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[S_SET_PID];
+    tqi_bind_text(st, 1, id);
+    sqlite3_bind_int64(st, 2, pid);
+    int rc = tqi_run_stmt(q, st, "tq_set_pid");
+    if (rc == 0 && sqlite3_changes(q->db) == 0)
+        rc = 1;
+    return tqi_tx_end(q, "tq_set_pid", rc);
+}
+
+enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
+                              double end_time, long step, double eta)
+{
+    if (!(progress >= 0)) /* also NaN */
+        progress = 0;
+    if (progress > 100)
+        progress = 100;
+    if (tqi_begin_for(q, "tq_update_progress", id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[S_PROGRESS];
+    tqi_bind_text(st, 1, id);
+    sqlite3_bind_double(st, 2, progress);
+    sqlite3_bind_double(st, 3, sim_time);
+    sqlite3_bind_double(st, 4, end_time);
+    sqlite3_bind_int64(st, 5, step);
+    sqlite3_bind_double(st, 6, eta);
+    char study[TQ_ID_LEN + 1];
+    int rc = tqi_update_returning_study(q, st, "tq_update_progress", study);
+    return tqi_tx_end(q, "tq_update_progress", tqi_refresh_parent(q, study, rc));
+}
+
+enum tq_rc tq_finish(struct tq *q, const char *id, const char *status, const char *outcome,
+                     const char *message, const char *cost_json)
+{
+    NEED_Q(q);
+    if (tqi_check_id(q, "tq_finish", id) < 0)
+        return -1;
+    if (!status || !tq_status_final(status)) {
+        tqi_set_err(q, "tq_finish: status must be successful, failed or dismissed");
+        return -1;
+    }
+    if (!outcome)
+        outcome = "";
+    if (strlen(outcome) >= sizeof ((struct tq_job *)0)->outcome) {
+        tqi_set_err(q, "tq_finish: outcome \"%.32s\" is too long", outcome);
+        return -1;
+    }
+    if (tqi_tx_begin(q, "tq_finish") < 0)
+        return -1;
+    sqlite3_stmt *st = q->st[S_FINISH];
+    tqi_bind_text(st, 1, id);
+    tqi_bind_text(st, 2, status);
+    tqi_bind_text(st, 3, outcome);
+    tqi_bind_text(st, 4, message);
+    tqi_bind_text(st, 5, cost_json);
+    sqlite3_bind_double(st, 6, tqi_now_seconds());
+    char study[TQ_ID_LEN + 1];
+    int rc = tqi_update_returning_study(q, st, "tq_finish", study);
+    return tqi_tx_end(q, "tq_finish", tqi_refresh_parent(q, study, rc));
+}
+
+enum tq_rc tq_requeue(struct tq *q, const char *id, const char *message)
+{
+    if (tqi_begin_for(q, "tq_requeue", id) < 0)
+        return TQ_ERROR;
+    struct tqi_lookup l;
+    int rc = tqi_lookup(q, id, &l);
+    char study[TQ_ID_LEN + 1] = "";
+    if (rc == 0 && (strcmp(l.status, TQ_RUNNING) != 0 || strcmp(l.process, "run") != 0))
+        rc = 1;
+    if (rc == 0 && l.cancel_requested) {
+        /* A cancel was pending: honour it instead of running the job again. */
+        sqlite3_stmt *st = q->st[S_DISMISS];
+        tqi_bind_text(st, 1, id);
+        tqi_bind_text(st, 2, "cancelled (stopped before it finished)");
+        sqlite3_bind_double(st, 3, tqi_now_seconds());
+        rc = tqi_run_stmt(q, st, "tq_requeue");
+        snprintf(study, sizeof study, "%s", l.study_id);
+    } else if (rc == 0) {
+        sqlite3_stmt *st = q->st[S_REQUEUE];
+        tqi_bind_text(st, 1, id);
+        tqi_bind_text(st, 2, message);
+        rc = tqi_update_returning_study(q, st, "tq_requeue", study);
+    }
+    return tqi_tx_end(q, "tq_requeue", tqi_refresh_parent(q, study, rc));
+}
+
+enum tq_rc tq_request_cancel(struct tq *q, const char *id)
+{
+    if (tqi_begin_for(q, "tq_request_cancel", id) < 0)
+        return TQ_ERROR;
+    struct tqi_lookup l;
+    int rc = tqi_lookup(q, id, &l);
+    const double t = tqi_now_seconds();
+    if (rc != 0 || tq_status_final(l.status))
+        return tqi_tx_end(q, "tq_request_cancel", rc);
+    sqlite3_stmt *st;
+    if (!strcmp(l.process, "study")) {
+        st = q->st[S_CANCEL_MARK];
+        tqi_bind_text(st, 1, id);
+        rc = tqi_run_stmt(q, st, "tq_request_cancel: study");
+        if (rc == 0) {
+            st = q->st[S_CANCEL_CHILDREN_ACCEPTED];
+            tqi_bind_text(st, 1, id);
+            tqi_bind_text(st, 2, "cancelled before it started");
+            sqlite3_bind_double(st, 3, t);
+            rc = tqi_run_stmt(q, st, "tq_request_cancel: children");
+        }
+        if (rc == 0) {
+            st = q->st[S_CANCEL_CHILDREN_RUNNING];
+            tqi_bind_text(st, 1, id);
+            rc = tqi_run_stmt(q, st, "tq_request_cancel: children");
+        }
+        if (rc == 0)
+            rc = tqi_study_refresh_locked(q, id);
+        return tqi_tx_end(q, "tq_request_cancel", rc < 0 ? -1 : 0);
+    }
+    if (!strcmp(l.status, TQ_ACCEPTED)) {
+        st = q->st[S_DISMISS];
+        tqi_bind_text(st, 1, id);
+        tqi_bind_text(st, 2, "cancelled before it started");
+        sqlite3_bind_double(st, 3, t);
+        rc = tqi_run_stmt(q, st, "tq_request_cancel");
+    } else {
+        st = q->st[S_CANCEL_MARK];
+        tqi_bind_text(st, 1, id);
+        rc = tqi_run_stmt(q, st, "tq_request_cancel");
+    }
+    return tqi_tx_end(q, "tq_request_cancel", tqi_refresh_parent(q, l.study_id, rc));
+}
+
+enum tq_rc tq_delete(struct tq *q, const char *id)
+{
+    if (tqi_begin_for(q, "tq_delete", id) < 0)
+        return TQ_ERROR;
+    struct tqi_lookup l;
+    int rc = tqi_lookup(q, id, &l);
+    if (rc == 0 && !tq_status_final(l.status))
+        rc = 2;
+    if (rc == 0 && l.study_id[0]) {
+        struct tqi_lookup parent;
+        int prc = tqi_lookup(q, l.study_id, &parent);
+        if (prc < 0)
+            rc = -1;
+        else if (prc == 0 && !tq_status_final(parent.status))
+            rc = 2;
+    }
+    if (rc == 0) {
+        sqlite3_stmt *st = q->st[S_DELETE];
+        tqi_bind_text(st, 1, id);
+        rc = tqi_run_stmt(q, st, "tq_delete");
+    }
+    return tqi_tx_end(q, "tq_delete", rc);
+}
+
+int tq_recover(struct tq *q, int max_attempts)
+{
+    NEED_Q(q);
+    if (tqi_tx_begin(q, "tq_recover") < 0)
+        return -1;
+    const double t = tqi_now_seconds();
+    long touched = 0;
+    int rc = 0;
+    sqlite3_stmt *st = q->st[S_RECOVER_CANCELLED];
+    sqlite3_bind_double(st, 1, t);
+    if (tqi_run_stmt(q, st, "tq_recover") < 0)
+        rc = -1;
+    else
+        touched += sqlite3_changes(q->db);
+    if (rc == 0) {
+        st = q->st[S_RECOVER_REQUEUE];
+        sqlite3_bind_int(st, 1, max_attempts);
+        if (tqi_run_stmt(q, st, "tq_recover") < 0)
+            rc = -1;
+        else
+            touched += sqlite3_changes(q->db);
+    }
+    if (rc == 0) {
+        st = q->st[S_RECOVER_FAIL];
+        sqlite3_bind_double(st, 1, t);
+        if (tqi_run_stmt(q, st, "tq_recover") < 0)
+            rc = -1;
+        else
+            touched += sqlite3_changes(q->db);
+    }
+    /* Refresh every unfinished study (self-healing after a crash mid-way). */
+    char (*ids)[TQ_ID_LEN + 1] = NULL;
+    size_t cnt = 0, cap = 0;
+    if (rc == 0) {
+        int src;
+        st = q->st[S_OPEN_STUDIES];
+        while ((src = sqlite3_step(st)) == SQLITE_ROW) {
+            if (cnt == cap) {
+                size_t ncap = cap ? 2 * cap : 8;
+                char (*na)[TQ_ID_LEN + 1] = realloc(ids, ncap * sizeof *na);
+                if (!na) {
+                    tqi_set_err(q, "tq_recover: out of memory");
+                    rc = -1;
+                    break;
+                }
+                ids = na;
+                cap = ncap;
+            }
+            if (tqi_copy_fixed(q, ids[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0) {
+                rc = -1;
+                break;
+            }
+            cnt++;
+        }
+        if (rc == 0 && src != SQLITE_DONE) {
+            tqi_set_db_err(q, "tq_recover");
+            rc = -1;
+        }
+        tqi_done_stmt(st);
+    }
+    for (size_t i = 0; rc == 0 && i < cnt; i++)
+        if (tqi_study_refresh_locked(q, ids[i]) < 0)
+            rc = -1;
+    free(ids);
+    if (tqi_tx_end(q, "tq_recover", rc) < 0)
+        return -1;
+    return touched > 2147483647L ? 2147483647 : (int)touched;
+}

@@ -1,0 +1,561 @@
+/* A job's results as resources (server/routes_results.c): the results
+ * document, the files (result.h5, result.xmf, with byte ranges and ETags),
+ * time series (JSON, CSV), frames, one field at one frame (binary or JSON),
+ * a study's summary table, and the engine log.  HDF5 reads and summaries run
+ * as tasks on the worker thread (results.h, study.h). */
+#include "route.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <inttypes.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "jobdir.h"
+#include "problem.h"
+#include "results.h"
+#include "study.h"
+
+#define LOG_TAIL (64 * 1024)     /* bytes of the engine log served */
+#define JSON_FIELD_MAX 100000    /* values of a field served as JSON */
+
+/* jobs_dir/<id>/<file> ("" when the id is not valid: the open fails). */
+static void job_file(char *out, size_t n, const struct tapp *a, const char *id,
+                     enum jobdir_file file)
+{
+    if (jobdir_path(out, n, a->cfg->jobs_dir, id, file) != 0)
+        out[0] = '\0';
+}
+
+static void results_doc(struct hreq *r, const struct tq_job *j)
+{
+    json_t *o = json_object();
+    json_object_set_new(o, "jobID", json_string(j->id));
+    json_object_set_new(o, "status", json_string(j->status));
+    json_t *links = json_array();
+    route_add_link(links, "self", "application/json", "this document", "/jobs/%s/results", j->id);
+    route_add_link(links, "up", "application/json", "the job", "/jobs/%s", j->id);
+    if (!strcmp(j->process, "study")) {
+        route_add_link(links, "summary", "application/json", "summary table",
+                 "/jobs/%s/results/summary", j->id);
+        route_add_link(links, "summary", "text/csv", "summary table (CSV)",
+                 "/jobs/%s/results/summary?format=csv", j->id);
+        route_add_link(links, REL_JOBLIST, "application/json", "children", "/jobs?study=%s", j->id);
+    } else {
+        route_add_link(links, "enclosure", "application/x-hdf5", "result file (HDF5, H5MD layout)",
+                 "/jobs/%s/results/result.h5", j->id);
+        route_add_link(links, "alternate", "text/xml", "XDMF sidecar for ParaView",
+                 "/jobs/%s/results/result.xmf", j->id);
+        route_add_link(links, "series", "application/json", "time series", "/jobs/%s/results/series",
+                 j->id);
+        route_add_link(links, "frames", "application/json", "field frames", "/jobs/%s/results/frames",
+                 j->id);
+        route_add_link(links, "fields", "application/octet-stream",
+                 "one field at one frame: /results/fields/{field}?frame=k",
+                 "/jobs/%s/results/fields/position?frame=-1", j->id);
+        route_add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
+    }
+    json_object_set_new(o, "links", links);
+    http_reply_json(r, 200, o);
+}
+
+/* Range header → [*off, *off + *len) of size; 0 none/ignored (whole file),
+ * 1 satisfiable single range, -1 unsatisfiable/invalid. */
+static int parse_range(const char *h, uint64_t size, uint64_t *off, uint64_t *len)
+{
+    if (!h)
+        return 0;
+    while (*h == ' ')
+        h++;
+    if (strncmp(h, "bytes=", 6) != 0)
+        return -1;
+    h += 6;
+    if (strchr(h, ','))
+        return 0; /* multiple ranges: serve the whole file */
+    char *end;
+    uint64_t a, b;
+    if (*h == '-') {
+        if (!isdigit((unsigned char)h[1]))
+            return -1;
+        errno = 0;
+        uint64_t n = strtoull(h + 1, &end, 10);
+        if (errno || *end || n == 0 || size == 0)
+            return -1;
+        if (n > size)
+            n = size;
+        *off = size - n;
+        *len = n;
+        return 1;
+    }
+    if (!isdigit((unsigned char)*h))
+        return -1;
+    errno = 0;
+    a = strtoull(h, &end, 10);
+    if (errno || *end != '-')
+        return -1;
+    h = end + 1;
+    if (*h == '\0') {
+        b = size ? size - 1 : 0;
+    } else {
+        if (!isdigit((unsigned char)*h))
+            return -1;
+        b = strtoull(h, &end, 10);
+        if (errno || *end || b < a)
+            return -1;
+        if (b >= size)
+            b = size ? size - 1 : 0;
+    }
+    if (a >= size)
+        return -1;
+    *off = a;
+    *len = b - a + 1;
+    return 1;
+}
+
+static void serve_file(struct hreq *r, const char *path, const char *ctype, const char *id,
+                       const char *download_name, int ranges)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        if (fd >= 0)
+            close(fd);
+        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no such file");
+        return;
+    }
+    const uint64_t size = (uint64_t)st.st_size;
+    char etag[96], buf[128];
+    snprintf(etag, sizeof etag, "\"%" PRIx64 "-%lx.%lx-%.8s\"", size, (long)st.st_mtim.tv_sec,
+             (long)st.st_mtim.tv_nsec, id);
+    uint64_t off = 0, len = size;
+    int rr = 0;
+    if (ranges) {
+        const char *ifr = http_header(r, "If-Range");
+        rr = (ifr && strcmp(ifr, etag)) ? 0 : parse_range(http_header(r, "Range"), size, &off, &len);
+    }
+    if (rr < 0) {
+        close(fd);
+        http_reply_problem(r, PROBLEM_RANGE, "the requested range is not satisfiable");
+        snprintf(buf, sizeof buf, "bytes */%" PRIu64, size);
+        http_add_header(r, "Content-Range", buf);
+    } else {
+        const char *inm = http_header(r, "If-None-Match");
+        if (inm && !strcmp(inm, etag) && rr == 0) {
+            close(fd);
+            http_reply_buf(r, 304, NULL, NULL, 0);
+        } else if (len == 0) {
+            close(fd);
+            http_reply_buf(r, 200, ctype, NULL, 0);
+        } else {
+            http_reply_fd(r, rr ? 206 : 200, ctype, fd, off, len);
+        }
+        if (rr > 0) {
+            snprintf(buf, sizeof buf, "bytes %" PRIu64 "-%" PRIu64 "/%" PRIu64, off, off + len - 1,
+                     size);
+            http_add_header(r, "Content-Range", buf);
+        }
+    }
+    http_add_header(r, "ETag", etag);
+    if (ranges)
+        http_add_header(r, "Accept-Ranges", "bytes");
+    if (download_name && rr >= 0) {
+        snprintf(buf, sizeof buf, "attachment; filename=\"%s\"", download_name);
+        http_add_header(r, "Content-Disposition", buf);
+    }
+}
+
+/* The tail of the engine log. */
+static void serve_log(struct hreq *r, const struct tapp *a, const struct tq_job *j)
+{
+    char path[1200];
+    job_file(path, sizeof path, a, j->id, JOBDIR_LOG);
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    struct stat st;
+    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+        if (fd >= 0)
+            close(fd);
+        http_reply_text(r, 200, "text/plain; charset=utf-8", "");
+        return;
+    }
+    uint64_t size = (uint64_t)st.st_size;
+    uint64_t off = size > LOG_TAIL ? size - LOG_TAIL : 0;
+    if (size == off) {
+        close(fd);
+        http_reply_text(r, 200, "text/plain; charset=utf-8", "");
+        return;
+    }
+    http_reply_fd(r, 200, "text/plain; charset=utf-8", fd, off, size - off);
+}
+
+static void task_series_list(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    char path[1200], err[256] = "";
+    (void)q;
+    job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
+    json_t *list = tres_series_list(path, err, sizeof err);
+    if (!list) {
+        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
+        return;
+    }
+    json_t *links = json_array();
+    route_add_link(links, "self", "application/json", NULL, "/jobs/%s/results/series", c->id);
+    http_reply_json(r, 200, json_pack("{s:o,s:o}", "series", list, "links", links));
+}
+
+static void task_series(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    char path[1200], err[256] = "";
+    int not_found = 0;
+    (void)q;
+    job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
+    if (c->format == FORMAT_CSV) {
+        char *csv = tres_series_csv(path, c->series, &not_found, err, sizeof err);
+        if (csv)
+            http_reply_buf(r, 200, "text/csv; charset=utf-8", csv, strlen(csv));
+        else
+            http_reply_problem(r, not_found ? PROBLEM_NO_SUCH_RESULT : PROBLEM_INTERNAL, err);
+        return;
+    }
+    json_t *s = tres_series(path, c->series, &not_found, err, sizeof err);
+    if (s)
+        http_reply_json(r, 200, s);
+    else
+        http_reply_problem(r, not_found ? PROBLEM_NO_SUCH_RESULT : PROBLEM_INTERNAL, err);
+}
+
+static void task_frames(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    char path[1200], err[256] = "";
+    (void)q;
+    job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
+    json_t *f = tres_frames(path, err, sizeof err);
+    if (!f) {
+        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
+        return;
+    }
+    http_reply_json(r, 200, json_pack("{s:o,s:I}", "frames", f, "count",
+                                      (json_int_t)json_array_size(f)));
+}
+
+static void task_field(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    char path[1200], err[256] = "", buf[64];
+    (void)q;
+    job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
+    struct tres_field f;
+    memset(&f, 0, sizeof f);
+    enum tres_rc rc = tres_field(path, c->name, c->frame, &f, err, sizeof err);
+    if (rc == TRES_NOT_FOUND || rc == TRES_NO_SUCH_FRAME) {
+        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT,
+                           *err ? err : rc == TRES_NOT_FOUND ? "no such field" : "no such frame");
+        return;
+    }
+    if (rc != TRES_OK) {
+        http_reply_problem(r, PROBLEM_INTERNAL, err);
+        return;
+    }
+    const size_t count = f.n_rows * (size_t)f.ncomp;
+    if (c->format == FORMAT_JSON) {
+        if (count > JSON_FIELD_MAX) {
+            tres_field_free(&f);
+            http_reply_problem(r, PROBLEM_NOT_ACCEPTABLE,
+                               "field too large for JSON (more than 100000 values); "
+                               "use application/octet-stream");
+            return;
+        }
+        json_t *j = tres_field_json(&f, c->name, c->frame);
+        tres_field_free(&f);
+        http_reply_json(r, 200, j);
+        return;
+    }
+    http_reply_buf(r, 200, "application/octet-stream", f.data, f.bytes);
+    f.data = NULL;
+    snprintf(buf, sizeof buf, "%zu,%d", f.n_rows, f.ncomp);
+    http_add_header(r, "X-Shape", buf);
+    http_add_header(r, "X-Dtype", f.dtype ? f.dtype : "<f4");
+    long frame = c->frame < 0 ? f.frames + c->frame : c->frame;
+    snprintf(buf, sizeof buf, "%ld", frame);
+    http_add_header(r, "X-Frame", buf);
+    snprintf(buf, sizeof buf, "%.17g", f.time);
+    http_add_header(r, "X-Time", buf);
+    snprintf(buf, sizeof buf, "%ld", f.step);
+    http_add_header(r, "X-Step", buf);
+    if (f.units[0])
+        http_add_header(r, "X-Units", f.units);
+    tres_field_free(&f);
+}
+
+static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    const struct tapp *a = c->app;
+    const struct jobs_env env = route_jobs_env(a, q);
+    struct tq_job j, *kids = NULL;
+    size_t nk = 0;
+    if (route_load_job(r, q, c->id, &j) != 0)
+        return;
+    json_t *study = route_json_or_null(j.input);
+    if (!study || jobs_study_children(&env, j.id, &kids, &nk) != 0) {
+        json_decref(study);
+        tq_job_free(&j);
+        http_reply_problem(r, PROBLEM_INTERNAL, "cannot read the study");
+        return;
+    }
+    struct tstudy_row *rows = calloc(nk ? nk : 1, sizeof *rows);
+    char (*paths)[1200] = calloc(nk ? nk : 1, sizeof *paths);
+    json_t **owned = calloc(2 * (nk ? nk : 1), sizeof *owned);
+    json_t *summary = NULL;
+    if (rows && paths && owned) {
+        for (size_t i = 0; i < nk; i++) {
+            job_file(paths[i], sizeof paths[i], a, kids[i].id, JOBDIR_RESULT);
+            owned[2 * i] = route_json_or_null(kids[i].params);
+            owned[2 * i + 1] = route_json_or_null(kids[i].cost);
+            rows[i].seq = kids[i].seq;
+            rows[i].job_id = kids[i].id;
+            rows[i].status = kids[i].status;
+            rows[i].params = owned[2 * i];
+            rows[i].h5path = paths[i];
+            rows[i].cost = owned[2 * i + 1];
+        }
+        summary = tstudy_summary(study, rows, nk);
+    }
+    if (!summary) {
+        http_reply_problem(r, PROBLEM_INTERNAL, "cannot build the summary");
+    } else if (c->format == FORMAT_CSV) {
+        char *csv = tstudy_summary_csv(summary);
+        if (csv)
+            http_reply_buf(r, 200, "text/csv; charset=utf-8", csv, strlen(csv));
+        else
+            http_reply_problem(r, PROBLEM_INTERNAL, "cannot format the summary");
+        json_decref(summary);
+    } else {
+        http_reply_json(r, 200, summary);
+    }
+    if (owned)
+        for (size_t i = 0; i < 2 * nk; i++)
+            json_decref(owned[i]);
+    free(owned);
+    free(paths);
+    free(rows);
+    tq_jobs_free(kids, nk);
+    json_decref(study);
+    tq_job_free(&j);
+}
+
+/* ------------------------------------------------------------------ handlers */
+
+/* The job behind a results route: answers 404/503 (route_load_job) or 409
+ * while it is still queued, and returns -1 then. */
+static int result_job(struct hreq *r, struct route_call *c, struct tq_job *j)
+{
+    if (route_load_job(r, c->app->q, c->id, j) != 0)
+        return -1;
+    if (!strcmp(j->status, TQ_ACCEPTED)) {
+        http_reply_problem(r, PROBLEM_RESULT_NOT_READY, "the job has not started yet");
+        tq_job_free(j);
+        return -1;
+    }
+    return 0;
+}
+
+static bool is_study(const struct tq_job *j)
+{
+    return !strcmp(j->process, "study");
+}
+
+/* A run's result: answers 404 for a study and returns -1. */
+static int run_result_job(struct hreq *r, struct route_call *c, struct tq_job *j)
+{
+    if (result_job(r, c, j) != 0)
+        return -1;
+    if (is_study(j)) {
+        http_reply_problem(r, PROBLEM_NOT_FOUND, "a study has only results/summary");
+        tq_job_free(j);
+        return -1;
+    }
+    return 0;
+}
+
+/* 404 for a name that cannot exist, in results.c's words; bytes outside
+ * printable ASCII become '?' (the detail must stay valid UTF-8). */
+static void reply_no_such_name(struct hreq *r, const char *fmt, const char *name)
+{
+    char safe[61], detail[128];
+    size_t n = 0;
+    for (; name[n] && n < sizeof safe - 1; n++)
+        safe[n] = name[n] >= 0x20 && name[n] < 0x7f ? name[n] : '?';
+    safe[n] = '\0';
+    snprintf(detail, sizeof detail, fmt, safe);
+    http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, detail);
+}
+
+/* ?format=json|csv; answers 400 and returns -1 for anything else. */
+static int parse_format(struct hreq *r, struct route_call *c)
+{
+    const char *f = http_query(r, "format");
+    c->format = FORMAT_JSON;
+    if (!f || !strcmp(f, "json"))
+        return 0;
+    if (!strcmp(f, "csv")) {
+        c->format = FORMAT_CSV;
+        return 0;
+    }
+    http_reply_problem(r, PROBLEM_BAD_REQUEST, "format must be json or csv");
+    return -1;
+}
+
+/* Defers task once the run has a result file (404 when a final job made
+ * none, 409 before the engine created it). */
+static void defer_result_task(struct hreq *r, struct route_call *c, const struct tq_job *j,
+                              route_task *task)
+{
+    char path[1200];
+    job_file(path, sizeof path, c->app, j->id, JOBDIR_RESULT);
+    if (access(path, R_OK) != 0) {
+        if (tq_status_final(j->status))
+            http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no result file");
+        else
+            http_reply_problem(r, PROBLEM_RESULT_NOT_READY, "no result file yet");
+        return;
+    }
+    if (route_defer(r, c, task) != 0)
+        http_reply_problem(r, PROBLEM_UNAVAILABLE, "shutting down");
+}
+
+void result_log(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (route_load_job(r, c->app->q, c->id, &j) != 0)
+        return;
+    if (is_study(&j))
+        http_reply_problem(r, PROBLEM_NOT_FOUND, "studies have no log");
+    else
+        serve_log(r, c->app, &j);
+    tq_job_free(&j);
+}
+
+void result_doc(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (result_job(r, c, &j) != 0)
+        return;
+    results_doc(r, &j);
+    tq_job_free(&j);
+}
+
+void result_summary(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (result_job(r, c, &j) != 0)
+        return;
+    if (!is_study(&j))
+        http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
+    else if (parse_format(r, c) == 0 && route_defer(r, c, task_summary) != 0)
+        http_reply_problem(r, PROBLEM_UNAVAILABLE, "shutting down");
+    tq_job_free(&j);
+}
+
+/* result.h5 and result.xmf, whole or by byte range, once the job is final. */
+static void result_file(struct hreq *r, struct route_call *c, enum jobdir_file file)
+{
+    struct tq_job j;
+    if (run_result_job(r, c, &j) != 0)
+        return;
+    if (!tq_status_final(j.status)) {
+        http_reply_problem(r, PROBLEM_RESULT_NOT_READY,
+                           "the file is served once the job is final; read fields and "
+                           "series while it runs");
+    } else {
+        const bool h5 = file == JOBDIR_RESULT;
+        char name[64], path[1200];
+        snprintf(name, sizeof name, "job-%.12s.%s", j.id, h5 ? "h5" : "xmf");
+        job_file(path, sizeof path, c->app, j.id, file);
+        serve_file(r, path, h5 ? "application/x-hdf5" : "text/xml", j.id, name, 1);
+    }
+    tq_job_free(&j);
+}
+
+void result_h5(struct hreq *r, struct route_call *c)
+{
+    result_file(r, c, JOBDIR_RESULT);
+}
+
+void result_xmf(struct hreq *r, struct route_call *c)
+{
+    result_file(r, c, JOBDIR_SIDECAR);
+}
+
+void result_series_list(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (run_result_job(r, c, &j) != 0)
+        return;
+    if (parse_format(r, c) == 0)
+        defer_result_task(r, c, &j, task_series_list);
+    tq_job_free(&j);
+}
+
+void result_series(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (run_result_job(r, c, &j) != 0)
+        return;
+    if (parse_format(r, c) != 0)
+        goto done;
+    /* the name is the rest of the path: "groups/right/reaction_force" */
+    c->series[0] = '\0';
+    for (int i = 0; i < c->nrest; i++) {
+        if (i > 0)
+            strncat(c->series, "/", sizeof c->series - strlen(c->series) - 1);
+        strncat(c->series, c->rest[i], sizeof c->series - strlen(c->series) - 1);
+    }
+    if (!tres_series_name_ok(c->series)) {
+        reply_no_such_name(r, TRES_NO_SERIES, c->series);
+    } else {
+        defer_result_task(r, c, &j, task_series);
+    }
+done:
+    tq_job_free(&j);
+}
+
+void result_frames(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (run_result_job(r, c, &j) != 0)
+        return;
+    defer_result_task(r, c, &j, task_frames);
+    tq_job_free(&j);
+}
+
+void result_field(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (run_result_job(r, c, &j) != 0)
+        return;
+    c->frame = -1;
+    if (!tres_field_name_ok(c->name)) {
+        reply_no_such_name(r, TRES_NO_FIELD, c->name);
+    } else if (route_query_long(http_query(r, "frame"), -1000000000L, 1000000000L, &c->frame) < 0) {
+        http_reply_problem(r, PROBLEM_BAD_REQUEST,
+                           "frame must be an integer (negative: from the end)");
+    } else {
+        const char *accept = http_header(r, "Accept");
+        c->format = accept && strstr(accept, "application/json") ? FORMAT_JSON : FORMAT_BINARY;
+        defer_result_task(r, c, &j, task_field);
+    }
+    tq_job_free(&j);
+}
+
+/* Any other path under results/: what the job has instead. */
+void result_other(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (result_job(r, c, &j) != 0)
+        return;
+    http_reply_problem(r, PROBLEM_NOT_FOUND,
+                       is_study(&j) ? "a study has only results/summary" : "no such resource");
+    tq_job_free(&j);
+}

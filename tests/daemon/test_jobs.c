@@ -1,0 +1,226 @@
+/* Unit tests of server/jobs.c, the jobs service without HTTP: validation with
+ * pointers relative to the inputs, the particle limit, ids, directories
+ * before rows, rollback when a directory cannot be made, cancel and remove.
+ * A scene from $top_srcdir/tests/scenes/good (default "."). */
+#include <check.h>
+#include <limits.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "jobdir.h"
+#include "jobs.h"
+#include "queue.h"
+#include "support/check_main.h"
+
+static char g_dir[] = "/tmp/test_jobs.XXXXXX";
+static char g_jobs[256];
+static struct tq *g_q;
+static struct tcfg g_cfg;
+static struct jobs_env g_env;
+
+static void setup(void)
+{
+    ck_assert_ptr_nonnull(mkdtemp(g_dir));
+    char db[PATH_MAX + 16], err[256];
+    snprintf(db, sizeof db, "%s/q.sqlite", g_dir);
+    snprintf(g_jobs, sizeof g_jobs, "%s/jobs", g_dir);
+    ck_assert_msg(tq_open(db, &g_q, err, sizeof err) == 0, "tq_open: %s", err);
+    memset(&g_cfg, 0, sizeof g_cfg);
+    snprintf(g_cfg.jobs_dir, sizeof g_cfg.jobs_dir, "%s", g_jobs);
+    g_cfg.max_particles = 100000;
+    g_cfg.max_children = 4;
+    g_cfg.threads_per_job = 2;
+    g_cfg.wall_limit = 60;
+    g_env = (struct jobs_env){.q = g_q, .cfg = &g_cfg, .sup = NULL};
+}
+
+static void teardown(void)
+{
+    tq_close(g_q);
+    char cmd[PATH_MAX + 16];
+    snprintf(cmd, sizeof cmd, "rm -rf '%s'", g_dir);
+    ck_assert_int_eq(system(cmd), 0);
+    strcpy(g_dir, "/tmp/test_jobs.XXXXXX");
+}
+
+static json_t *good_scene(void)
+{
+    const char *top = getenv("top_srcdir");
+    char path[PATH_MAX];
+    snprintf(path, sizeof path, "%s/tests/scenes/good/strip_2d.json", top && *top ? top : ".");
+    json_error_t e;
+    json_t *scene = json_load_file(path, 0, &e);
+    ck_assert_msg(scene != NULL, "%s: %s", path, e.text);
+    return scene;
+}
+
+static bool has_error(const struct tlsph_errors *e, const char *pointer, const char *needle)
+{
+    for (size_t i = 0; i < e->count; i++)
+        if (!strcmp(e->items[i].pointer, pointer) && strstr(e->items[i].message, needle))
+            return true;
+    return false;
+}
+
+static long count_jobs(void)
+{
+    long acc = -1;
+    ck_assert_int_eq(tq_counts(g_q, &acc, NULL, NULL), TQ_OK);
+    return acc;
+}
+
+START_TEST(test_run_refused_with_pointers)
+{
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    json_t *inputs = json_pack("{s:i}", "scene", 1);
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_INVALID);
+    ck_assert(has_error(&sub.errors, "/scene", "must be an object"));
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+
+    /* the engine's validator, pointers under /scene */
+    jobs_submitted_init(&sub);
+    json_t *scene = good_scene();
+    json_object_set_new(json_object_get(scene, "time"), "cfl", json_real(0));
+    inputs = json_pack("{s:o}", "scene", scene);
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_INVALID);
+    ck_assert(has_error(&sub.errors, "/scene/time/cfl", "out of range"));
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+
+    /* the daemon's particle limit */
+    jobs_submitted_init(&sub);
+    scene = good_scene();
+    json_object_set_new(scene, "limits", json_pack("{s:i}", "max_particles", 200000));
+    inputs = json_pack("{s:o}", "scene", scene);
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_INVALID);
+    ck_assert(has_error(&sub.errors, "/scene/limits/max_particles", "limit of 100000"));
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+    ck_assert_int_eq(count_jobs(), 0);
+}
+END_TEST
+
+START_TEST(test_run_queued_then_removed)
+{
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OK);
+    json_decref(inputs);
+    ck_assert(job_id_valid(sub.id));
+
+    struct tq_job j;
+    ck_assert_int_eq(tq_get(g_q, sub.id, &j), TQ_OK);
+    ck_assert_str_eq(j.status, TQ_ACCEPTED);
+    ck_assert_int_eq(j.threads, 2);
+    /* the stored scene carries the daemon's limit */
+    json_t *stored = json_loads(j.input, 0, NULL);
+    ck_assert_int_eq(json_integer_value(json_object_get(json_object_get(stored, "limits"),
+                                                        "max_particles")), 100000);
+    json_decref(stored);
+    char path[PATH_MAX];
+    ck_assert_int_eq(jobdir_path(path, sizeof path, g_jobs, sub.id, JOBDIR_SCENE), 0);
+    ck_assert_int_eq(access(path, R_OK), 0);
+
+    /* not final: cannot be removed; cancel dismisses it, then it can */
+    ck_assert_int_eq(jobs_remove(&g_env, &j), JOBS_NOT_FINAL);
+    ck_assert_int_eq(jobs_cancel(&g_env, sub.id), JOBS_OK);
+    tq_job_free(&j);
+    ck_assert_int_eq(tq_get(g_q, sub.id, &j), TQ_OK);
+    ck_assert_str_eq(j.status, TQ_DISMISSED);
+    ck_assert_int_eq(jobs_remove(&g_env, &j), JOBS_OK);
+    ck_assert_int_eq(access(path, F_OK), -1);
+    ck_assert_int_eq(jobs_remove(&g_env, &j), JOBS_NO_SUCH_JOB);
+    tq_job_free(&j);
+    jobs_submitted_free(&sub);
+}
+END_TEST
+
+START_TEST(test_study_children_and_errors)
+{
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    /* a swept value that breaks a child points at the sweep parameter */
+    json_t *inputs = json_pack(
+        "{s:o, s:{s:s, s:[{s:s, s:[f, f]}]}}", "base", good_scene(), "sweep", "mode", "product",
+        "parameters", "pointer", "/time/cfl", "values", 0.5, 0.0);
+    ck_assert_int_eq(jobs_submit_study(&g_env, inputs, &sub), JOBS_INVALID);
+    ck_assert(has_error(&sub.errors, "/sweep/parameters/0", "child 1"));
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+
+    jobs_submitted_init(&sub);
+    inputs = json_pack("{s:o, s:{s:s, s:[{s:s, s:[f, f, f]}]}}", "base", good_scene(), "sweep",
+                       "mode", "product", "parameters", "pointer", "/time/cfl", "values", 0.3,
+                       0.4, 0.5);
+    ck_assert_int_eq(jobs_submit_study(&g_env, inputs, &sub), JOBS_OK);
+    json_decref(inputs);
+    struct tq_job *kids = NULL;
+    size_t nk = 0;
+    ck_assert_int_eq(jobs_study_children(&g_env, sub.id, &kids, &nk), 0);
+    ck_assert_uint_eq(nk, 3);
+    for (size_t i = 0; i < nk; i++) {
+        ck_assert_int_eq(kids[i].seq, (long)i);
+        ck_assert_str_eq(kids[i].study_id, sub.id);
+        char path[PATH_MAX];
+        ck_assert_int_eq(jobdir_path(path, sizeof path, g_jobs, kids[i].id, JOBDIR_SCENE), 0);
+        ck_assert_int_eq(access(path, R_OK), 0);
+    }
+    tq_jobs_free(kids, nk);
+    ck_assert_int_eq(count_jobs(), 3);
+    jobs_submitted_free(&sub);
+}
+END_TEST
+
+/* A job directory that cannot be made: nothing is queued, nothing is left. */
+START_TEST(test_rollback_without_directory)
+{
+    FILE *f = fopen(g_jobs, "w"); /* jobs_dir is a file */
+    ck_assert_ptr_nonnull(f);
+    fclose(f);
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_NO_DIRECTORY);
+    ck_assert(sub.why[0] != '\0');
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+
+    jobs_submitted_init(&sub);
+    inputs = json_pack("{s:o, s:{s:s, s:[{s:s, s:[f, f]}]}}", "base", good_scene(), "sweep",
+                       "mode", "product", "parameters", "pointer", "/time/cfl", "values", 0.3, 0.4);
+    ck_assert_int_eq(jobs_submit_study(&g_env, inputs, &sub), JOBS_NOT_QUEUED);
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+    ck_assert_int_eq(count_jobs(), 0);
+    struct tq_job *all = NULL;
+    size_t n = 0;
+    ck_assert_int_eq(tq_list(g_q, NULL, NULL, NULL, 10, 0, &all, &n), TQ_OK);
+    ck_assert_uint_eq(n, 0);
+    tq_jobs_free(all, n);
+}
+END_TEST
+
+static Suite *jobs_suite(void)
+{
+    Suite *s = suite_create("jobs");
+    TCase *tc = tcase_create("jobs");
+    tcase_add_checked_fixture(tc, setup, teardown);
+    tcase_set_timeout(tc, 60);
+    tcase_add_test(tc, test_run_refused_with_pointers);
+    tcase_add_test(tc, test_run_queued_then_removed);
+    tcase_add_test(tc, test_study_children_and_errors);
+    tcase_add_test(tc, test_rollback_without_directory);
+    suite_add_tcase(s, tc);
+    return s;
+}
+
+int main(void)
+{
+    return tlsph_check_run(jobs_suite());
+}
