@@ -75,6 +75,13 @@ static int in_range(double x, struct jc_range r)
 int jc_number(const json_t *obj, const char *key, int required, struct jc_range r,
               const char *units, const char *pointer, double *out, struct tlsph_errors *err)
 {
+    return jc_number_why(obj, key, required, r, units, NULL, pointer, out, err);
+}
+
+int jc_number_why(const json_t *obj, const char *key, int required, struct jc_range r,
+                  const char *units, const char *above_max, const char *pointer, double *out,
+                  struct tlsph_errors *err)
+{
     char p[512];
     tlsph_pointer_join(p, sizeof p, pointer, key);
     const json_t *v = json_object_get(obj, key);
@@ -93,7 +100,12 @@ int jc_number(const json_t *obj, const char *key, int required, struct jc_range 
     if (!in_range(x, r)) {
         char d[128];
         describe_range(d, sizeof d, r);
-        tlsph_errors_add(err, p, "'%s' = %g %s is out of range: must be %s", key, x, units, d);
+        const int above = r.hi != JC_NONE && (r.hi == JC_OPEN ? x >= r.max : x > r.max);
+        if (above && above_max)
+            tlsph_errors_add(err, p, "'%s' = %g: %s; must be %s", key, x, above_max, d);
+        else
+            tlsph_errors_add(err, p, "'%s' = %g %s is out of range: must be %s", key, x, units,
+                             d);
         return -1;
     }
     *out = x;

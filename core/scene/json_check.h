@@ -23,6 +23,11 @@ int jc_unknown_keys(const json_t *obj, const char *const *allowed, const char *p
                     struct tlsph_errors *err);
 int jc_number(const json_t *obj, const char *key, int required, struct jc_range r,
               const char *units, const char *pointer, double *out, struct tlsph_errors *err);
+/* jc_number, with above_max (when not NULL) saying why values above the maximum
+ * are refused: "'key' = x: <above_max>; must be <range>". */
+int jc_number_why(const json_t *obj, const char *key, int required, struct jc_range r,
+                  const char *units, const char *above_max, const char *pointer, double *out,
+                  struct tlsph_errors *err);
 int jc_integer(const json_t *obj, const char *key, int required, long min, long max,
                const char *pointer, long *out, struct tlsph_errors *err);
 int jc_boolean(const json_t *obj, const char *key, int required, const char *pointer, int *out,

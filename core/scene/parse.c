@@ -17,8 +17,6 @@
 #include "material/strength/strength.h"
 #include "scene/parse_internal.h"
 
-#define TLSPH_SCENE_FILE_MAX (16L * 1024 * 1024)
-
 int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name)
 {
     for (size_t i = 0; i < s->nbodies; i++)
@@ -154,127 +152,19 @@ static int parse_parameters(const json_t *root, struct tlsph_scene *s, struct tl
     return bad ? -1 : 0;
 }
 
-static int parse_time(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
-{
-    static const char *const keys[] = {"end", "cfl", "step", "max_steps", NULL};
-    const json_t *t = jc_object(root, "time", 1, "", err);
-    if (!t)
-        return -1;
-    int bad = jc_unknown_keys(t, keys, "/time", err) != 0;
-    bad |= jc_number(t, "end", 1, JC_POSITIVE, "s", "/time", &s->end_time, err) < 0;
-    bad |= jc_number(t, "cfl", 0, ((struct jc_range){0.0, 10.0, JC_OPEN, JC_CLOSED}),
-                     "(dimensionless)",
-                     "/time", &s->cfl, err) < 0;
-    bad |= jc_number(t, "step", 0, JC_POSITIVE, "s", "/time", &s->fixed_dt, err) < 0;
-    bad |= jc_integer(t, "max_steps", 0, 0, 1000000000000L, "/time", &s->max_steps, err) < 0;
-    return bad ? -1 : 0;
-}
-
-static int parse_discretization(const json_t *root, struct tlsph_scene *s,
-                                struct tlsph_errors *err)
-{
-    static const char *const keys[] = {"kernel", "support_factor", "hourglass", "viscosity",
-                                       "damage", NULL};
-    static const char *const hg_keys[] = {"enabled", "coefficient", "stiffness", NULL};
-    static const char *const visc_keys[] = {"enabled", "linear", "quadratic", NULL};
-    const char *P = "/discretization";
-    const json_t *d = jc_object(root, "discretization", 0, "", err);
-    if (!d)
-        return json_object_get(root, "discretization") ? -1 : 0;
-    int bad = jc_unknown_keys(d, keys, P, err) != 0;
-    char kernel[32];
-    int r = jc_string(d, "kernel", 0, P, kernel, sizeof kernel, err);
-    if (r < 0) {
-        bad = 1;
-    } else if (r == 0) {
-        if (strcmp(kernel, "wendland_c2") == 0) {
-            s->kernel = TLSPH_KERNEL_WENDLAND_C2;
-        } else if (strcmp(kernel, "cubic_spline") == 0) {
-            s->kernel = TLSPH_KERNEL_CUBIC_SPLINE;
-        } else {
-            tlsph_errors_add(err, "/discretization/kernel",
-                             "unknown kernel '%s' (accepted: wendland_c2, cubic_spline)", kernel);
-            bad = 1;
-        }
-    }
-    bad |= jc_number(d, "support_factor", 0, JC_BETWEEN(1.2, 4.0), "(support radius / spacing)",
-                     P, &s->support_factor, err) < 0;
-    const json_t *hg = jc_object(d, "hourglass", 0, P, err);
-    if (hg) {
-        const char *Q = "/discretization/hourglass";
-        bad |= jc_unknown_keys(hg, hg_keys, Q, err) != 0;
-        bad |= jc_boolean(hg, "enabled", 0, Q, &s->hourglass, err) < 0;
-        bad |= jc_number(hg, "coefficient", 0, JC_BETWEEN(0.0, 100.0), "(dimensionless)", Q,
-                         &s->hourglass_coefficient, err) < 0;
-        char stiffness[16] = "elastic";
-        const int got = jc_string(hg, "stiffness", 0, Q, stiffness, sizeof stiffness, err);
-        bad |= got < 0;
-        if (got == 0 && strcmp(stiffness, "tangent") == 0) {
-            s->hourglass_tangent = 1;
-        } else if (got == 0 && strcmp(stiffness, "elastic") != 0) {
-            tlsph_errors_add(err, "/discretization/hourglass/stiffness",
-                             "unknown hourglass stiffness '%s' (accepted: elastic, tangent)",
-                             stiffness);
-            bad = 1;
-        }
-    } else if (json_object_get(d, "hourglass")) {
-        bad = 1;
-    }
-    const json_t *vi = jc_object(d, "viscosity", 0, P, err);
-    if (vi) {
-        const char *Q = "/discretization/viscosity";
-        bad |= jc_unknown_keys(vi, visc_keys, Q, err) != 0;
-        bad |= jc_boolean(vi, "enabled", 0, Q, &s->viscosity, err) < 0;
-        bad |= jc_number(vi, "linear", 0, JC_BETWEEN(0.0, 10.0), "(dimensionless)", Q,
-                         &s->viscosity_linear, err) < 0;
-        bad |= jc_number(vi, "quadratic", 0, JC_BETWEEN(0.0, 10.0), "(dimensionless)", Q,
-                         &s->viscosity_quadratic, err) < 0;
-    } else if (json_object_get(d, "viscosity")) {
-        bad = 1;
-    }
-    bad |= tlsph_parse_damage_treatment(d, s, err) != 0;
-    return bad ? -1 : 0;
-}
-
-static int parse_settings(const json_t *root, struct tlsph_scene *s, int *limits_bad,
+/* time, discretization, stability, limits and output: the scene's own scalars,
+ * read by their tables (scene_keys.c) in the order of the scene's keys.
+ * *limits_bad tells the particle count whether the limit is known. */
+static int parse_sections(const json_t *root, struct tlsph_scene *s, int *limits_bad,
                           struct tlsph_errors *err)
 {
-    static const char *const st_keys[] = {"check_every", "energy_tolerance", "speed_limit", NULL};
-    static const char *const lim_keys[] = {"max_particles", NULL};
-    static const char *const out_keys[] = {"frames", "series_every", "gauges", "sections", NULL};
-    int bad = 0;
-    const json_t *st = jc_object(root, "stability", 0, "", err);
-    if (st) {
-        bad |= jc_unknown_keys(st, st_keys, "/stability", err) != 0;
-        bad |= jc_integer(st, "check_every", 0, 1, 1000000000L, "/stability", &s->check_every,
-                          err) < 0;
-        bad |= jc_number(st, "energy_tolerance", 0, ((struct jc_range){0, 10, JC_OPEN, JC_CLOSED}),
-                         "(relative to the energy scale)", "/stability", &s->energy_tolerance,
-                         err) < 0;
-        bad |= jc_number(st, "speed_limit", 0, ((struct jc_range){0, 100, JC_OPEN, JC_CLOSED}),
-                         "(max speed / max wave speed)", "/stability", &s->speed_limit_factor,
-                         err) < 0;
-    } else if (json_object_get(root, "stability")) {
-        bad = 1;
-    }
-    const json_t *lim = jc_object(root, "limits", 0, "", err);
-    if (lim) {
-        *limits_bad |= jc_unknown_keys(lim, lim_keys, "/limits", err) != 0;
-        *limits_bad |= jc_integer(lim, "max_particles", 0, 1, TLSPH_MAX_PARTICLES, "/limits",
-                                  &s->max_particles, err) < 0;
-    } else if (json_object_get(root, "limits")) {
-        *limits_bad = 1;
-    }
+    const struct tlsph_key_target to = {.base = s};
+    int bad = tlsph_keys_member(root, &tlsph_scene_keys, "time", "", &to, err) < 0;
+    bad |= tlsph_keys_member(root, &tlsph_scene_keys, "discretization", "", &to, err) < 0;
+    bad |= tlsph_keys_member(root, &tlsph_scene_keys, "stability", "", &to, err) < 0;
+    *limits_bad = tlsph_keys_member(root, &tlsph_scene_keys, "limits", "", &to, err) < 0;
     bad |= *limits_bad;
-    const json_t *out = jc_object(root, "output", 0, "", err);
-    if (out) {
-        bad |= jc_unknown_keys(out, out_keys, "/output", err) != 0;
-        bad |= jc_integer(out, "frames", 0, 1, 100000L, "/output", &s->frames, err) < 0;
-        bad |= jc_integer(out, "series_every", 0, 1, 1000000000L, "/output", &s->series_every,
-                          err) < 0;
-    } else if (json_object_get(root, "output")) {
-        bad = 1;
-    }
+    bad |= tlsph_keys_member(root, &tlsph_scene_keys, "output", "", &to, err) < 0;
     return bad ? -1 : 0;
 }
 
@@ -290,38 +180,21 @@ static int parse_model_ref(const json_t *mat, const char *key, const char *point
     return jc_string(*obj, "type", 1, p, type, size, err) == 0 ? 0 : -1;
 }
 
-/* "thermal": {"specific_heat", "initial_temperature", "taylor_quinney"}: the
- * material gets a temperature, raised by plastic work (adiabatic heating). */
+/* "thermal": the material gets a temperature, raised by plastic work
+ * (adiabatic heating). */
 static int parse_thermal(const json_t *mat, struct tlsph_material *m, const char *pointer,
                          struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"specific_heat", "initial_temperature", "taylor_quinney",
-                                       NULL};
-    const json_t *th = jc_object(mat, "thermal", 0, pointer, err);
-    if (!th)
-        return json_object_get(mat, "thermal") ? -1 : 0;
-    char P[TLSPH_POINTER_MAX];
-    tlsph_pointer_join(P, sizeof P, pointer, "thermal");
-    struct tlsph_thermal *t = &m->thermal;
-    t->taylor_quinney = 0.9;
-    int bad = jc_unknown_keys(th, keys, P, err) != 0;
-    bad |= jc_number(th, "specific_heat", 1, ((struct jc_range){0.0, 1e6, JC_OPEN, JC_CLOSED}),
-                     "J/(kg K)", P, &t->specific_heat, err) < 0;
-    bad |= jc_number(th, "initial_temperature", 1,
-                     ((struct jc_range){0.0, 1e5, JC_OPEN, JC_CLOSED}), "K", P,
-                     &t->initial_temperature, err) < 0;
-    bad |= jc_number(th, "taylor_quinney", 0, JC_BETWEEN(0.0, 1.0),
-                     "(fraction of plastic work turned into heat)", P, &t->taylor_quinney,
-                     err) < 0;
-    t->enabled = 1; /* even when invalid: the strength model must not ask for it again */
-    return bad ? -1 : 0;
+    const struct tlsph_key_target to = {.base = &m->thermal};
+    const int r = tlsph_keys_member(mat, &tlsph_material_keys, "thermal", pointer, &to, err);
+    /* a block, even an invalid one: the strength model must not ask for it again */
+    m->thermal.enabled = json_is_object(json_object_get(mat, "thermal"));
+    return r < 0 ? -1 : 0;
 }
 
 static int parse_material(const char *name, const json_t *mat, struct tlsph_material *m,
                           struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"density", "youngs_modulus", "poisson_ratio", "eos",
-                                       "strength", "thermal", "damage", NULL};
     char P[TLSPH_POINTER_MAX];
     tlsph_pointer_join(P, sizeof P, "/materials", name);
     if (!json_is_object(mat)) {
@@ -335,35 +208,10 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
         return -1;
     }
     memcpy(m->name, name, strlen(name) + 1);
-    int bad = jc_unknown_keys(mat, keys, P, err) != 0;
-    int elastic_ok = 1;
-    if (jc_number(mat, "density", 1, ((struct jc_range){0, 1e5, JC_OPEN, JC_CLOSED}), "kg/m^3",
-                  P, &m->density, err) != 0)
-        elastic_ok = 0;
-    if (jc_number(mat, "youngs_modulus", 1, JC_POSITIVE, "Pa", P, &m->youngs_modulus, err) != 0)
-        elastic_ok = 0;
-    double nu = 0.0;
-    int r = jc_number(mat, "poisson_ratio", 1, JC_ANY, "(dimensionless)", P, &nu, err);
-    if (r == 0) {
-        char p[TLSPH_POINTER_MAX];
-        tlsph_pointer_join(p, sizeof p, P, "poisson_ratio");
-        if (nu >= 0.5) {
-            tlsph_errors_add(err, p,
-                             "'poisson_ratio' = %g: incompressible (nu = 0.5) and "
-                             "nu > 0.5 materials are not supported; must be in (-1, 0.5)",
-                             nu);
-            r = -1;
-        } else if (nu <= -1.0) {
-            tlsph_errors_add(err, p, "'poisson_ratio' = %g is out of range: must be in (-1, 0.5)",
-                             nu);
-            r = -1;
-        }
-    }
-    if (r != 0)
-        elastic_ok = 0;
-    m->poisson_ratio = nu;
-    bad |= !elastic_ok;
-    if (elastic_ok) {
+    const struct tlsph_key_target to = {.base = m};
+    int bad = tlsph_keys_read(mat, &tlsph_material_keys, P, &to, err) != 0;
+    if (!bad) { /* derived constants of a valid material; nothing reads those of another */
+        const double nu = m->poisson_ratio;
         m->shear_modulus = m->youngs_modulus / (2.0 * (1.0 + nu));
         m->bulk_modulus = m->youngs_modulus / (3.0 * (1.0 - 2.0 * nu));
         m->wave_speed = sqrt((m->bulk_modulus + 4.0 * m->shear_modulus / 3.0) / m->density);
@@ -372,7 +220,7 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
     char type[64], p[TLSPH_POINTER_MAX];
     const json_t *obj;
     m->eos = &tlsph_eos_linear;
-    r = parse_model_ref(mat, "eos", P, type, sizeof type, &obj, err);
+    int r = parse_model_ref(mat, "eos", P, type, sizeof type, &obj, err);
     tlsph_pointer_join(p, sizeof p, P, "eos");
     if (r < 0) {
         bad = 1;
@@ -429,8 +277,9 @@ static int parse_materials(const json_t *root, struct tlsph_scene *s, struct tls
         tlsph_errors_add(err, "/materials", "'materials' must define at least one material");
         return -1;
     }
-    if (n > 1000) {
-        tlsph_errors_add(err, "/materials", "at most 1000 materials are allowed, got %zu", n);
+    if (n > TLSPH_MAX_MATERIALS) {
+        tlsph_errors_add(err, "/materials", "at most %d materials are allowed, got %zu",
+                         TLSPH_MAX_MATERIALS, n);
         return -1;
     }
     s->materials = calloc(n, sizeof *s->materials);
@@ -448,34 +297,10 @@ static int parse_materials(const json_t *root, struct tlsph_scene *s, struct tls
     return bad ? -1 : 0;
 }
 
-static void set_defaults(struct tlsph_scene *s)
-{
-    memset(s, 0, sizeof *s);
-    s->dimension = 3;
-    strcpy(s->name, "scene");
-    s->cfl = 0.3;
-    s->kernel = TLSPH_KERNEL_WENDLAND_C2;
-    s->support_factor = 2.01;
-    s->hourglass = 1;
-    s->hourglass_coefficient = 1.0;
-    s->viscosity = 0;
-    s->viscosity_linear = 1.0;
-    s->viscosity_quadratic = 0.0;
-    s->check_every = 10;
-    s->energy_tolerance = 0.05;
-    s->speed_limit_factor = 1.0;
-    s->max_particles = TLSPH_DEFAULT_MAX_PARTICLES;
-    s->frames = 20;
-    s->series_every = 10;
-}
-
 int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
                       struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"name", "dimension", "parameters", "time",
-                                       "discretization", "stability", "limits", "output",
-                                       "materials", "bodies", "boundary_conditions", NULL};
-    set_defaults(scene);
+    tlsph_scene_defaults(scene);
     const size_t errors_before = err->count;
     json_error_t jerr;
     json_t *root = json_loadb(text, len, JSON_REJECT_DUPLICATES, &jerr);
@@ -493,17 +318,13 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
         return -1;
     }
     struct tlsph_scene *s = scene;
-    int bad = jc_unknown_keys(root, keys, "", err) != 0;
-    bad |= jc_string(root, "name", 0, "", s->name, sizeof s->name, err) < 0;
-    long dim = 3;
-    if (jc_integer(root, "dimension", 1, 2, 3, "", &dim, err) != 0)
-        bad = 1; /* go on in 3-D to report the other problems */
-    s->dimension = (int)dim;
+    /* name and dimension; an invalid dimension leaves the default: the other
+     * problems are reported as in 3-D */
+    int bad = tlsph_keys_read(root, &tlsph_scene_keys, "", &(struct tlsph_key_target){.base = s},
+                              err) != 0;
     bad |= parse_parameters(root, s, err) != 0;
-    bad |= parse_time(root, s, err) != 0;
-    bad |= parse_discretization(root, s, err) != 0;
     int limits_bad = 0;
-    bad |= parse_settings(root, s, &limits_bad, err) != 0;
+    bad |= parse_sections(root, s, &limits_bad, err) != 0;
     bad |= parse_materials(root, s, err) != 0;
     const int bodies_bad = tlsph_parse_bodies(root, s, err) != 0;
     bad |= bodies_bad;

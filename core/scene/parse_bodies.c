@@ -56,8 +56,6 @@ static int parse_initial_velocity(const json_t *obj, struct tlsph_scene *s, stru
 static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
                       struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"name", "material", "spacing", "lattice", "origin",
-                                       "geometry", "initial_velocity", NULL};
     struct tlsph_body *b = &s->bodies[index];
     char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
     tlsph_pointer_index(P, sizeof P, "/bodies", index);
@@ -66,7 +64,7 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
         return -1;
     }
     b->material = -1;
-    int bad = jc_unknown_keys(obj, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(obj, &tlsph_body_keys, P, err) != 0;
     if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0) {
         bad = 1;
     } else {
@@ -89,16 +87,8 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     } else if (b->material < 0) {
         bad = 1; /* /materials itself is reported */
     }
-    bad |= jc_number(obj, "spacing", 1, JC_POSITIVE, "m", P, &b->spacing, err) != 0;
-    char lattice[32];
-    int r = jc_string(obj, "lattice", 0, P, lattice, sizeof lattice, err);
-    if (r < 0) {
-        bad = 1;
-    } else if (r == 0 && strcmp(lattice, "simple_cubic") != 0) {
-        tlsph_pointer_join(p, sizeof p, P, "lattice");
-        tlsph_errors_add(err, p, "unknown lattice '%s' (accepted: simple_cubic)", lattice);
-        bad = 1;
-    }
+    bad |= tlsph_keys_values(obj, &tlsph_body_keys, P, &(struct tlsph_key_target){.base = b},
+                             err) != 0;
     tlsph_pointer_join(p, sizeof p, P, "geometry");
     const json_t *g = json_object_get(obj, "geometry");
     int geometry_ok = 0;
@@ -110,7 +100,7 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     } else {
         geometry_ok = 1;
     }
-    r = jc_vector(obj, "origin", 0, 3, "m", P, b->origin, err);
+    const int r = jc_vector(obj, "origin", 0, 3, "m", P, b->origin, err);
     if (r < 0) {
         bad = 1;
     } else if (r == 1 && geometry_ok) {
@@ -135,8 +125,9 @@ int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_e
         return -1;
     }
     const size_t n = json_array_size(arr);
-    if (n > 10000) {
-        tlsph_errors_add(err, "/bodies", "at most 10000 bodies are allowed, got %zu", n);
+    if (n > TLSPH_MAX_BODIES) {
+        tlsph_errors_add(err, "/bodies", "at most %d bodies are allowed, got %zu",
+                         TLSPH_MAX_BODIES, n);
         return -1;
     }
     s->bodies = calloc(n, sizeof *s->bodies);

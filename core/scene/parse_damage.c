@@ -1,7 +1,6 @@
-/* The damage parts of a scene: a material's "damage" block (the model's own
- * parameters are read by its file in core/material/damage/) and the discretization's
- * "damage" block (how damage enters the approximation). */
-#include <string.h>
+/* A material's "damage" block: the model's own parameters are read by its
+ * file in core/material/damage/.  (The discretization's "damage" block, how
+ * damage enters the approximation, is a table in scene_keys.c.) */
 
 #include "material/damage/damage.h"
 #include "material/strength/strength.h"
@@ -37,46 +36,5 @@ int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, con
         bad = 1;
     }
     m->damage.model = model; /* even when invalid: later checks must see it */
-    return bad ? -1 : 0;
-}
-
-int tlsph_parse_damage_treatment(const json_t *d, struct tlsph_scene *s, struct tlsph_errors *err)
-{
-    static const char *const keys[] = {"treatment", "failed_particles", NULL};
-    const char *P = "/discretization/damage";
-    const json_t *obj = jc_object(d, "damage", 0, "/discretization", err);
-    if (!obj)
-        return json_object_get(d, "damage") ? -1 : 0;
-    int bad = jc_unknown_keys(obj, keys, P, err) != 0;
-    char v[32];
-    int r = jc_string(obj, "treatment", 0, P, v, sizeof v, err);
-    if (r < 0) {
-        bad = 1;
-    } else if (r == 0) {
-        if (strcmp(v, "damage_aware") == 0) {
-            s->crack_treatment = TLSPH_CRACK_DAMAGE_AWARE;
-        } else if (strcmp(v, "pseudo_spring") == 0) {
-            s->crack_treatment = TLSPH_CRACK_PSEUDO_SPRING;
-        } else {
-            tlsph_errors_add(err, "/discretization/damage/treatment",
-                             "unknown damage treatment '%s' (accepted: damage_aware, "
-                             "pseudo_spring)", v);
-            bad = 1;
-        }
-    }
-    r = jc_string(obj, "failed_particles", 0, P, v, sizeof v, err);
-    if (r < 0) {
-        bad = 1;
-    } else if (r == 0) {
-        if (strcmp(v, "free") == 0) {
-            s->failed_motion = TLSPH_FAILED_FREE;
-        } else if (strcmp(v, "arrest") == 0) {
-            s->failed_motion = TLSPH_FAILED_ARREST;
-        } else {
-            tlsph_errors_add(err, "/discretization/damage/failed_particles",
-                             "unknown failed-particle motion '%s' (accepted: free, arrest)", v);
-            bad = 1;
-        }
-    }
     return bad ? -1 : 0;
 }

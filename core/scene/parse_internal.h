@@ -8,9 +8,14 @@
 
 #include "scene/scene.h"
 #include "scene/json_check.h"
+#include "scene/keys.h"
 
-#define TLSPH_GEOMETRY_MAX_DEPTH 16
-#define TLSPH_MAX_PARAMS 40
+/* scene_keys.c: the tables the section parsers read with (the root is
+ * tlsph_scene_keys, keys.h). */
+extern const struct tlsph_key_table tlsph_material_keys; /* "/materials/<name>" */
+extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
+extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
+extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
 
 /* parse.c: shared helpers */
 /* Compiles a number (as its %.17g text) or an expression string at pointer;
@@ -46,10 +51,9 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
 size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
 
 /* parse_damage.c: a material's "damage" block (after its strength and thermal
- * blocks), and "/discretization/damage" (the treatment in the approximation). */
+ * blocks). */
 int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, const char *pointer,
                                 struct tlsph_errors *err);
-int tlsph_parse_damage_treatment(const json_t *d, struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* parse_measures.c: "/output/gauges" and "/output/sections" (boundary
  * conditions already parsed). */

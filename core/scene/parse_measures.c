@@ -32,8 +32,9 @@ static long measure_array(const json_t *out, const char *key, const json_t **arr
 
 /* Item i of an array of objects, with its name unique among items 0..i-1. */
 static const json_t *measure_item(const json_t *arr, size_t i, const char *key,
-                                  const char *const *keys, char *name, const char *names,
-                                  size_t stride, char *P, struct tlsph_errors *err)
+                                  const struct tlsph_key_table *keys, char *name,
+                                  const char *names, size_t stride, char *P,
+                                  struct tlsph_errors *err)
 {
     char base[TLSPH_POINTER_MAX];
     tlsph_pointer_join(base, sizeof base, "/output", key);
@@ -43,7 +44,7 @@ static const json_t *measure_item(const json_t *arr, size_t i, const char *key,
         tlsph_errors_add(err, P, "must be an object, got %s", jc_type_name(o));
         return NULL;
     }
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, keys, P, err) != 0;
     if (jc_string(o, "name", 1, P, name, TLSPH_NAME_MAX, err) != 0)
         return NULL;
     for (size_t j = 0; j < i; j++)
@@ -109,8 +110,8 @@ static int parse_gauge(const json_t *o, const struct tlsph_scene *s, const char 
             bad = 1;
         }
     }
-    bad |= jc_number(o, "area", 1, JC_POSITIVE, "m^2", P, &g->area, err) != 0;
-    bad |= jc_number(o, "length", 0, JC_POSITIVE, "m", P, &g->length, err) < 0;
+    const struct tlsph_key_target to = {.base = g};
+    bad |= tlsph_keys_values(o, &tlsph_gauge_keys, P, &to, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -121,14 +122,13 @@ static int parse_section(const json_t *o, int dim, const char *P, struct tlsph_s
     if (dim == 2)
         c->point[2] = 0.0;
     bad |= tlsph_parse_direction(o, "normal", dim, P, c->normal, err) != 0;
-    bad |= jc_number(o, "thickness", 1, JC_POSITIVE, "m", P, &c->thickness, err) != 0;
+    const struct tlsph_key_target to = {.base = c};
+    bad |= tlsph_keys_values(o, &tlsph_section_keys, P, &to, err) != 0;
     return bad ? -1 : 0;
 }
 
 int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
 {
-    static const char *const gauge_keys[] = {"name", "between", "area", "length", NULL};
-    static const char *const section_keys[] = {"name", "point", "normal", "thickness", NULL};
     const json_t *out = json_object_get(root, "output");
     if (!json_is_object(out))
         return 0; /* absent, or already reported */
@@ -140,7 +140,7 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_gauge *g = &s->gauges[i];
-        const json_t *o = measure_item(arr, (size_t)i, "gauges", gauge_keys, g->name,
+        const json_t *o = measure_item(arr, (size_t)i, "gauges", &tlsph_gauge_keys, g->name,
                                        s->gauges[0].name, sizeof *g, P, err);
         if (!o || parse_gauge(o, s, P, g, err) != 0)
             bad = 1;
@@ -152,7 +152,7 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_section *c = &s->sections[i];
-        const json_t *o = measure_item(arr, (size_t)i, "sections", section_keys, c->name,
+        const json_t *o = measure_item(arr, (size_t)i, "sections", &tlsph_section_keys, c->name,
                                        s->sections[0].name, sizeof *c, P, err);
         if (!o || parse_section(o, s->dimension, P, c, err) != 0)
             bad = 1;

@@ -12,10 +12,7 @@
 
 #include "util/errors.h"
 #include "util/expr.h"
-
-#define TLSPH_NAME_MAX 64
-#define TLSPH_MAX_PARTICLES 50000000L /* absolute ceiling; the scene may set a lower one */
-#define TLSPH_DEFAULT_MAX_PARTICLES 2000000L /* /limits/max_particles when the scene sets none */
+#include "scene/limits.h" /* TLSPH_NAME_MAX, TLSPH_MAX_PARTICLES, the defaults */
 
 struct tlsph_eos_model;      /* core/material/eos/eos.h */
 struct tlsph_strength_model; /* core/material/strength/strength.h */
@@ -143,8 +140,6 @@ struct tlsph_bc {
     };
 };
 
-#define TLSPH_MAX_MEASURES 32
-
 /* An engineering stress-strain gauge between two load-carrying groups (fixed or
  * velocity conditions): along the unit axis a from group[0]'s reference
  * centroid to group[1]'s, engineering stress = (R_1 - R_0).a / (2 area) (the
@@ -215,6 +210,9 @@ struct tlsph_scene {
  * found in err (JSON pointer + message) and *scene left empty. */
 int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
                       struct tlsph_errors *err);
+/* A scene holding only the defaults of its own sections (time, discretization,
+ * stability, limits, output; scene/limits.h): no materials, bodies or conditions. */
+void tlsph_scene_defaults(struct tlsph_scene *scene);
 int tlsph_scene_load_file(const char *path, struct tlsph_scene *scene, struct tlsph_errors *err);
 void tlsph_scene_free(struct tlsph_scene *scene);
 

@@ -7,19 +7,30 @@
  * point in the step where the return mapping satisfies the yield condition. */
 #include <math.h>
 
-#include "scene/json_check.h"
+#include "scene/keys.h"
 #include "material/damage/damage.h"
 
 enum { WCR };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    {.name = "critical_work", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 1e12, JC_OPEN, JC_CLOSED}, .unit = "J/m^3", .said = "J/m^3 (= Pa)",
+     .offset = TLSPH_PARAM(WCR),
+     .description = "critical plastic work of the largest principal tensile stress W_cr"},
+    {.name = "evolution", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER,
+     .table = &tlsph_damage_evolution_keys, .description = "damage evolution (eq. 45)"},
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/damage", "cockcroft_latham", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "critical_work", "evolution", NULL};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    bad |= jc_number(obj, "critical_work", 1, ((struct jc_range){0.0, 1e12, JC_OPEN, JC_CLOSED}),
-                     "J/m^3 (= Pa)", pointer, &m->damage.params[WCR], err) < 0;
-    return bad ? -1 : 0;
+    const struct tlsph_key_target to = {.base = m->damage.params, .terms = &m->damage.terms};
+    return tlsph_keys_read(obj, &table, pointer, &to, err);
 }
 
 static double initiation(const struct tlsph_material *m, const struct tlsph_damage_step *s)
@@ -30,6 +41,7 @@ static double initiation(const struct tlsph_material *m, const struct tlsph_dama
 const struct tlsph_damage_model tlsph_damage_cockcroft_latham = {
     .name = "cockcroft_latham",
     .module = "damage:cockcroft_latham",
+    .keys = &table,
     .needs_sigma1 = 1,
     .parse = parse,
     .initiation = initiation,

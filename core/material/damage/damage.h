@@ -54,8 +54,11 @@ struct tlsph_damage_step {
                            needs_sigma1 only; 0 otherwise) */
 };
 
+struct tlsph_key_table; /* core/scene/keys.h */
+
 struct tlsph_damage_model {
     const char *name;   /* as written in the scene */
+    const struct tlsph_key_table *keys; /* its parameters: what parse reads (core/scene/keys.h) */
     const char *module; /* "damage:<name>", for the run's list of active modules */
     int needs_sigma1;   /* the criterion reads the largest principal stress */
     /* 1 for a porous-plasticity model (GTN, material/damage/gtn.h): it replaces the J2
@@ -103,7 +106,9 @@ static inline double tlsph_damage_evolution(const struct tlsph_damage *d, double
     return D < 1.0 ? D : 1.0;
 }
 
-/* Parses "evolution": {"factor": >0} (optional; default 10, the paper's value). */
+/* Parses "evolution": {"factor": >0} (optional; default 10, the paper's value)
+ * with the table tlsph_damage_evolution_keys. */
+extern const struct tlsph_key_table tlsph_damage_evolution_keys;
 int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, const char *pointer,
                                  struct tlsph_errors *err);
 

@@ -15,68 +15,77 @@
  * its case study without either ("no strain rate effect is considered"). */
 #include <math.h>
 
-#include "scene/json_check.h"
+#include "scene/keys.h"
 #include "material/damage/damage.h"
 
 enum { D1, D2, D3, D4, EPSDOT0, D5, TREF, TMELT };
 
+#define NUMBER TLSPH_KEY_NUMBER
+#define REQUIRED TLSPH_KEY_REQUIRED
+
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    {.name = "d1", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 1e3, JC_CLOSED, JC_CLOSED},
+     .unit = "1", .said = "(dimensionless strain)", .offset = TLSPH_PARAM(D1),
+     .description = "failure-strain constant D1"},
+    {.name = "d2", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 1e3, JC_CLOSED, JC_CLOSED},
+     .unit = "1", .said = "(dimensionless strain)", .offset = TLSPH_PARAM(D2),
+     .description = "failure-strain coefficient D2; d1 and d2 not both 0"},
+    {.name = "d3", .kind = NUMBER, .flags = REQUIRED, .range = {-1e3, 1e3, JC_CLOSED, JC_CLOSED},
+     .unit = "1", .offset = TLSPH_PARAM(D3), .description = "triaxiality exponent D3"},
+    {.name = "d4", .kind = NUMBER, .range = {-10.0, 10.0, JC_CLOSED, JC_CLOSED}, .unit = "1",
+     .term = TLSPH_FLOW_RATE, .offset = TLSPH_PARAM(D4),
+     .description = "strain-rate coefficient D4; absent = no rate term"},
+    {.name = "reference_strain_rate", .kind = NUMBER, .flags = REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "1/s", .with = "d4",
+     .offset = TLSPH_PARAM(EPSDOT0), .description = "reference plastic strain rate epsdot_0"},
+    {.name = "d5", .kind = NUMBER, .range = {-1.0, 1e3, JC_OPEN, JC_CLOSED}, .unit = "1",
+     .term = TLSPH_FLOW_THERMAL, .offset = TLSPH_PARAM(D5),
+     .description = "thermal coefficient D5; absent = no thermal term; needs the material's "
+                    "thermal block"},
+    {.name = "reference_temperature", .kind = NUMBER, .flags = REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "K", .with = "d5",
+     .offset = TLSPH_PARAM(TREF), .description = "reference temperature T_ref of T*"},
+    {.name = "melting_temperature", .kind = NUMBER, .flags = REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "K", .with = "d5",
+     .offset = TLSPH_PARAM(TMELT), .description = "melting temperature T_melt of T*, above T_ref"},
+    {.name = "evolution", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER,
+     .table = &tlsph_damage_evolution_keys, .description = "damage evolution (eq. 45)"},
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/damage", "johnson_cook", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "d1", "d2", "d3", "d4", "reference_strain_rate",
-                                       "d5", "reference_temperature", "melting_temperature",
-                                       "evolution", NULL};
     double *q = m->damage.params;
-    const struct jc_range any = {-1e3, 1e3, JC_CLOSED, JC_CLOSED};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    bad |= jc_number(obj, "d1", 1, any, "(dimensionless strain)", pointer, &q[D1], err) < 0;
-    bad |= jc_number(obj, "d2", 1, any, "(dimensionless strain)", pointer, &q[D2], err) < 0;
-    bad |= jc_number(obj, "d3", 1, any, "(dimensionless)", pointer, &q[D3], err) < 0;
-    /* eps_f must be positive at every triaxiality: D1 >= 0 and D1 + D2 exp(D3 s) > 0
-     * for all s holds iff D1 > 0 with D2 >= 0, or D1 >= 0 with D2 > 0. */
-    if (!bad && (q[D1] < 0.0 || q[D2] < 0.0 || (q[D1] == 0.0 && q[D2] == 0.0))) {
-        char p[TLSPH_POINTER_MAX];
-        tlsph_pointer_join(p, sizeof p, pointer, q[D1] < 0.0 ? "d1" : "d2");
-        tlsph_errors_add(err, p,
-                         "d1 = %g and d2 = %g give a failure strain d1 + d2 exp(d3 sigma*) that "
-                         "is not positive at every triaxiality: need d1 >= 0, d2 >= 0, not both 0",
-                         q[D1], q[D2]);
+    const struct tlsph_key_target to = {.base = q, .terms = &m->damage.terms};
+    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
+    /* eps_f must be positive at every triaxiality: D1 + D2 exp(D3 s) > 0 for all s
+     * with D1, D2 >= 0 (their ranges) holds unless both are 0. */
+    if (!bad && q[D1] == 0.0 && q[D2] == 0.0) {
+        tlsph_key_error(err, pointer, "d2",
+                        "d1 = %g and d2 = %g give a failure strain d1 + d2 exp(d3 sigma*) that "
+                        "is not positive at every triaxiality: need d1 >= 0, d2 >= 0, not both 0",
+                        q[D1], q[D2]);
         bad = 1;
     }
-    if (json_object_get(obj, "d4")) {
-        bad |= jc_number(obj, "d4", 1, ((struct jc_range){-10.0, 10.0, JC_CLOSED, JC_CLOSED}),
-                         "(dimensionless)", pointer, &q[D4], err) < 0;
-        bad |= jc_number(obj, "reference_strain_rate", 1, JC_POSITIVE, "1/s", pointer,
-                         &q[EPSDOT0], err) < 0;
-        m->damage.terms |= TLSPH_FLOW_RATE;
-    } else {
-        bad |= jc_misplaced(obj, "reference_strain_rate", "d4", pointer, err);
-    }
     if (json_object_get(obj, "d5")) {
-        bad |= jc_number(obj, "d5", 1, ((struct jc_range){-1.0, 1e3, JC_OPEN, JC_CLOSED}),
-                         "(dimensionless)", pointer, &q[D5], err) < 0;
-        bad |= jc_number(obj, "reference_temperature", 1, JC_POSITIVE, "K", pointer, &q[TREF],
-                         err) < 0;
-        bad |= jc_number(obj, "melting_temperature", 1, JC_POSITIVE, "K", pointer, &q[TMELT],
-                         err) < 0;
         if (q[TREF] > 0.0 && q[TMELT] > 0.0 && q[TMELT] <= q[TREF]) {
-            char p[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(p, sizeof p, pointer, "melting_temperature");
-            tlsph_errors_add(err, p, "'melting_temperature' = %g K must exceed "
-                             "'reference_temperature' = %g K", q[TMELT], q[TREF]);
+            tlsph_key_error(err, pointer, "melting_temperature",
+                            "'melting_temperature' = %g K must exceed 'reference_temperature' "
+                            "= %g K",
+                            q[TMELT], q[TREF]);
             bad = 1;
         }
         if (!m->thermal.enabled) {
-            char p[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(p, sizeof p, pointer, "d5");
-            tlsph_errors_add(err, p, "the thermal term 'd5' needs a temperature: add a "
-                             "\"thermal\" block to the material");
+            tlsph_key_error(err, pointer, "d5",
+                            "the thermal term 'd5' needs a temperature: add a \"thermal\" "
+                            "block to the material");
             bad = 1;
         }
-        m->damage.terms |= TLSPH_FLOW_THERMAL;
-    } else {
-        bad |= jc_misplaced(obj, "reference_temperature", "d5", pointer, err);
-        bad |= jc_misplaced(obj, "melting_temperature", "d5", pointer, err);
     }
     return bad ? -1 : 0;
 }
@@ -104,6 +113,7 @@ static double initiation(const struct tlsph_material *m, const struct tlsph_dama
 const struct tlsph_damage_model tlsph_damage_johnson_cook = {
     .name = "johnson_cook",
     .module = "damage:johnson_cook",
+    .keys = &table,
     .needs_sigma1 = 0,
     .parse = parse,
     .initiation = initiation,

@@ -17,9 +17,12 @@
 #include "util/errors.h"
 #include "scene/scene.h"
 
+struct tlsph_key_table; /* core/scene/keys.h */
+
 struct tlsph_eos_model {
     const char *name;   /* as written in the scene: "eos": {"type": name, ...} */
     const char *module; /* "eos:<name>", for the run's list of active modules */
+    const struct tlsph_key_table *keys; /* its parameters: what parse reads (core/scene/keys.h) */
     /* Reads the model's parameters from obj (its "type" key is already checked)
      * into m->eos_params, reporting unknown keys and bad values. m's elastic
      * constants are already set. Returns 0 or -1. */

@@ -6,15 +6,17 @@
  * elastic deformations stay energy-conserving.  No parameters beyond E and nu. */
 #include <math.h>
 
-#include "scene/json_check.h"
+#include "scene/keys.h"
 #include "material/eos/eos.h"
+
+static const struct tlsph_key keys[] = {TLSPH_KEY_MODEL_TYPE};
+static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/materials/*/eos", "linear", keys);
 
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", NULL};
     (void)m;
-    return jc_unknown_keys(obj, keys, pointer, err) ? -1 : 0;
+    return tlsph_keys_unknown(obj, &table, pointer, err);
 }
 
 static void pressure(const struct tlsph_material *m, double J, double e, double *p, double *K_t)
@@ -29,6 +31,7 @@ static void pressure(const struct tlsph_material *m, double J, double e, double 
 const struct tlsph_eos_model tlsph_eos_linear = {
     .name = "linear",
     .module = "eos:linear",
+    .keys = &table,
     .parse = parse,
     .pressure = pressure,
 };

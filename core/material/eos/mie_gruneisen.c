@@ -11,24 +11,33 @@
  * far is reported by the stability check (det F and NaN tests), never clamped. */
 #include <math.h>
 
-#include "scene/json_check.h"
+#include "scene/keys.h"
 #include "material/eos/eos.h"
 
 enum { C0, S, GAMMA0 };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    {.name = "c0", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m/s", .offset = TLSPH_PARAM(C0),
+     .description = "bulk sound speed c0"},
+    {.name = "s", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 10.0, JC_CLOSED, JC_CLOSED}, .unit = "1", .said = "1",
+     .offset = TLSPH_PARAM(S), .description = "Hugoniot slope S"},
+    {.name = "gamma0", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
+     .range = {0.0, 10.0, JC_CLOSED, JC_CLOSED}, .unit = "1", .said = "1", .def = 0.0,
+     .offset = TLSPH_PARAM(GAMMA0), .description = "Grueneisen gamma Gamma0"},
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/eos", "mie_gruneisen", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "c0", "s", "gamma0", NULL};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    double c0 = 0, s = 0, g = 0;
-    bad |= jc_number(obj, "c0", 1, JC_POSITIVE, "m/s", pointer, &c0, err) < 0;
-    bad |= jc_number(obj, "s", 1, JC_BETWEEN(0.0, 10.0), "1", pointer, &s, err) < 0;
-    bad |= jc_number(obj, "gamma0", 0, JC_BETWEEN(0.0, 10.0), "1", pointer, &g, err) < 0;
-    m->eos_params[C0] = c0;
-    m->eos_params[S] = s;
-    m->eos_params[GAMMA0] = g;
-    return bad ? -1 : 0;
+    const struct tlsph_key_target to = {.base = m->eos_params};
+    return tlsph_keys_read(obj, &table, pointer, &to, err);
 }
 
 static void pressure(const struct tlsph_material *m, double J, double e, double *p, double *K_t)
@@ -50,6 +59,7 @@ static void pressure(const struct tlsph_material *m, double J, double e, double 
 const struct tlsph_eos_model tlsph_eos_mie_gruneisen = {
     .name = "mie_gruneisen",
     .module = "eos:mie_gruneisen",
+    .keys = &table,
     .parse = parse,
     .pressure = pressure,
 };

@@ -18,77 +18,75 @@
 
 enum { A, B, N, C, EPSDOT0, M, TREF, TMELT };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    STRENGTH_STRESS("yield_stress", JC_OPEN, A, "initial yield stress A"),
+    STRENGTH_STRESS("hardening_coefficient", JC_CLOSED, B, "hardening coefficient B"),
+    STRENGTH_POSITIVE("hardening_exponent", 5.0, N, "hardening exponent n"),
+    {.name = "rate_coefficient", .kind = TLSPH_KEY_NUMBER, .range = {0.0, 1.0, JC_OPEN, JC_CLOSED},
+     .unit = "1", .term = TLSPH_FLOW_RATE, .offset = TLSPH_PARAM(C),
+     .description = "strain-rate coefficient C; absent = no rate term"},
+    {.name = "reference_strain_rate", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
+     .range = {0.0, 1e12, JC_OPEN, JC_CLOSED}, .unit = "1/s", .def = 1.0,
+     .with = "rate_coefficient", .offset = TLSPH_PARAM(EPSDOT0),
+     .description = "reference plastic strain rate epsdot_0; no rate effect below it"},
+    {.name = "thermal_exponent", .kind = TLSPH_KEY_NUMBER, .range = {0.0, 10.0, JC_OPEN, JC_CLOSED},
+     .unit = "1", .term = TLSPH_FLOW_THERMAL, .offset = TLSPH_PARAM(M),
+     .description = "thermal-softening exponent m; absent = no thermal softening; needs the "
+                    "material's thermal block"},
+    {.name = "reference_temperature", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 1e5, JC_OPEN, JC_CLOSED}, .unit = "K", .with = "thermal_exponent",
+     .offset = TLSPH_PARAM(TREF),
+     .description = "reference temperature T_ref; no softening below it"},
+    {.name = "melting_temperature", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 1e5, JC_OPEN, JC_CLOSED}, .unit = "K", .with = "thermal_exponent",
+     .offset = TLSPH_PARAM(TMELT),
+     .description = "melting temperature T_melt, above T_ref and the initial temperature; "
+                    "no strength at and above it"},
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/strength", "johnson_cook", keys);
+/* clang-format on */
+
+/* The thermal term compares its temperatures with each other and with the
+ * material's thermal block. */
+static int check_thermal(const struct tlsph_material *m, const char *pointer,
+                         struct tlsph_errors *err)
+{
+    const double *q = m->strength_params;
+    int bad = !(q[TREF] > 0.0 && q[TMELT] > 0.0); /* not both read */
+    int reported = 0;
+    if (!bad && q[TMELT] <= q[TREF]) {
+        tlsph_key_error(err, pointer, "melting_temperature",
+                        "'melting_temperature' = %g K must be above 'reference_temperature' "
+                        "= %g K",
+                        q[TMELT], q[TREF]);
+        bad = reported = 1;
+    }
+    if (!m->thermal.enabled) {
+        tlsph_key_error(err, pointer, "thermal_exponent",
+                        "thermal softening needs a temperature: add a \"thermal\" block "
+                        "(specific_heat, initial_temperature) to material '%s'",
+                        m->name);
+        reported = 1;
+    } else if (!bad && m->thermal.initial_temperature >= q[TMELT]) {
+        tlsph_key_error(err, pointer, "melting_temperature",
+                        "the material starts molten: initial temperature %g K is not below "
+                        "'melting_temperature' = %g K",
+                        m->thermal.initial_temperature, q[TMELT]);
+        reported = 1;
+    }
+    return reported ? -1 : 0;
+}
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type",
-                                       "yield_stress",
-                                       "hardening_coefficient",
-                                       "hardening_exponent",
-                                       "rate_coefficient",
-                                       "reference_strain_rate",
-                                       "thermal_exponent",
-                                       "reference_temperature",
-                                       "melting_temperature",
-                                       NULL};
-    double *q = m->strength_params;
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    bad |= strength_stress(obj, "yield_stress", 1, 0, m, pointer, &q[A], err) < 0;
-    bad |= strength_stress(obj, "hardening_coefficient", 1, 1, m, pointer, &q[B], err) < 0;
-    bad |= jc_number(obj, "hardening_exponent", 1, ((struct jc_range){0.0, 5.0, JC_OPEN, JC_CLOSED}),
-                     DIMENSIONLESS, pointer, &q[N], err) < 0;
-
-    m->strength_terms = 0;
-    q[EPSDOT0] = 1.0;
-    int r = jc_number(obj, "rate_coefficient", 0, ((struct jc_range){0.0, 1.0, JC_OPEN, JC_CLOSED}),
-                      DIMENSIONLESS, pointer, &q[C], err);
-    bad |= r < 0;
-    if (r == 0) {
-        m->strength_terms |= TLSPH_FLOW_RATE;
-        bad |= jc_number(obj, "reference_strain_rate", 0,
-                         ((struct jc_range){0.0, 1e12, JC_OPEN, JC_CLOSED}), "1/s", pointer,
-                         &q[EPSDOT0], err) < 0;
-    } else if (r == 1) {
-        bad |= jc_misplaced(obj, "reference_strain_rate", "rate_coefficient", pointer, err);
-    }
-
-    r = jc_number(obj, "thermal_exponent", 0, ((struct jc_range){0.0, 10.0, JC_OPEN, JC_CLOSED}),
-                  DIMENSIONLESS, pointer, &q[M], err);
-    bad |= r < 0;
-    if (r == 0) {
-        m->strength_terms |= TLSPH_FLOW_THERMAL;
-        const struct jc_range kelvin = {0.0, 1e5, JC_OPEN, JC_CLOSED};
-        int tb = jc_number(obj, "reference_temperature", 1, kelvin, "K", pointer, &q[TREF], err) < 0;
-        tb |= jc_number(obj, "melting_temperature", 1, kelvin, "K", pointer, &q[TMELT], err) < 0;
-        char p[TLSPH_POINTER_MAX];
-        if (!tb && q[TMELT] <= q[TREF]) {
-            tlsph_pointer_join(p, sizeof p, pointer, "melting_temperature");
-            tlsph_errors_add(err, p,
-                             "'melting_temperature' = %g K must be above 'reference_temperature' "
-                             "= %g K",
-                             q[TMELT], q[TREF]);
-            tb = 1;
-        }
-        if (!m->thermal.enabled) {
-            tlsph_pointer_join(p, sizeof p, pointer, "thermal_exponent");
-            tlsph_errors_add(err, p,
-                             "thermal softening needs a temperature: add a \"thermal\" block "
-                             "(specific_heat, initial_temperature) to material '%s'",
-                             m->name);
-            tb = 1;
-        } else if (!tb && m->thermal.initial_temperature >= q[TMELT]) {
-            tlsph_pointer_join(p, sizeof p, pointer, "melting_temperature");
-            tlsph_errors_add(err, p,
-                             "the material starts molten: initial temperature %g K is not below "
-                             "'melting_temperature' = %g K",
-                             m->thermal.initial_temperature, q[TMELT]);
-            tb = 1;
-        }
-        bad |= tb;
-    } else if (r == 1) {
-        bad |= jc_misplaced(obj, "reference_temperature", "thermal_exponent", pointer, err);
-        bad |= jc_misplaced(obj, "melting_temperature", "thermal_exponent", pointer, err);
-    }
+    const struct tlsph_key_target to = strength_target(m);
+    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
+    if (json_object_get(obj, "thermal_exponent"))
+        bad |= check_thermal(m, pointer, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -131,6 +129,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 const struct tlsph_strength_model tlsph_strength_johnson_cook = {
     .name = "johnson_cook",
     .module = "strength:johnson_cook",
+    .keys = &table,
     .parse = parse,
     .flow = flow,
 };

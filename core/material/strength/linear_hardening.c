@@ -6,17 +6,22 @@
 
 enum { SIGMA0, H };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    STRENGTH_STRESS("yield_stress", JC_OPEN, SIGMA0, "initial yield stress sigma_0"),
+    STRENGTH_STRESS("hardening_modulus", JC_CLOSED, H,
+                    "hardening modulus H; 0 = perfect plasticity"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/strength", "linear_hardening", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "yield_stress", "hardening_modulus", NULL};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    double s0 = 0, h = 0;
-    bad |= strength_stress(obj, "yield_stress", 1, 0, m, pointer, &s0, err) < 0;
-    bad |= strength_stress(obj, "hardening_modulus", 1, 1, m, pointer, &h, err) < 0;
-    m->strength_params[SIGMA0] = s0;
-    m->strength_params[H] = h;
-    return bad ? -1 : 0;
+    const struct tlsph_key_target to = strength_target(m);
+    return tlsph_keys_read(obj, &table, pointer, &to, err);
 }
 
 static void flow(const struct tlsph_material *m, double eps_p, double rate, double T,
@@ -33,6 +38,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 const struct tlsph_strength_model tlsph_strength_linear_hardening = {
     .name = "linear_hardening",
     .module = "strength:linear_hardening",
+    .keys = &table,
     .parse = parse,
     .flow = flow,
 };

@@ -1,29 +1,32 @@
-/* Parameter checks shared by the flow-law parsers in core/material/strength/. */
+/* What the flow-law parsers in core/material/strength/ share: where their
+ * parameters go, and the row of a flow-stress parameter. */
 #ifndef TLSPH_STRENGTH_PARSE_UTIL_H
 #define TLSPH_STRENGTH_PARSE_UTIL_H
 
-#include "scene/json_check.h"
+#include "scene/keys.h"
 #include "scene/scene.h"
 
-/* A stress parameter (Pa): > 0 (>= 0 with allow_zero) and, when the material's
- * Young's modulus is valid, below it (a flow stress above E means a unit slip).
- * Returns like jc_number. */
-static inline int strength_stress(const json_t *obj, const char *key, int required,
-                                  int allow_zero, const struct tlsph_material *m,
-                                  const char *pointer, double *out, struct tlsph_errors *err)
+/* A law's parameters go to m->strength_params, its optional terms to
+ * m->strength_terms; its flow stresses must stay below m's Young's modulus
+ * (0 when that is invalid: not compared). */
+static inline struct tlsph_key_target strength_target(struct tlsph_material *m)
 {
-    const struct jc_range r = {0.0, 0.0, allow_zero ? JC_CLOSED : JC_OPEN, JC_NONE};
-    int rc = jc_number(obj, key, required, r, "Pa", pointer, out, err);
-    if (rc == 0 && m->youngs_modulus > 0.0 && *out >= m->youngs_modulus) {
-        char p[TLSPH_POINTER_MAX];
-        tlsph_pointer_join(p, sizeof p, pointer, key);
-        tlsph_errors_add(err, p, "'%s' = %g Pa must be below the Young's modulus E = %g Pa", key,
-                         *out, m->youngs_modulus);
-        rc = -1;
-    }
-    return rc;
+    m->strength_terms = 0;
+    return (struct tlsph_key_target){.base = m->strength_params, .terms = &m->strength_terms,
+                                     .youngs_modulus = m->youngs_modulus};
 }
 
-#define DIMENSIONLESS "(dimensionless)"
+/* A required stress (Pa) at parameter index i: > 0, or >= 0 with lo = JC_CLOSED,
+ * and below the Young's modulus. */
+#define STRENGTH_STRESS(key, lo, i, text)                                                      \
+    {.name = (key), .kind = TLSPH_KEY_NUMBER,                                                  \
+     .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_BELOW_E, .range = {0.0, 0.0, (lo), JC_NONE},      \
+     .unit = "Pa", .offset = TLSPH_PARAM(i), .description = (text)}
+
+/* A required dimensionless parameter in (0, max] at parameter index i. */
+#define STRENGTH_POSITIVE(key, max, i, text)                                                   \
+    {.name = (key), .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,                     \
+     .range = {0.0, (max), JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_PARAM(i),         \
+     .description = (text)}
 
 #endif

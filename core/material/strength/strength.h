@@ -32,8 +32,11 @@ struct tlsph_flow {
     double d_temperature; /* d sigma_y / d T, Pa/K */
 };
 
+struct tlsph_key_table; /* core/scene/keys.h */
+
 struct tlsph_strength_model {
     const char *name;   /* as written in the scene: "strength": {"type": name, ...} */
+    const struct tlsph_key_table *keys; /* its parameters: what parse reads (core/scene/keys.h) */
     const char *module; /* "strength:<name>", for the run's list of active modules */
     /* Reads the model's parameters from obj (its "type" key is already checked)
      * into m->strength_params / m->strength_terms, reporting unknown keys and bad

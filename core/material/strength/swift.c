@@ -8,32 +8,33 @@
 
 enum { K, EPS0, N };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    {.name = "strength_coefficient", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "Pa", .offset = TLSPH_PARAM(K),
+     .description = "strength coefficient K; the initial yield stress K eps_0^n must be below "
+                    "the Young's modulus"},
+    STRENGTH_POSITIVE("reference_strain", 10.0, EPS0, "reference (pre-)strain eps_0"),
+    STRENGTH_POSITIVE("hardening_exponent", 5.0, N, "hardening exponent n"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/strength", "swift", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "strength_coefficient", "reference_strain",
-                                       "hardening_exponent", NULL};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    double k = 0, e0 = 0, n = 0;
-    bad |= jc_number(obj, "strength_coefficient", 1, JC_POSITIVE, "Pa", pointer, &k, err) < 0;
-    bad |= jc_number(obj, "reference_strain", 1,
-                     ((struct jc_range){0.0, 10.0, JC_OPEN, JC_CLOSED}), DIMENSIONLESS, pointer, &e0,
-                     err) < 0;
-    bad |= jc_number(obj, "hardening_exponent", 1,
-                     ((struct jc_range){0.0, 5.0, JC_OPEN, JC_CLOSED}), DIMENSIONLESS, pointer, &n,
-                     err) < 0;
-    if (!bad && m->youngs_modulus > 0.0 && k * pow(e0, n) >= m->youngs_modulus) {
-        char p[TLSPH_POINTER_MAX];
-        tlsph_pointer_join(p, sizeof p, pointer, "strength_coefficient");
-        tlsph_errors_add(err, p,
-                         "initial yield stress K eps_0^n = %g Pa must be below the Young's "
-                         "modulus %g Pa",
-                         k * pow(e0, n), m->youngs_modulus);
+    const struct tlsph_key_target to = strength_target(m);
+    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
+    const double *q = m->strength_params, yield = q[K] * pow(q[EPS0], q[N]);
+    if (!bad && m->youngs_modulus > 0.0 && yield >= m->youngs_modulus) {
+        tlsph_key_error(err, pointer, "strength_coefficient",
+                        "initial yield stress K eps_0^n = %g Pa must be below the Young's "
+                        "modulus %g Pa",
+                        yield, m->youngs_modulus);
         bad = 1;
     }
-    m->strength_params[K] = k;
-    m->strength_params[EPS0] = e0;
-    m->strength_params[N] = n;
     return bad ? -1 : 0;
 }
 
@@ -54,6 +55,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 const struct tlsph_strength_model tlsph_strength_swift = {
     .name = "swift",
     .module = "strength:swift",
+    .keys = &table,
     .parse = parse,
     .flow = flow,
 };

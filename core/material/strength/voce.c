@@ -8,29 +8,31 @@
 
 enum { SIGMA0, SIGMAS, B };
 
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_KEY_MODEL_TYPE,
+    STRENGTH_STRESS("yield_stress", JC_OPEN, SIGMA0, "initial yield stress sigma_0"),
+    STRENGTH_STRESS("saturation_stress", JC_OPEN, SIGMAS,
+                    "saturation stress sigma_s, not below yield_stress"),
+    STRENGTH_POSITIVE("saturation_rate", 1e4, B, "saturation rate b"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/materials/*/strength", "voce", keys);
+/* clang-format on */
+
 static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"type", "yield_stress", "saturation_stress",
-                                       "saturation_rate", NULL};
-    int bad = jc_unknown_keys(obj, keys, pointer, err) != 0;
-    double s0 = 0, ss = 0, b = 0;
-    bad |= strength_stress(obj, "yield_stress", 1, 0, m, pointer, &s0, err) < 0;
-    bad |= strength_stress(obj, "saturation_stress", 1, 0, m, pointer, &ss, err) < 0;
-    bad |= jc_number(obj, "saturation_rate", 1, ((struct jc_range){0.0, 1e4, JC_OPEN, JC_CLOSED}),
-                     DIMENSIONLESS, pointer, &b, err) < 0;
-    if (!bad && ss < s0) {
-        char p[TLSPH_POINTER_MAX];
-        tlsph_pointer_join(p, sizeof p, pointer, "saturation_stress");
-        tlsph_errors_add(err, p,
-                         "'saturation_stress' = %g Pa must not be below 'yield_stress' = %g Pa "
-                         "(softening laws are not supported)",
-                         ss, s0);
+    const struct tlsph_key_target to = strength_target(m);
+    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
+    const double *q = m->strength_params;
+    if (!bad && q[SIGMAS] < q[SIGMA0]) {
+        tlsph_key_error(err, pointer, "saturation_stress",
+                        "'saturation_stress' = %g Pa must not be below 'yield_stress' = %g Pa "
+                        "(softening laws are not supported)",
+                        q[SIGMAS], q[SIGMA0]);
         bad = 1;
     }
-    m->strength_params[SIGMA0] = s0;
-    m->strength_params[SIGMAS] = ss;
-    m->strength_params[B] = b;
     return bad ? -1 : 0;
 }
 
@@ -51,6 +53,7 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
 const struct tlsph_strength_model tlsph_strength_voce = {
     .name = "voce",
     .module = "strength:voce",
+    .keys = &table,
     .parse = parse,
     .flow = flow,
 };

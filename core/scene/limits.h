@@ -1,0 +1,40 @@
+/* The scene's defaults and ceilings, named once.  The key tables
+ * (core/scene/scene_keys.c) read them, and so may any program that must agree
+ * with the engine about a scene (the daemon's particle limit, a client's
+ * defaults).  Units as in the scene: SI, counts dimensionless. */
+#ifndef TLSPH_SCENE_LIMITS_H
+#define TLSPH_SCENE_LIMITS_H
+
+/* ---------------------------------------------------------------- ceilings */
+#define TLSPH_NAME_MAX           64        /* bytes of a name, with its NUL: 63 characters */
+#define TLSPH_MAX_PARTICLES      50000000L /* absolute ceiling; the scene may set a lower one */
+#define TLSPH_MAX_PARAMS         40        /* entries of "parameters" */
+#define TLSPH_MAX_MATERIALS      1000      /* entries of "materials" */
+#define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
+#define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
+#define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
+#define TLSPH_SCENE_FILE_MAX     (16L * 1024 * 1024) /* bytes of a scene file (16 MiB) */
+#define TLSPH_MAX_STEPS          1000000000000L      /* time.max_steps */
+#define TLSPH_MAX_EVERY          1000000000L /* stability.check_every, output.series_every (steps) */
+#define TLSPH_MAX_FRAMES         100000L     /* output.frames */
+
+/* ---------------------------------------------------------------- defaults */
+#define TLSPH_DEFAULT_NAME "scene"
+/* "dimension" is required; validation goes on in 3-D when it is missing or invalid. */
+#define TLSPH_DEFAULT_DIMENSION             3
+#define TLSPH_DEFAULT_CFL                   0.3
+#define TLSPH_DEFAULT_SUPPORT_FACTOR        2.01
+#define TLSPH_DEFAULT_HOURGLASS             1 /* enabled */
+#define TLSPH_DEFAULT_HOURGLASS_COEFFICIENT 1.0
+#define TLSPH_DEFAULT_VISCOSITY             0 /* disabled */
+#define TLSPH_DEFAULT_VISCOSITY_LINEAR      1.0
+#define TLSPH_DEFAULT_VISCOSITY_QUADRATIC   0.0
+#define TLSPH_DEFAULT_CHECK_EVERY           10L /* steps */
+#define TLSPH_DEFAULT_ENERGY_TOLERANCE      0.05
+#define TLSPH_DEFAULT_SPEED_LIMIT           1.0
+#define TLSPH_DEFAULT_MAX_PARTICLES         2000000L
+#define TLSPH_DEFAULT_FRAMES                20L
+#define TLSPH_DEFAULT_SERIES_EVERY          10L /* steps */
+#define TLSPH_DEFAULT_TAYLOR_QUINNEY        0.9
+
+#endif
