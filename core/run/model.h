@@ -118,7 +118,7 @@ struct tlsph_model {
     struct tlsph_particles p;
     struct tlsph_pairs pairs;
     size_t *body_begin, *body_end; /* particle ranges per body */
-    struct tlsph_group *groups;    /* one per scene->bcs entry (empty for walls/body forces) */
+    struct tlsph_group *groups;    /* one per scene->bcs entry (empty for walls: they have no group) */
     struct tlsph_measures measures; /* gauges and sections of scene.output */
     const struct tlsph_crack_model *crack; /* how damage enters the approximation, chosen
                                               once at setup (intact without damage) */
