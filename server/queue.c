@@ -436,20 +436,29 @@ static int pragma_query(sqlite3 *db, const char *sql, char *buf, size_t bufsize,
     return 0;
 }
 
+/* The database's schema version into *v: 0, or -1 when it cannot be read or
+ * is newer than this daemon's (which must not touch it). */
+static int schema_version(sqlite3 *db, const char *path, long *v, char *err, size_t errsize)
+{
+    if (pragma_query(db, "PRAGMA user_version", NULL, 0, v, err, errsize) < 0)
+        return -1;
+    if (*v > SCHEMA_VERSION) {
+        snprintf(err, errsize,
+                 "%s: database schema version %ld is newer than this daemon supports (%d); "
+                 "refusing to open it (use the newer tlsphd or a fresh database)",
+                 path, *v, SCHEMA_VERSION);
+        return -1;
+    }
+    return 0;
+}
+
 static int migrate(sqlite3 *db, const char *path, char *err, size_t errsize)
 {
     if (exec_sql(db, "BEGIN IMMEDIATE", err, errsize) < 0)
         return -1;
     long v = 0;
-    if (pragma_query(db, "PRAGMA user_version", NULL, 0, &v, err, errsize) < 0)
+    if (schema_version(db, path, &v, err, errsize) < 0)
         goto fail;
-    if (v > SCHEMA_VERSION) {
-        snprintf(err, errsize,
-                 "%s: database schema version %ld is newer than this daemon supports (%d); "
-                 "refusing to open it (use the newer tlsphd or a fresh database)",
-                 path, v, SCHEMA_VERSION);
-        goto fail;
-    }
     for (size_t i = 0; i < N_MIGRATIONS; i++) {
         if (migrations[i].version <= v)
             continue;
@@ -506,15 +515,8 @@ int tq_open(const char *path, struct tq **out, char *err, size_t errsize)
 
     /* Refuse a newer schema before touching the file (journal mode is persistent). */
     long v = 0;
-    if (pragma_query(q->db, "PRAGMA user_version", NULL, 0, &v, err, errsize) < 0)
+    if (schema_version(q->db, path, &v, err, errsize) < 0)
         goto fail;
-    if (v > SCHEMA_VERSION) {
-        snprintf(err, errsize,
-                 "%s: database schema version %ld is newer than this daemon supports (%d); "
-                 "refusing to open it (use the newer tlsphd or a fresh database)",
-                 path, v, SCHEMA_VERSION);
-        goto fail;
-    }
     char mode[32];
     if (pragma_query(q->db, "PRAGMA journal_mode=WAL", mode, sizeof mode, NULL, err, errsize) < 0)
         goto fail;
