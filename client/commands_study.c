@@ -7,36 +7,18 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
-#include "jsonfile.h"
-#include "urls.h"
-
-static int study_submit(const settings *s, int argc, char **argv)
-{
-    if (argc != 2 || (argv[1][0] == '-' && argv[1][1]))
-        return usage_error("study submit", "expected exactly one STUDY.json", NULL);
-    json_t *doc;
-    int rc = jsonfile_load(argv[1], &doc);
-    if (rc != RC_OK)
-        return rc;
-    return submit_job(s, "study", doc);
-}
 
 static int one_id(const char *cmd, int argc, char **argv, const char **id, int *csv)
 {
     *id = NULL;
+    int rc;
     for (int i = 1; i < argc; i++) {
         if (csv && strcmp(argv[i], "--csv") == 0)
             *csv = 1;
-        else if (argv[i][0] == '-')
-            return usage_error(cmd, "unknown option", argv[i]);
-        else if (*id)
-            return usage_error(cmd, "more than one study id", argv[i]);
-        else
-            *id = argv[i];
+        else if ((rc = take_id(cmd, "study", argv[i], id)) != RC_OK)
+            return rc;
     }
-    if (!*id)
-        return usage_error(cmd, "missing study ID", NULL);
-    return id_check(*id);
+    return need_id(cmd, "study", *id);
 }
 
 static int study_status(const settings *s, int argc, char **argv)
@@ -174,7 +156,7 @@ int cmd_study(const settings *s, int argc, char **argv)
         return usage_error("study", "expected submit, status or table", NULL);
     const char *sub = argv[1];
     if (strcmp(sub, "submit") == 0)
-        return study_submit(s, argc - 1, argv + 1);
+        return submit_file(s, argc - 1, argv + 1, "study submit", "STUDY.json", "study", NULL);
     if (strcmp(sub, "status") == 0)
         return study_status(s, argc - 1, argv + 1);
     if (strcmp(sub, "table") == 0)

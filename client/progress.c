@@ -11,7 +11,6 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
-#include "urls.h"
 #include "util/clock.h"
 
 #define BAR_WIDTH 20
@@ -92,17 +91,11 @@ static void progress_line(char *buf, size_t n, const json_t *info, int bar, doub
 int cmd_watch(const settings *s, int argc, char **argv)
 {
     const char *id = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (argv[i][0] == '-')
-            return usage_error("watch", "unknown option", argv[i]);
-        if (id)
-            return usage_error("watch", "more than one job id", argv[i]);
-        id = argv[i];
-    }
-    if (!id)
-        return usage_error("watch", "missing job ID", NULL);
-    int rc = id_check(id);
-    if (rc != RC_OK)
+    int rc;
+    for (int i = 1; i < argc; i++)
+        if ((rc = take_id("watch", "job", argv[i], &id)) != RC_OK)
+            return rc;
+    if ((rc = need_id("watch", "job", id)) != RC_OK)
         return rc;
     int tty = isatty(STDOUT_FILENO);
     char last[256] = "", line[256];
