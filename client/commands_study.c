@@ -77,6 +77,16 @@ static void cell_text(char *buf, size_t n, const json_t *v)
         snprintf(buf, n, "%s", json_is_true(v) ? "true" : json_is_false(v) ? "false" : "?");
 }
 
+/* Column i of nc: numbers right-aligned to width w, text left-aligned (the
+ * last column unpadded); two spaces between columns. */
+static void print_table_cell(size_t i, size_t nc, int w, int right, const char *text)
+{
+    if (right)
+        printf("%s%*s", i ? "  " : "", w, text);
+    else
+        printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w : 0, text);
+}
+
 static int study_table(const settings *s, int argc, char **argv)
 {
     const char *id;
@@ -125,10 +135,7 @@ static int study_table(const settings *s, int argc, char **argv)
     }
     for (i = 0; i < nc; i++) {
         cell_text(buf, sizeof buf, json_array_get(cols, i));
-        if (numeric[i])
-            printf("%s%*s", i ? "  " : "", w[i], buf);
-        else
-            printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w[i] : 0, buf);
+        print_table_cell(i, nc, w[i], numeric[i], buf);
     }
     putchar('\n');
     json_array_foreach(rows, r, row)
@@ -136,11 +143,7 @@ static int study_table(const settings *s, int argc, char **argv)
         for (i = 0; i < nc; i++) {
             json_t *v = json_array_get(row, i);
             cell_text(buf, sizeof buf, v);
-            /* numeric columns right-aligned, text left-aligned */
-            if (numeric[i] && !json_is_string(v))
-                printf("%s%*s", i ? "  " : "", w[i], buf);
-            else
-                printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w[i] : 0, buf);
+            print_table_cell(i, nc, w[i], numeric[i] && !json_is_string(v), buf);
         }
         putchar('\n');
     }
