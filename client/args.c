@@ -1,6 +1,7 @@
 /* The command-line pieces every subcommand shares: the usage error, the one
  * ID argument of a job or study command, and submitting a JSON file. */
 #include <stdio.h>
+#include <string.h>
 
 #include "commands.h"
 #include "exitcodes.h"
@@ -34,6 +35,20 @@ int need_id(const char *cmd, const char *what, const char *id)
         return usage_error(cmd, msg, NULL);
     }
     return id_check(id);
+}
+
+int id_args(const char *cmd, const char *what, int argc, char **argv, const char *flag, int *given,
+            const char **id)
+{
+    int rc;
+    *id = NULL;
+    for (int i = 1; i < argc; i++) {
+        if (flag && strcmp(argv[i], flag) == 0)
+            *given = 1;
+        else if ((rc = take_id(cmd, what, argv[i], id)) != RC_OK)
+            return rc;
+    }
+    return need_id(cmd, what, *id);
 }
 
 int submit_file(const settings *s, int argc, char **argv, const char *cmd, const char *file,

@@ -34,6 +34,10 @@ int take_id(const char *cmd, const char *what, const char *arg, const char **id)
 /* After the loop: a usage error when no ID was given ("missing job ID"), else
  * id_check's answer. */
 int need_id(const char *cmd, const char *what, const char *id);
+/* `tlsph CMD [FLAG] ID`: argv[1..] hold one ID of a `what` and, when flag is
+ * given, maybe that flag (*given = 1 then); RC_OK, or an error already reported. */
+int id_args(const char *cmd, const char *what, int argc, char **argv, const char *flag, int *given,
+            const char **id);
 /* `tlsph CMD FILE`: loads the one JSON file argv[1] ("-": stdin) and submits it
  * to PROCESS, as the inputs or, with key, wrapped as {key: document}. */
 int submit_file(const settings *s, int argc, char **argv, const char *cmd, const char *file,

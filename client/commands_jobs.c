@@ -64,15 +64,10 @@ int cmd_submit(const settings *s, int argc, char **argv)
 
 int cmd_status(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
-    int as_json = 0, rc;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0)
-            as_json = 1;
-        else if ((rc = take_id(argv[0], "job", argv[i], &id)) != RC_OK)
-            return rc;
-    }
-    if ((rc = need_id(argv[0], "job", id)) != RC_OK)
+    const char *id;
+    int as_json = 0;
+    int rc = id_args(argv[0], "job", argc, argv, "--json", &as_json, &id);
+    if (rc != RC_OK)
         return rc;
     json_t *info;
     if ((rc = job_poll(s, id, 0, &info)) != RC_OK)
@@ -139,15 +134,10 @@ int cmd_wait(const settings *s, int argc, char **argv)
 
 int cmd_cancel(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
-    int remove = 0, rc;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--remove") == 0)
-            remove = 1;
-        else if ((rc = take_id("cancel", "job", argv[i], &id)) != RC_OK)
-            return rc;
-    }
-    if ((rc = need_id("cancel", "job", id)) != RC_OK)
+    const char *id;
+    int remove = 0;
+    int rc = id_args("cancel", "job", argc, argv, "--remove", &remove, &id);
+    if (rc != RC_OK)
         return rc;
     json_t *info;
     if (!remove) {

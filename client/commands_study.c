@@ -8,23 +8,10 @@
 #include "http.h"
 #include "jobfmt.h"
 
-static int one_id(const char *cmd, int argc, char **argv, const char **id, int *csv)
-{
-    *id = NULL;
-    int rc;
-    for (int i = 1; i < argc; i++) {
-        if (csv && strcmp(argv[i], "--csv") == 0)
-            *csv = 1;
-        else if ((rc = take_id(cmd, "study", argv[i], id)) != RC_OK)
-            return rc;
-    }
-    return need_id(cmd, "study", *id);
-}
-
 static int study_status(const settings *s, int argc, char **argv)
 {
     const char *id;
-    int rc = one_id("study status", argc, argv, &id, NULL);
+    int rc = id_args("study status", "study", argc, argv, NULL, NULL, &id);
     if (rc != RC_OK)
         return rc;
     json_t *info, *kids;
@@ -91,7 +78,7 @@ static int study_table(const settings *s, int argc, char **argv)
 {
     const char *id;
     int csv = 0;
-    int rc = one_id("study table", argc, argv, &id, &csv);
+    int rc = id_args("study table", "study", argc, argv, "--csv", &csv, &id);
     if (rc != RC_OK)
         return rc;
     char path[128];

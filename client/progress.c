@@ -90,12 +90,9 @@ static void progress_line(char *buf, size_t n, const json_t *info, int bar, doub
 
 int cmd_watch(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
-    int rc;
-    for (int i = 1; i < argc; i++)
-        if ((rc = take_id("watch", "job", argv[i], &id)) != RC_OK)
-            return rc;
-    if ((rc = need_id("watch", "job", id)) != RC_OK)
+    const char *id;
+    int rc = id_args("watch", "job", argc, argv, NULL, NULL, &id);
+    if (rc != RC_OK)
         return rc;
     int tty = isatty(STDOUT_FILENO);
     char last[256] = "", line[256];
