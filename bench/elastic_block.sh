@@ -10,14 +10,10 @@
 #
 # usage: bench/elastic_block.sh [STEPS] [SIZES...]    (default 200 steps; 22 47 74)
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-top=$(cd "$here/.." && pwd)
-run="${BUILD_DIR:-$top/build}/tlsph-run"  # deploy/build.sh builds out of tree
-[ -x "$run" ] || { echo "build first: bash deploy/build.sh"; exit 1; }
+. "$(dirname "$0")/common.sh"
 steps=${1:-200}; shift || true
 sizes=("$@"); [ ${#sizes[@]} -gt 0 ] || sizes=(22 47 74)
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+scratch_dir
 printf "%10s %8s %8s %14s %12s %12s %10s\n" particles threads steps "p-steps/s" "B/particle" "RSS B/part" "wall s"
 for k in "${sizes[@]}"; do
   L=$(awk -v k="$k" 'BEGIN { printf "%.6f", k * 0.001 }')
@@ -37,7 +33,7 @@ JSON
   for threads in 1 2; do
     rm -rf "$out/r"
     "$run" "$out/block.json" -o "$out/r" --threads "$threads" --progress-fd 3 --quiet 3>"$out/progress.jsonl"
-    /usr/bin/python3 - "$out/progress.jsonl" "$threads" <<'PY'
+    "$py" - "$out/progress.jsonl" "$threads" <<'PY'
 import json, sys
 last = [json.loads(l) for l in open(sys.argv[1]) if l.strip()][-1]
 c = last["cost"]

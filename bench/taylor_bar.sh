@@ -17,15 +17,10 @@
 # usage: bench/taylor_bar.sh [accuracy|speed|all] [STEPS]   (default all, 1500 steps)
 # Takes about 30 min on the project's 2-core machine for "all".
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-top=$(cd "$here/.." && pwd)
-run="${BUILD_DIR:-$top/build}/tlsph-run"  # deploy/build.sh builds out of tree
-py=/usr/bin/python3
-[ -x "$run" ] || { echo "build first: bash deploy/build.sh"; exit 1; }
+. "$(dirname "$0")/common.sh"
 what=${1:-all}
 steps=${2:-1500}
-out=$(mktemp -d)
-trap 'rm -rf "$out"' EXIT
+scratch_dir
 
 # scene FILE SPACING MAX_STEPS FRAMES > copy with the body's spacing (m) replaced
 scene() {

@@ -18,11 +18,7 @@
 # Takes about an hour on the project's 2-core machine (about 115 CPU-minutes,
 # JOBS=2).
 set -euo pipefail
-here=$(cd "$(dirname "$0")" && pwd)
-top=$(cd "$here/.." && pwd)
-run="${BUILD_DIR:-$top/build}/tlsph-run"  # deploy/build.sh builds out of tree
-py=/usr/bin/python3
-[ -x "$run" ] || { echo "build first: bash deploy/build.sh"; exit 1; }
+. "$(dirname "$0")/common.sh"
 out=${1:-$here/out/weldox}
 jobs=${JOBS:-2}
 mkdir -p "$out"
@@ -38,11 +34,16 @@ if [ -z "${CASES:-}" ]; then
   for geo in r04 r2 smooth; do CASES="$CASES 460e:$geo:jc:pseudo_spring"; done
 fi
 
-one() { # ALLOY:GEOMETRY:MODEL[:TREATMENT] -> OUTDIR/<name>/
+# ALLOY:GEOMETRY:MODEL[:TREATMENT] -> alloy geo model treatment, and the run's name
+parse_case() {
   IFS=: read -r alloy geo model treatment <<<"$1"
   treatment=${treatment:-damage_aware}
   name="$alloy-$geo-$model"
-  [ "$treatment" = pseudo_spring ] && name="$name-pseudo-spring"
+  if [ "$treatment" = pseudo_spring ]; then name="$name-pseudo-spring"; fi
+}
+
+one() { # ALLOY:GEOMETRY:MODEL[:TREATMENT] -> OUTDIR/<name>/
+  parse_case "$1"
   "$py" "$here/weldox_scene.py" "$alloy" "$geo" "$model" --treatment "$treatment" \
     >"$out/$name.json"
   rm -rf "${out:?}/$name"
@@ -51,16 +52,14 @@ one() { # ALLOY:GEOMETRY:MODEL[:TREATMENT] -> OUTDIR/<name>/
     >"$out/$name.log" 2>&1 || rc=$?
   echo "$name exit $rc" >&2
 }
-export -f one
+export -f parse_case one
 export here out run py
 # shellcheck disable=SC2086
 printf '%s\n' $CASES | xargs -P "$jobs" -I{} bash -c 'one {}'
 
 "$py" "$here/weldox_metrics.py" --header
 for c in $CASES; do
-  IFS=: read -r alloy geo model treatment <<<"$c"
-  name="$alloy-$geo-$model"
-  [ "${treatment:-}" = pseudo_spring ] && name="$name-pseudo-spring"
+  parse_case "$c"
   "$py" "$here/weldox_metrics.py" "$out/$name/result.h5" "$name" ||
     echo "| $name | no result: see $out/$name.log |"
 done

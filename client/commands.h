@@ -25,7 +25,22 @@ int job_poll(const settings *s, const char *id, double wait_s, json_t **out);
  * prints the new job id. */
 int submit_job(const settings *s, const char *process, json_t *inputs);
 
-/* Usage error helper: prints "tlsph CMD: msg" and returns RC_USAGE. */
+/* client/args.c: usage error helper: prints "tlsph CMD: msg[: arg]" and returns RC_USAGE. */
 int usage_error(const char *cmd, const char *msg, const char *arg);
+/* The last case of a command's argument loop, for arg that is none of its
+ * options: the ID of a `what` ("job", "study") when none was seen yet (RC_OK),
+ * else a usage error ("unknown option", "more than one job id"). */
+int take_id(const char *cmd, const char *what, const char *arg, const char **id);
+/* After the loop: a usage error when no ID was given ("missing job ID"), else
+ * id_check's answer. */
+int need_id(const char *cmd, const char *what, const char *id);
+/* `tlsph CMD [FLAG] ID`: argv[1..] hold one ID of a `what` and, when flag is
+ * given, maybe that flag (*given = 1 then); RC_OK, or an error already reported. */
+int id_args(const char *cmd, const char *what, int argc, char **argv, const char *flag, int *given,
+            const char **id);
+/* `tlsph CMD FILE`: loads the one JSON file argv[1] ("-": stdin) and submits it
+ * to PROCESS, as the inputs or, with key, wrapped as {key: document}. */
+int submit_file(const settings *s, int argc, char **argv, const char *cmd, const char *file,
+                const char *process, const char *key);
 
 #endif

@@ -10,15 +10,8 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
-#include "jsonfile.h"
 #include "urls.h"
 #include "util/clock.h"
-
-int usage_error(const char *cmd, const char *msg, const char *arg)
-{
-    fprintf(stderr, "tlsph %s: %s%s%s\n(see tlsph --help)\n", cmd, msg, arg ? ": " : "", arg ? arg : "");
-    return RC_USAGE;
-}
 
 int job_poll(const settings *s, const char *id, double wait_s, json_t **out)
 {
@@ -66,37 +59,14 @@ int submit_job(const settings *s, const char *process, json_t *inputs)
 
 int cmd_submit(const settings *s, int argc, char **argv)
 {
-    if (argc != 2 || (argv[1][0] == '-' && argv[1][1]))
-        return usage_error("submit", "expected exactly one SCENE.json", NULL);
-    json_t *scene;
-    int rc = jsonfile_load(argv[1], &scene);
-    if (rc != RC_OK)
-        return rc;
-    json_t *inputs = json_pack("{s:o}", "scene", scene);
-    if (!inputs) {
-        fprintf(stderr, "tlsph: out of memory\n");
-        return RC_IO;
-    }
-    return submit_job(s, "run", inputs);
+    return submit_file(s, argc, argv, "submit", "SCENE.json", "run", "scene");
 }
 
 int cmd_status(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
+    const char *id;
     int as_json = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--json") == 0)
-            as_json = 1;
-        else if (argv[i][0] == '-')
-            return usage_error(argv[0], "unknown option", argv[i]);
-        else if (id)
-            return usage_error(argv[0], "more than one job id", argv[i]);
-        else
-            id = argv[i];
-    }
-    if (!id)
-        return usage_error(argv[0], "missing job ID", NULL);
-    int rc = id_check(id);
+    int rc = id_args(argv[0], "job", argc, argv, "--json", &as_json, &id);
     if (rc != RC_OK)
         return rc;
     json_t *info;
@@ -117,6 +87,7 @@ int cmd_wait(const settings *s, int argc, char **argv)
 {
     const char *id = NULL;
     double timeout = 0;
+    int rc;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--timeout") == 0 && i + 1 < argc) {
             char *end;
@@ -124,18 +95,11 @@ int cmd_wait(const settings *s, int argc, char **argv)
             timeout = strtod(argv[++i], &end);
             if (*end || errno || !(timeout > 0) || !isfinite(timeout))
                 return usage_error("wait", "--timeout needs a positive number of seconds", argv[i]);
-        } else if (argv[i][0] == '-') {
-            return usage_error("wait", "unknown option", argv[i]);
-        } else if (id) {
-            return usage_error("wait", "more than one job id", argv[i]);
-        } else {
-            id = argv[i];
+        } else if ((rc = take_id("wait", "job", argv[i], &id)) != RC_OK) {
+            return rc;
         }
     }
-    if (!id)
-        return usage_error("wait", "missing job ID", NULL);
-    int rc = id_check(id);
-    if (rc != RC_OK)
+    if ((rc = need_id("wait", "job", id)) != RC_OK)
         return rc;
     double deadline = timeout > 0 ? tlsph_monotonic_seconds() + timeout : 0;
     for (;;) {
@@ -170,21 +134,9 @@ int cmd_wait(const settings *s, int argc, char **argv)
 
 int cmd_cancel(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
+    const char *id;
     int remove = 0;
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--remove") == 0)
-            remove = 1;
-        else if (argv[i][0] == '-')
-            return usage_error("cancel", "unknown option", argv[i]);
-        else if (id)
-            return usage_error("cancel", "more than one job id", argv[i]);
-        else
-            id = argv[i];
-    }
-    if (!id)
-        return usage_error("cancel", "missing job ID", NULL);
-    int rc = id_check(id);
+    int rc = id_args("cancel", "job", argc, argv, "--remove", &remove, &id);
     if (rc != RC_OK)
         return rc;
     json_t *info;

@@ -47,20 +47,14 @@ static int make_dirs(const char *dir)
 int cmd_fetch(const settings *s, int argc, char **argv)
 {
     const char *id = NULL, *dir = NULL;
+    int rc;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             dir = argv[++i];
-        else if (argv[i][0] == '-')
-            return usage_error("fetch", "unknown option", argv[i]);
-        else if (id)
-            return usage_error("fetch", "more than one job id", argv[i]);
-        else
-            id = argv[i];
+        else if ((rc = take_id("fetch", "job", argv[i], &id)) != RC_OK)
+            return rc;
     }
-    if (!id)
-        return usage_error("fetch", "missing job ID", NULL);
-    int rc = id_check(id);
-    if (rc != RC_OK)
+    if ((rc = need_id("fetch", "job", id)) != RC_OK)
         return rc;
     if (!dir || !*dir)
         dir = id;
@@ -93,6 +87,19 @@ static char *series_path(const char *id, const char *name, int csv)
         snprintf(p, n, "/jobs/%s/results/series/%s%s", id, esc, csv ? "?format=csv" : "");
     free(esc);
     return p;
+}
+
+/* ID NAME...: the first argument that is no option is the job ID, the others
+ * are series names (counted in *nnames); an unknown option is a usage error (msg). */
+static int id_or_name(const char *cmd, const char *msg, const char *arg, const char **id, int *nnames)
+{
+    if (arg[0] == '-')
+        return usage_error(cmd, msg, arg);
+    if (!*id)
+        *id = arg;
+    else
+        (*nnames)++;
+    return RC_OK;
 }
 
 static int write_out(const char *d, size_t n)
@@ -144,21 +151,14 @@ static int list_series(const settings *s, const char *id)
 int cmd_series(const settings *s, int argc, char **argv)
 {
     const char *id = NULL;
-    int csv = 0, nnames = 0;
+    int csv = 0, nnames = 0, rc;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "--csv") == 0)
             csv = 1;
-        else if (argv[i][0] == '-')
-            return usage_error("series", "unknown option", argv[i]);
-        else if (!id)
-            id = argv[i];
-        else
-            nnames++;
+        else if ((rc = id_or_name("series", "unknown option", argv[i], &id, &nnames)) != RC_OK)
+            return rc;
     }
-    if (!id)
-        return usage_error("series", "missing job ID", NULL);
-    int rc = id_check(id);
-    if (rc != RC_OK)
+    if ((rc = need_id("series", "job", id)) != RC_OK)
         return rc;
     if (nnames == 0)
         return list_series(s, id);
@@ -350,7 +350,7 @@ static int make_line(const series_ref *ys, int c, const series_ref *xs, int xc, 
 int cmd_plot(const settings *s, int argc, char **argv)
 {
     const char *id = NULL, *out = NULL, *xspec = NULL, *title = NULL;
-    int nnames = 0;
+    int nnames = 0, rc;
     for (int i = 1; i < argc; i++) {
         if (strcmp(argv[i], "-o") == 0 && i + 1 < argc)
             out = argv[++i];
@@ -358,19 +358,15 @@ int cmd_plot(const settings *s, int argc, char **argv)
             xspec = argv[++i];
         else if (strcmp(argv[i], "--title") == 0 && i + 1 < argc)
             title = argv[++i];
-        else if (argv[i][0] == '-')
-            return usage_error("plot", "unknown option or missing value", argv[i]);
-        else if (!id)
-            id = argv[i];
-        else
-            nnames++;
+        else if ((rc = id_or_name("plot", "unknown option or missing value", argv[i], &id, &nnames)) !=
+                 RC_OK)
+            return rc;
     }
     if (!id || nnames == 0)
         return usage_error("plot", "usage: tlsph plot ID NAME[:COMP]... -o FILE.svg [--x NAME[:COMP]]", NULL);
     if (!out)
         return usage_error("plot", "missing -o FILE.svg", NULL);
-    int rc = id_check(id);
-    if (rc != RC_OK)
+    if ((rc = id_check(id)) != RC_OK)
         return rc;
 
     series_ref *refs = calloc((size_t)nnames, sizeof *refs);

@@ -7,42 +7,11 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
-#include "jsonfile.h"
-#include "urls.h"
-
-static int study_submit(const settings *s, int argc, char **argv)
-{
-    if (argc != 2 || (argv[1][0] == '-' && argv[1][1]))
-        return usage_error("study submit", "expected exactly one STUDY.json", NULL);
-    json_t *doc;
-    int rc = jsonfile_load(argv[1], &doc);
-    if (rc != RC_OK)
-        return rc;
-    return submit_job(s, "study", doc);
-}
-
-static int one_id(const char *cmd, int argc, char **argv, const char **id, int *csv)
-{
-    *id = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (csv && strcmp(argv[i], "--csv") == 0)
-            *csv = 1;
-        else if (argv[i][0] == '-')
-            return usage_error(cmd, "unknown option", argv[i]);
-        else if (*id)
-            return usage_error(cmd, "more than one study id", argv[i]);
-        else
-            *id = argv[i];
-    }
-    if (!*id)
-        return usage_error(cmd, "missing study ID", NULL);
-    return id_check(*id);
-}
 
 static int study_status(const settings *s, int argc, char **argv)
 {
     const char *id;
-    int rc = one_id("study status", argc, argv, &id, NULL);
+    int rc = id_args("study status", "study", argc, argv, NULL, NULL, &id);
     if (rc != RC_OK)
         return rc;
     json_t *info, *kids;
@@ -95,11 +64,21 @@ static void cell_text(char *buf, size_t n, const json_t *v)
         snprintf(buf, n, "%s", json_is_true(v) ? "true" : json_is_false(v) ? "false" : "?");
 }
 
+/* Column i of nc: numbers right-aligned to width w, text left-aligned (the
+ * last column unpadded); two spaces between columns. */
+static void print_table_cell(size_t i, size_t nc, int w, int right, const char *text)
+{
+    if (right)
+        printf("%s%*s", i ? "  " : "", w, text);
+    else
+        printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w : 0, text);
+}
+
 static int study_table(const settings *s, int argc, char **argv)
 {
     const char *id;
     int csv = 0;
-    int rc = one_id("study table", argc, argv, &id, &csv);
+    int rc = id_args("study table", "study", argc, argv, "--csv", &csv, &id);
     if (rc != RC_OK)
         return rc;
     char path[128];
@@ -143,10 +122,7 @@ static int study_table(const settings *s, int argc, char **argv)
     }
     for (i = 0; i < nc; i++) {
         cell_text(buf, sizeof buf, json_array_get(cols, i));
-        if (numeric[i])
-            printf("%s%*s", i ? "  " : "", w[i], buf);
-        else
-            printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w[i] : 0, buf);
+        print_table_cell(i, nc, w[i], numeric[i], buf);
     }
     putchar('\n');
     json_array_foreach(rows, r, row)
@@ -154,11 +130,7 @@ static int study_table(const settings *s, int argc, char **argv)
         for (i = 0; i < nc; i++) {
             json_t *v = json_array_get(row, i);
             cell_text(buf, sizeof buf, v);
-            /* numeric columns right-aligned, text left-aligned */
-            if (numeric[i] && !json_is_string(v))
-                printf("%s%*s", i ? "  " : "", w[i], buf);
-            else
-                printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w[i] : 0, buf);
+            print_table_cell(i, nc, w[i], numeric[i] && !json_is_string(v), buf);
         }
         putchar('\n');
     }
@@ -174,7 +146,7 @@ int cmd_study(const settings *s, int argc, char **argv)
         return usage_error("study", "expected submit, status or table", NULL);
     const char *sub = argv[1];
     if (strcmp(sub, "submit") == 0)
-        return study_submit(s, argc - 1, argv + 1);
+        return submit_file(s, argc - 1, argv + 1, "study submit", "STUDY.json", "study", NULL);
     if (strcmp(sub, "status") == 0)
         return study_status(s, argc - 1, argv + 1);
     if (strcmp(sub, "table") == 0)

@@ -71,13 +71,32 @@ static void human_bytes(char *buf, size_t n, double b)
     snprintf(buf, n, "%.3g %s", b, u[i]);
 }
 
+/* "STATUS (outcome OUTCOME)": the outcome only where it says more than the status. */
+static void print_status(FILE *f, const json_t *info)
+{
+    const char *outcome = json_string_value(json_object_get(info, "outcome"));
+    print_safe(f, job_status(info));
+    if (outcome && strcmp(outcome, job_status(info)) != 0) {
+        fputs(" (outcome ", f);
+        print_safe(f, outcome);
+        fputc(')', f);
+    }
+}
+
+/* One summary row "LABEL     value", label in a 9-wide column; none without a value. */
+static void print_row(FILE *f, const char *label, const char *value)
+{
+    if (!value)
+        return;
+    fprintf(f, "%-9s ", label);
+    print_safe(f, value);
+    fputc('\n', f);
+}
+
 void job_print_summary(FILE *f, const json_t *info)
 {
     const char *id = json_string_value(json_object_get(info, "jobID"));
     const char *proc = json_string_value(json_object_get(info, "processID"));
-    const char *outcome = json_string_value(json_object_get(info, "outcome"));
-    const char *msg = json_string_value(json_object_get(info, "message"));
-    const char *study = json_string_value(json_object_get(info, "study"));
     json_t *prog = json_object_get(info, "progress");
 
     fputs("job       ", f);
@@ -88,25 +107,12 @@ void job_print_summary(FILE *f, const json_t *info)
         fputc(')', f);
     }
     fputs("\nstatus    ", f);
-    print_safe(f, job_status(info));
-    if (outcome && strcmp(outcome, job_status(info)) != 0) {
-        fputs(" (outcome ", f);
-        print_safe(f, outcome);
-        fputc(')', f);
-    }
+    print_status(f, info);
     if (json_is_number(prog))
         fprintf(f, ", %.0f%%", json_number_value(prog));
     fputc('\n', f);
-    if (msg) {
-        fputs("message   ", f);
-        print_safe(f, msg);
-        fputc('\n', f);
-    }
-    if (study) {
-        fputs("study     ", f);
-        print_safe(f, study);
-        fputc('\n', f);
-    }
+    print_row(f, "message", json_string_value(json_object_get(info, "message")));
+    print_row(f, "study", json_string_value(json_object_get(info, "study")));
     json_t *sim = json_object_get(info, "simulation");
     if (json_is_object(sim)) {
         json_t *t = json_object_get(sim, "time"), *te = json_object_get(sim, "end_time");
@@ -124,14 +130,8 @@ void job_print_summary(FILE *f, const json_t *info)
         fputc('\n', f);
     }
     const char *keys[] = {"created", "started", "finished"};
-    for (int i = 0; i < 3; i++) {
-        const char *v = json_string_value(json_object_get(info, keys[i]));
-        if (v) {
-            fprintf(f, "%-9s ", keys[i]);
-            print_safe(f, v);
-            fputc('\n', f);
-        }
-    }
+    for (int i = 0; i < 3; i++)
+        print_row(f, keys[i], json_string_value(json_object_get(info, keys[i])));
     json_t *cost = json_object_get(info, "cost");
     if (json_is_object(cost)) {
         json_t *p = json_object_get(cost, "particles"), *s = json_object_get(cost, "steps");
@@ -159,16 +159,10 @@ void job_print_summary(FILE *f, const json_t *info)
 void job_print_final_line(FILE *f, const json_t *info)
 {
     const char *id = json_string_value(json_object_get(info, "jobID"));
-    const char *outcome = json_string_value(json_object_get(info, "outcome"));
     const char *msg = json_string_value(json_object_get(info, "message"));
     print_safe(f, id ? id : "?");
     fputc(' ', f);
-    print_safe(f, job_status(info));
-    if (outcome && strcmp(outcome, job_status(info)) != 0) {
-        fputs(" (outcome ", f);
-        print_safe(f, outcome);
-        fputc(')', f);
-    }
+    print_status(f, info);
     if (msg) {
         fputs(": ", f);
         print_safe(f, msg);

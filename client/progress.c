@@ -11,7 +11,6 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
-#include "urls.h"
 #include "util/clock.h"
 
 #define BAR_WIDTH 20
@@ -91,17 +90,8 @@ static void progress_line(char *buf, size_t n, const json_t *info, int bar, doub
 
 int cmd_watch(const settings *s, int argc, char **argv)
 {
-    const char *id = NULL;
-    for (int i = 1; i < argc; i++) {
-        if (argv[i][0] == '-')
-            return usage_error("watch", "unknown option", argv[i]);
-        if (id)
-            return usage_error("watch", "more than one job id", argv[i]);
-        id = argv[i];
-    }
-    if (!id)
-        return usage_error("watch", "missing job ID", NULL);
-    int rc = id_check(id);
+    const char *id;
+    int rc = id_args("watch", "job", argc, argv, NULL, NULL, &id);
     if (rc != RC_OK)
         return rc;
     int tty = isatty(STDOUT_FILENO);

@@ -189,19 +189,39 @@ int tqi_bind_text(sqlite3_stmt *st, int i, const char *s)
     return s ? sqlite3_bind_text(st, i, s, -1, SQLITE_TRANSIENT) : sqlite3_bind_null(st, i);
 }
 
+void tqi_bind_values(sqlite3_stmt *st, const struct tqi_value *v, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        const int at = (int)i + 1;
+        switch (v[i].kind) {
+        case TQI_V_TEXT:
+            tqi_bind_text(st, at, v[i].text);
+            break;
+        case TQI_V_REAL:
+            sqlite3_bind_double(st, at, v[i].real);
+            break;
+        case TQI_V_INT:
+            sqlite3_bind_int64(st, at, v[i].integer);
+            break;
+        }
+    }
+}
+
+int tqi_stmt_end(struct tq *q, sqlite3_stmt *st, int rc, const char *what)
+{
+    if (rc != SQLITE_DONE)
+        tqi_set_db_err(q, what); /* before the reset, while the message is the step's */
+    tqi_done_stmt(st);
+    return rc == SQLITE_DONE ? 0 : -1;
+}
+
 /* Steps a statement that returns no rows (or whose rows are ignored) to the end. */
 int tqi_run_stmt(struct tq *q, sqlite3_stmt *st, const char *what)
 {
     int rc;
     while ((rc = sqlite3_step(st)) == SQLITE_ROW)
         ;
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, what);
-        tqi_done_stmt(st);
-        return -1;
-    }
-    tqi_done_stmt(st);
-    return 0;
+    return tqi_stmt_end(q, st, rc, what);
 }
 
 int tqi_tx_begin(struct tq *q, const char *fn)
@@ -341,33 +361,91 @@ void tq_jobs_free(struct tq_job *jobs, size_t n)
     free(jobs);
 }
 
+int tqi_read_job_row(struct tq *q, sqlite3_stmt *st, void *row)
+{
+    return tqi_read_job(q, st, row);
+}
+
+void tqi_free_job_row(void *row)
+{
+    tq_job_free(row);
+}
+
+int tqi_read_one(struct tq *q, sqlite3_stmt *st, const char *fn, tqi_read_row_fn *read_row,
+                 tqi_free_row_fn *free_row, void *row)
+{
+    int rc = sqlite3_step(st);
+    if (rc == SQLITE_DONE) {
+        tqi_done_stmt(st);
+        return 1;
+    }
+    if (rc == SQLITE_ROW) {
+        if (read_row(q, st, row) < 0) {
+            tqi_done_stmt(st);
+            return -1;
+        }
+        rc = sqlite3_step(st);
+        if (rc != SQLITE_DONE && free_row)
+            free_row(row);
+    }
+    return tqi_stmt_end(q, st, rc, fn);
+}
+
+int tqi_read_all(struct tq *q, sqlite3_stmt *st, const char *fn, size_t size,
+                 tqi_read_row_fn *read_row, tqi_free_row_fn *free_row, void **rows, size_t *n)
+{
+    char *a = NULL;
+    size_t cnt = 0, cap = 0;
+    int rc;
+    *rows = NULL;
+    *n = 0;
+    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
+        if (cnt == cap) {
+            size_t ncap = cap ? 2 * cap : 16;
+            char *na = realloc(a, ncap * size);
+            if (!na) {
+                tqi_set_err(q, "%s: out of memory", fn);
+                goto fail;
+            }
+            a = na;
+            cap = ncap;
+        }
+        if (read_row(q, st, a + cnt * size) < 0)
+            goto fail;
+        cnt++;
+    }
+    if (tqi_stmt_end(q, st, rc, fn) < 0)
+        goto release;
+    *rows = a;
+    *n = cnt;
+    return 0;
+fail:
+    tqi_done_stmt(st);
+release:
+    for (size_t i = 0; free_row && i < cnt; i++)
+        free_row(a + i * size);
+    free(a);
+    return -1;
+}
+
+static int read_lookup_row(struct tq *q, sqlite3_stmt *st, void *row)
+{
+    struct tqi_lookup *l = row;
+    if (tqi_copy_fixed(q, l->process, sizeof l->process, st, 0, "process") < 0 ||
+        tqi_copy_fixed(q, l->status, sizeof l->status, st, 1, "status") < 0 ||
+        tqi_copy_fixed(q, l->study_id, sizeof l->study_id, st, 2, "study_id") < 0)
+        return -1;
+    l->cancel_requested = sqlite3_column_int(st, 3);
+    return 0;
+}
+
 /* 0 found, 1 not found, -1 error. */
 int tqi_lookup(struct tq *q, const char *id, struct tqi_lookup *l)
 {
     sqlite3_stmt *st = q->st[S_LOOKUP];
     memset(l, 0, sizeof *l);
-    tqi_bind_text(st, 1, id);
-    int rc = sqlite3_step(st);
-    if (rc == SQLITE_ROW) {
-        if (tqi_copy_fixed(q, l->process, sizeof l->process, st, 0, "process") < 0 ||
-            tqi_copy_fixed(q, l->status, sizeof l->status, st, 1, "status") < 0 ||
-            tqi_copy_fixed(q, l->study_id, sizeof l->study_id, st, 2, "study_id") < 0) {
-            tqi_done_stmt(st);
-            return -1;
-        }
-        l->cancel_requested = sqlite3_column_int(st, 3);
-        rc = sqlite3_step(st);
-    } else if (rc == SQLITE_DONE) {
-        tqi_done_stmt(st);
-        return 1;
-    }
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, "lookup");
-        tqi_done_stmt(st);
-        return -1;
-    }
-    tqi_done_stmt(st);
-    return 0;
+    TQI_BIND(st, TQI_TEXT(id));
+    return tqi_read_one(q, st, "lookup", read_lookup_row, NULL, l);
 }
 
 /* Runs an UPDATE ... RETURNING study_id with bindings already made.  Returns 0
@@ -385,12 +463,8 @@ int tqi_update_returning_study(struct tq *q, sqlite3_stmt *st, const char *what,
             return -1;
         }
     }
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, what);
-        tqi_done_stmt(st);
+    if (tqi_stmt_end(q, st, rc, what) < 0)
         return -1;
-    }
-    tqi_done_stmt(st);
     return changed ? 0 : 1;
 }
 
@@ -436,20 +510,29 @@ static int pragma_query(sqlite3 *db, const char *sql, char *buf, size_t bufsize,
     return 0;
 }
 
+/* The database's schema version into *v: 0, or -1 when it cannot be read or
+ * is newer than this daemon's (which must not touch it). */
+static int schema_version(sqlite3 *db, const char *path, long *v, char *err, size_t errsize)
+{
+    if (pragma_query(db, "PRAGMA user_version", NULL, 0, v, err, errsize) < 0)
+        return -1;
+    if (*v > SCHEMA_VERSION) {
+        snprintf(err, errsize,
+                 "%s: database schema version %ld is newer than this daemon supports (%d); "
+                 "refusing to open it (use the newer tlsphd or a fresh database)",
+                 path, *v, SCHEMA_VERSION);
+        return -1;
+    }
+    return 0;
+}
+
 static int migrate(sqlite3 *db, const char *path, char *err, size_t errsize)
 {
     if (exec_sql(db, "BEGIN IMMEDIATE", err, errsize) < 0)
         return -1;
     long v = 0;
-    if (pragma_query(db, "PRAGMA user_version", NULL, 0, &v, err, errsize) < 0)
+    if (schema_version(db, path, &v, err, errsize) < 0)
         goto fail;
-    if (v > SCHEMA_VERSION) {
-        snprintf(err, errsize,
-                 "%s: database schema version %ld is newer than this daemon supports (%d); "
-                 "refusing to open it (use the newer tlsphd or a fresh database)",
-                 path, v, SCHEMA_VERSION);
-        goto fail;
-    }
     for (size_t i = 0; i < N_MIGRATIONS; i++) {
         if (migrations[i].version <= v)
             continue;
@@ -506,15 +589,8 @@ int tq_open(const char *path, struct tq **out, char *err, size_t errsize)
 
     /* Refuse a newer schema before touching the file (journal mode is persistent). */
     long v = 0;
-    if (pragma_query(q->db, "PRAGMA user_version", NULL, 0, &v, err, errsize) < 0)
+    if (schema_version(q->db, path, &v, err, errsize) < 0)
         goto fail;
-    if (v > SCHEMA_VERSION) {
-        snprintf(err, errsize,
-                 "%s: database schema version %ld is newer than this daemon supports (%d); "
-                 "refusing to open it (use the newer tlsphd or a fresh database)",
-                 path, v, SCHEMA_VERSION);
-        goto fail;
-    }
     char mode[32];
     if (pragma_query(q->db, "PRAGMA journal_mode=WAL", mode, sizeof mode, NULL, err, errsize) < 0)
         goto fail;

@@ -72,6 +72,27 @@ int tqi_check_id(struct tq *q, const char *fn, const char *id);
 void tqi_done_stmt(sqlite3_stmt *st);
 /* Binds text, or NULL for s == NULL. */
 int tqi_bind_text(sqlite3_stmt *st, int i, const char *s);
+/* One parameter value; TQI_BIND(st, TQI_TEXT(id), TQI_REAL(t), TQI_INT(n))
+ * binds ?1, ?2, ?3 of st in that order (TQI_TEXT(NULL) binds SQL NULL).  The
+ * designated initialisers let the compiler check each value's type. */
+struct tqi_value {
+    enum { TQI_V_TEXT, TQI_V_REAL, TQI_V_INT } kind;
+    union {
+        const char *text;
+        double real;
+        sqlite3_int64 integer;
+    };
+};
+#define TQI_TEXT(s) {.kind = TQI_V_TEXT, .text = (s)}
+#define TQI_REAL(x) {.kind = TQI_V_REAL, .real = (x)}
+#define TQI_INT(n) {.kind = TQI_V_INT, .integer = (n)}
+#define TQI_BIND(st, ...)                                                          \
+    tqi_bind_values((st), (const struct tqi_value[]){__VA_ARGS__},                 \
+                    sizeof((const struct tqi_value[]){__VA_ARGS__}) / sizeof(struct tqi_value))
+void tqi_bind_values(sqlite3_stmt *st, const struct tqi_value *v, size_t n);
+/* Ends a statement whose last step returned rc: resets it; 0 when rc is
+ * SQLITE_DONE, else -1 with "what: " + SQLite's message. */
+int tqi_stmt_end(struct tq *q, sqlite3_stmt *st, int rc, const char *what);
 /* Steps a statement whose rows are ignored to the end: 0 or -1. */
 int tqi_run_stmt(struct tq *q, sqlite3_stmt *st, const char *what);
 /* The start of a write on job id: a handle, a valid id, BEGIN IMMEDIATE.
@@ -90,6 +111,21 @@ int tqi_copy_fixed(struct tq *q, char *dst, size_t size, sqlite3_stmt *st, int c
 int tqi_copy_dyn(struct tq *q, char **dst, sqlite3_stmt *st, int col);
 /* A row in JOB_COLS order: 0, or -1 (out freed and zeroed). */
 int tqi_read_job(struct tq *q, sqlite3_stmt *st, struct tq_job *out);
+/* Reads the current row of st into row (0, or -1 with the error set and
+ * nothing left to free); frees what such a read took.  The job row pair
+ * (tqi_read_job_row, tqi_free_job_row) reads struct tq_job in JOB_COLS order. */
+typedef int tqi_read_row_fn(struct tq *q, sqlite3_stmt *st, void *row);
+typedef void tqi_free_row_fn(void *row);
+tqi_read_row_fn tqi_read_job_row;
+tqi_free_row_fn tqi_free_job_row;
+/* A statement that yields at most one row, stepped to the end and reset:
+ * 0 row read, 1 no row, -1 error (fn names it; row freed by free_row, if any). */
+int tqi_read_one(struct tq *q, sqlite3_stmt *st, const char *fn, tqi_read_row_fn *read_row,
+                 tqi_free_row_fn *free_row, void *row);
+/* Every row of st, each `size` bytes, into a malloc'ed array (*rows, NULL when
+ * there are none; *n rows), st reset: 0, or -1 with everything freed. */
+int tqi_read_all(struct tq *q, sqlite3_stmt *st, const char *fn, size_t size,
+                 tqi_read_row_fn *read_row, tqi_free_row_fn *free_row, void **rows, size_t *n);
 /* 0 found, 1 not found, -1 error. */
 int tqi_lookup(struct tq *q, const char *id, struct tqi_lookup *l);
 /* An UPDATE ... RETURNING study_id with bindings made: 0 when a row changed

@@ -40,16 +40,10 @@ static int insert_row(struct tq *q, const struct tq_job *j, const char *study_id
                       double created)
 {
     sqlite3_stmt *st = q->st[S_INSERT];
-    tqi_bind_text(st, 1, j->id);
-    tqi_bind_text(st, 2, j->process);
-    tqi_bind_text(st, 3, study_id && study_id[0] ? study_id : NULL);
-    sqlite3_bind_int64(st, 4, seq);
-    tqi_bind_text(st, 5, j->message);
-    tqi_bind_text(st, 6, j->input);
-    tqi_bind_text(st, 7, j->params);
-    sqlite3_bind_double(st, 8, created);
-    sqlite3_bind_int64(st, 9, j->threads);
-    sqlite3_bind_double(st, 10, j->wall_limit);
+    TQI_BIND(st, TQI_TEXT(j->id), TQI_TEXT(j->process),
+             TQI_TEXT(study_id && study_id[0] ? study_id : NULL), TQI_INT(seq),
+             TQI_TEXT(j->message), TQI_TEXT(j->input), TQI_TEXT(j->params), TQI_REAL(created),
+             TQI_INT(j->threads), TQI_REAL(j->wall_limit));
     char what[TQ_ID_LEN + 32];
     snprintf(what, sizeof what, "inserting job %s", j->id);
     return tqi_run_stmt(q, st, what);
@@ -107,29 +101,8 @@ enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out)
     if (tqi_check_id(q, "tq_get", id) < 0)
         return -1;
     sqlite3_stmt *st = q->st[S_GET];
-    tqi_bind_text(st, 1, id);
-    int rc = sqlite3_step(st);
-    if (rc == SQLITE_DONE) {
-        tqi_done_stmt(st);
-        return 1;
-    }
-    if (rc != SQLITE_ROW) {
-        tqi_set_db_err(q, "tq_get");
-        tqi_done_stmt(st);
-        return -1;
-    }
-    if (tqi_read_job(q, st, out) < 0) {
-        tqi_done_stmt(st);
-        return -1;
-    }
-    rc = sqlite3_step(st);
-    tqi_done_stmt(st);
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, "tq_get");
-        tq_job_free(out);
-        return -1;
-    }
-    return 0;
+    TQI_BIND(st, TQI_TEXT(id));
+    return tqi_read_one(q, st, "tq_get", tqi_read_job_row, tqi_free_job_row, out);
 }
 
 enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
@@ -155,45 +128,36 @@ enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const
     for (int b = 0; b < 3; b++)
         if (f[b] && f[b][0])
             mask |= 1 << b;
+    /* The variant for this mask numbers its parameters ?1..?5 but uses only
+     * the filters it has, so they are bound by position, not in sequence. */
     sqlite3_stmt *st = q->st[S_LIST0 + mask];
     for (int b = 0; b < 3; b++)
         if (mask & (1 << b))
             tqi_bind_text(st, b + 1, f[b]);
     sqlite3_bind_int64(st, 4, limit);
     sqlite3_bind_int64(st, 5, offset);
-
-    struct tq_job *a = NULL;
-    size_t cnt = 0, cap = 0;
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        if (cnt == cap) {
-            size_t ncap = cap ? 2 * cap : 16;
-            struct tq_job *na = realloc(a, ncap * sizeof *na);
-            if (!na) {
-                tqi_set_err(q, "tq_list: out of memory");
-                goto fail;
-            }
-            a = na;
-            cap = ncap;
-        }
-        if (tqi_read_job(q, st, &a[cnt]) < 0)
-            goto fail;
-        cnt++;
-    }
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, "tq_list");
-        goto fail;
-    }
-    tqi_done_stmt(st);
-    *out = a;
-    *n = cnt;
+    void *rows;
+    if (tqi_read_all(q, st, "tq_list", sizeof **out, tqi_read_job_row, tqi_free_job_row, &rows,
+                     n) < 0)
+        return -1;
+    *out = rows;
     return 0;
-fail:
-    tqi_done_stmt(st);
-    for (size_t i = 0; i < cnt; i++)
-        tq_job_free(&a[i]);
-    free(a);
-    return -1;
+}
+
+static int read_id_row(struct tq *q, sqlite3_stmt *st, void *row)
+{
+    return tqi_copy_fixed(q, row, TQ_ID_LEN + 1, st, 0, "id");
+}
+
+/* The ids in column 0 of every row of st: 0, or -1 (*ids untouched). */
+static int read_ids(struct tq *q, sqlite3_stmt *st, const char *fn, char (**ids)[TQ_ID_LEN + 1],
+                    size_t *n)
+{
+    void *rows;
+    if (tqi_read_all(q, st, fn, sizeof **ids, read_id_row, NULL, &rows, n) < 0)
+        return -1;
+    *ids = rows;
+    return 0;
 }
 
 enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t *n)
@@ -204,38 +168,7 @@ enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t 
         return -1;
     }
     *ids = NULL;
-    *n = 0;
-    sqlite3_stmt *st = q->st[S_CANCEL_REQUESTS];
-    char (*a)[TQ_ID_LEN + 1] = NULL;
-    size_t cnt = 0, cap = 0;
-    int rc;
-    while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
-        if (cnt == cap) {
-            size_t ncap = cap ? 2 * cap : 8;
-            char (*na)[TQ_ID_LEN + 1] = realloc(a, ncap * sizeof *na);
-            if (!na) {
-                tqi_set_err(q, "tq_cancel_requests: out of memory");
-                goto fail;
-            }
-            a = na;
-            cap = ncap;
-        }
-        if (tqi_copy_fixed(q, a[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0)
-            goto fail;
-        cnt++;
-    }
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, "tq_cancel_requests");
-        goto fail;
-    }
-    tqi_done_stmt(st);
-    *ids = a;
-    *n = cnt;
-    return 0;
-fail:
-    tqi_done_stmt(st);
-    free(a);
-    return -1;
+    return read_ids(q, q->st[S_CANCEL_REQUESTS], "tq_cancel_requests", ids, n);
 }
 
 enum tq_rc tq_counts(struct tq *q, long *accepted, long *running, long *final)
@@ -271,21 +204,8 @@ enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out)
     if (tqi_tx_begin(q, "tq_claim_next") < 0)
         return -1;
     sqlite3_stmt *st = q->st[S_CLAIM];
-    sqlite3_bind_double(st, 1, tqi_now_seconds());
-    int rc = sqlite3_step(st), ret;
-    if (rc == SQLITE_DONE) {
-        ret = 1;
-    } else if (rc == SQLITE_ROW) {
-        ret = tqi_read_job(q, st, out);
-        if (ret == 0 && (rc = sqlite3_step(st)) != SQLITE_DONE) {
-            tqi_set_db_err(q, "tq_claim_next");
-            ret = -1;
-        }
-    } else {
-        tqi_set_db_err(q, "tq_claim_next");
-        ret = -1;
-    }
-    tqi_done_stmt(st);
+    TQI_BIND(st, TQI_REAL(tqi_now_seconds()));
+    int ret = tqi_read_one(q, st, "tq_claim_next", tqi_read_job_row, tqi_free_job_row, out);
     if (ret == 0)
         ret = tqi_refresh_parent(q, out->study_id, 0);
     ret = tqi_tx_end(q, "tq_claim_next", ret);
@@ -299,8 +219,7 @@ enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
     if (tqi_begin_for(q, "tq_set_pid", id) < 0)
         return TQ_ERROR;
     sqlite3_stmt *st = q->st[S_SET_PID];
-    tqi_bind_text(st, 1, id);
-    sqlite3_bind_int64(st, 2, pid);
+    TQI_BIND(st, TQI_TEXT(id), TQI_INT(pid));
     int rc = tqi_run_stmt(q, st, "tq_set_pid");
     if (rc == 0 && sqlite3_changes(q->db) == 0)
         rc = 1;
@@ -317,12 +236,8 @@ enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, dou
     if (tqi_begin_for(q, "tq_update_progress", id) < 0)
         return TQ_ERROR;
     sqlite3_stmt *st = q->st[S_PROGRESS];
-    tqi_bind_text(st, 1, id);
-    sqlite3_bind_double(st, 2, progress);
-    sqlite3_bind_double(st, 3, sim_time);
-    sqlite3_bind_double(st, 4, end_time);
-    sqlite3_bind_int64(st, 5, step);
-    sqlite3_bind_double(st, 6, eta);
+    TQI_BIND(st, TQI_TEXT(id), TQI_REAL(progress), TQI_REAL(sim_time), TQI_REAL(end_time),
+             TQI_INT(step), TQI_REAL(eta));
     char study[TQ_ID_LEN + 1];
     int rc = tqi_update_returning_study(q, st, "tq_update_progress", study);
     return tqi_tx_end(q, "tq_update_progress", tqi_refresh_parent(q, study, rc));
@@ -347,12 +262,8 @@ enum tq_rc tq_finish(struct tq *q, const char *id, const char *status, const cha
     if (tqi_tx_begin(q, "tq_finish") < 0)
         return -1;
     sqlite3_stmt *st = q->st[S_FINISH];
-    tqi_bind_text(st, 1, id);
-    tqi_bind_text(st, 2, status);
-    tqi_bind_text(st, 3, outcome);
-    tqi_bind_text(st, 4, message);
-    tqi_bind_text(st, 5, cost_json);
-    sqlite3_bind_double(st, 6, tqi_now_seconds());
+    TQI_BIND(st, TQI_TEXT(id), TQI_TEXT(status), TQI_TEXT(outcome), TQI_TEXT(message),
+             TQI_TEXT(cost_json), TQI_REAL(tqi_now_seconds()));
     char study[TQ_ID_LEN + 1];
     int rc = tqi_update_returning_study(q, st, "tq_finish", study);
     return tqi_tx_end(q, "tq_finish", tqi_refresh_parent(q, study, rc));
@@ -370,15 +281,13 @@ enum tq_rc tq_requeue(struct tq *q, const char *id, const char *message)
     if (rc == 0 && l.cancel_requested) {
         /* A cancel was pending: honour it instead of running the job again. */
         sqlite3_stmt *st = q->st[S_DISMISS];
-        tqi_bind_text(st, 1, id);
-        tqi_bind_text(st, 2, "cancelled (stopped before it finished)");
-        sqlite3_bind_double(st, 3, tqi_now_seconds());
+        TQI_BIND(st, TQI_TEXT(id), TQI_TEXT("cancelled (stopped before it finished)"),
+                 TQI_REAL(tqi_now_seconds()));
         rc = tqi_run_stmt(q, st, "tq_requeue");
         snprintf(study, sizeof study, "%s", l.study_id);
     } else if (rc == 0) {
         sqlite3_stmt *st = q->st[S_REQUEUE];
-        tqi_bind_text(st, 1, id);
-        tqi_bind_text(st, 2, message);
+        TQI_BIND(st, TQI_TEXT(id), TQI_TEXT(message));
         rc = tqi_update_returning_study(q, st, "tq_requeue", study);
     }
     return tqi_tx_end(q, "tq_requeue", tqi_refresh_parent(q, study, rc));
@@ -396,18 +305,16 @@ enum tq_rc tq_request_cancel(struct tq *q, const char *id)
     sqlite3_stmt *st;
     if (!strcmp(l.process, "study")) {
         st = q->st[S_CANCEL_MARK];
-        tqi_bind_text(st, 1, id);
+        TQI_BIND(st, TQI_TEXT(id));
         rc = tqi_run_stmt(q, st, "tq_request_cancel: study");
         if (rc == 0) {
             st = q->st[S_CANCEL_CHILDREN_ACCEPTED];
-            tqi_bind_text(st, 1, id);
-            tqi_bind_text(st, 2, "cancelled before it started");
-            sqlite3_bind_double(st, 3, t);
+            TQI_BIND(st, TQI_TEXT(id), TQI_TEXT("cancelled before it started"), TQI_REAL(t));
             rc = tqi_run_stmt(q, st, "tq_request_cancel: children");
         }
         if (rc == 0) {
             st = q->st[S_CANCEL_CHILDREN_RUNNING];
-            tqi_bind_text(st, 1, id);
+            TQI_BIND(st, TQI_TEXT(id));
             rc = tqi_run_stmt(q, st, "tq_request_cancel: children");
         }
         if (rc == 0)
@@ -416,13 +323,11 @@ enum tq_rc tq_request_cancel(struct tq *q, const char *id)
     }
     if (!strcmp(l.status, TQ_ACCEPTED)) {
         st = q->st[S_DISMISS];
-        tqi_bind_text(st, 1, id);
-        tqi_bind_text(st, 2, "cancelled before it started");
-        sqlite3_bind_double(st, 3, t);
+        TQI_BIND(st, TQI_TEXT(id), TQI_TEXT("cancelled before it started"), TQI_REAL(t));
         rc = tqi_run_stmt(q, st, "tq_request_cancel");
     } else {
         st = q->st[S_CANCEL_MARK];
-        tqi_bind_text(st, 1, id);
+        TQI_BIND(st, TQI_TEXT(id));
         rc = tqi_run_stmt(q, st, "tq_request_cancel");
     }
     return tqi_tx_end(q, "tq_request_cancel", tqi_refresh_parent(q, l.study_id, rc));
@@ -446,10 +351,19 @@ enum tq_rc tq_delete(struct tq *q, const char *id)
     }
     if (rc == 0) {
         sqlite3_stmt *st = q->st[S_DELETE];
-        tqi_bind_text(st, 1, id);
+        TQI_BIND(st, TQI_TEXT(id));
         rc = tqi_run_stmt(q, st, "tq_delete");
     }
     return tqi_tx_end(q, "tq_delete", rc);
+}
+
+/* One recovery statement, bound: 0, or -1; adds the rows it changed to *touched. */
+static int run_counted(struct tq *q, sqlite3_stmt *st, long *touched)
+{
+    if (tqi_run_stmt(q, st, "tq_recover") < 0)
+        return -1;
+    *touched += sqlite3_changes(q->db);
+    return 0;
 }
 
 int tq_recover(struct tq *q, int max_attempts)
@@ -459,59 +373,24 @@ int tq_recover(struct tq *q, int max_attempts)
         return -1;
     const double t = tqi_now_seconds();
     long touched = 0;
-    int rc = 0;
     sqlite3_stmt *st = q->st[S_RECOVER_CANCELLED];
-    sqlite3_bind_double(st, 1, t);
-    if (tqi_run_stmt(q, st, "tq_recover") < 0)
-        rc = -1;
-    else
-        touched += sqlite3_changes(q->db);
+    TQI_BIND(st, TQI_REAL(t));
+    int rc = run_counted(q, st, &touched);
     if (rc == 0) {
         st = q->st[S_RECOVER_REQUEUE];
-        sqlite3_bind_int(st, 1, max_attempts);
-        if (tqi_run_stmt(q, st, "tq_recover") < 0)
-            rc = -1;
-        else
-            touched += sqlite3_changes(q->db);
+        TQI_BIND(st, TQI_INT(max_attempts));
+        rc = run_counted(q, st, &touched);
     }
     if (rc == 0) {
         st = q->st[S_RECOVER_FAIL];
-        sqlite3_bind_double(st, 1, t);
-        if (tqi_run_stmt(q, st, "tq_recover") < 0)
-            rc = -1;
-        else
-            touched += sqlite3_changes(q->db);
+        TQI_BIND(st, TQI_REAL(t));
+        rc = run_counted(q, st, &touched);
     }
     /* Refresh every unfinished study (self-healing after a crash mid-way). */
     char (*ids)[TQ_ID_LEN + 1] = NULL;
-    size_t cnt = 0, cap = 0;
-    if (rc == 0) {
-        int src;
-        st = q->st[S_OPEN_STUDIES];
-        while ((src = sqlite3_step(st)) == SQLITE_ROW) {
-            if (cnt == cap) {
-                size_t ncap = cap ? 2 * cap : 8;
-                char (*na)[TQ_ID_LEN + 1] = realloc(ids, ncap * sizeof *na);
-                if (!na) {
-                    tqi_set_err(q, "tq_recover: out of memory");
-                    rc = -1;
-                    break;
-                }
-                ids = na;
-                cap = ncap;
-            }
-            if (tqi_copy_fixed(q, ids[cnt], TQ_ID_LEN + 1, st, 0, "id") < 0) {
-                rc = -1;
-                break;
-            }
-            cnt++;
-        }
-        if (rc == 0 && src != SQLITE_DONE) {
-            tqi_set_db_err(q, "tq_recover");
-            rc = -1;
-        }
-        tqi_done_stmt(st);
-    }
+    size_t cnt = 0;
+    if (rc == 0)
+        rc = read_ids(q, q->st[S_OPEN_STUDIES], "tq_recover", &ids, &cnt);
     for (size_t i = 0; rc == 0 && i < cnt; i++)
         if (tqi_study_refresh_locked(q, ids[i]) < 0)
             rc = -1;

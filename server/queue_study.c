@@ -23,7 +23,7 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
     long acc = 0, run = 0, succ = 0, fail = 0, dism = 0;
     double run_progress = 0, started = 0, finished = 0;
     sqlite3_stmt *st = q->st[S_STUDY_AGG];
-    tqi_bind_text(st, 1, study_id);
+    TQI_BIND(st, TQI_TEXT(study_id));
     while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
         const char *s = (const char *)sqlite3_column_text(st, 0);
         long c = (long)sqlite3_column_int64(st, 1);
@@ -49,12 +49,8 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
         if (f0 > finished)
             finished = f0;
     }
-    if (rc != SQLITE_DONE) {
-        tqi_set_db_err(q, "tq_study_refresh");
-        tqi_done_stmt(st);
+    if (tqi_stmt_end(q, st, rc, "tq_study_refresh") < 0)
         return -1;
-    }
-    tqi_done_stmt(st);
 
     const long n = acc + run + succ + fail + dism;
     if (n == 0)
@@ -95,13 +91,8 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
     if (progress > 100)
         progress = 100;
     st = q->st[S_STUDY_UPDATE];
-    tqi_bind_text(st, 1, study_id);
-    tqi_bind_text(st, 2, status);
-    tqi_bind_text(st, 3, outcome);
-    tqi_bind_text(st, 4, message);
-    sqlite3_bind_double(st, 5, progress);
-    sqlite3_bind_double(st, 6, started);
-    sqlite3_bind_double(st, 7, finished);
+    TQI_BIND(st, TQI_TEXT(study_id), TQI_TEXT(status), TQI_TEXT(outcome), TQI_TEXT(message),
+             TQI_REAL(progress), TQI_REAL(started), TQI_REAL(finished));
     return tqi_run_stmt(q, st, "tq_study_refresh: update");
 }
 

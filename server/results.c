@@ -270,37 +270,36 @@ fail:
     return NULL;
 }
 
-/* Opens, validates and reads series name.  0 ok, 1 not found, -1 error. */
-static int series_load(const char *h5path, const char *name, struct series *s, char *err,
-                       size_t errsize)
+/* Opens, validates and reads series name.  0 ok, 1 not found, -1 error;
+ * *not_found (when given) says whether it was 1. */
+static int series_load(const char *h5path, const char *name, struct series *s, int *not_found,
+                       char *err, size_t errsize)
 {
     memset(s, 0, sizeof *s);
+    int rc = -1;
     if (!tres_series_name_ok(name)) {
         errmsg_set(err, errsize, TRES_NO_SERIES, name ? name : "");
-        return 1;
+        rc = 1;
+    } else {
+        hid_t f = h5r_open_file(h5path, err, errsize);
+        if (f >= 0) {
+            rc = series_read(f, name, s, 1, err, errsize);
+            if (rc == 1)
+                errmsg_set(err, errsize, "no series named \"%s\"", name);
+            H5Fclose(f);
+        }
     }
-    hid_t f = h5r_open_file(h5path, err, errsize);
-    if (f < 0)
-        return -1;
-    int rc = series_read(f, name, s, 1, err, errsize);
-    if (rc == 1)
-        errmsg_set(err, errsize, "no series named \"%s\"", name);
-    H5Fclose(f);
+    if (not_found)
+        *not_found = rc == 1;
     return rc;
 }
 
 json_t *tres_series(const char *h5path, const char *name, int *not_found, char *err,
                     size_t errsize)
 {
-    if (not_found)
-        *not_found = 0;
     struct series s;
-    int rc = series_load(h5path, name, &s, err, errsize);
-    if (rc != 0) {
-        if (rc == 1 && not_found)
-            *not_found = 1;
+    if (series_load(h5path, name, &s, not_found, err, errsize) != 0)
         return NULL;
-    }
     json_t *o = json_object(), *step = json_array(), *time = json_array(), *value = json_array();
     for (size_t i = 0; i < s.rows; i++) {
         json_array_append_new(step, json_integer((json_int_t)s.step[i]));
@@ -335,15 +334,9 @@ static void sb_num(struct strbuf *b, double v)
 char *tres_series_csv(const char *h5path, const char *name, int *not_found, char *err,
                       size_t errsize)
 {
-    if (not_found)
-        *not_found = 0;
     struct series s;
-    int rc = series_load(h5path, name, &s, err, errsize);
-    if (rc != 0) {
-        if (rc == 1 && not_found)
-            *not_found = 1;
+    if (series_load(h5path, name, &s, not_found, err, errsize) != 0)
         return NULL;
-    }
     const char *col = strrchr(name, '/');
     col = col ? col + 1 : name;
     struct strbuf b = {0};
@@ -378,7 +371,7 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
 {
     double fv = NAN, mx = NAN, mn = NAN;
     struct series s;
-    int rc = series_load(h5path, name, &s, err, errsize);
+    int rc = series_load(h5path, name, &s, NULL, err, errsize);
     if (rc != 0)
         return rc;
     int nc = s.ncomp ? s.ncomp : 1;
