@@ -312,35 +312,37 @@ static int create_columns(struct tlsph_output *o, const struct tlsph_model *m, h
     return 0;
 }
 
+/* /observables/<family>/<item>: the item's present columns. */
+static int create_item(struct tlsph_output *o, const struct tlsph_model *m, hid_t fam,
+                       const struct tlsph_series_family *f, const char *item, size_t *offset)
+{
+    char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 64];
+    link_name(name, sizeof name, item);
+    snprintf(path, sizeof path, "/observables/%s/%s", f->name, name);
+    hid_t g = make_group(fam, name);
+    if (g < 0)
+        return -1;
+    int rc = create_columns(o, m, g, path, f->columns, f->ncolumns, offset);
+    H5Gclose(g);
+    return rc;
+}
+
 /* /observables/<family>/<item>/<column> for every item with series and every
  * present column; the family's group only when it has an item or is "always". */
 static int create_family(struct tlsph_output *o, const struct tlsph_model *m, hid_t obs,
                          const struct tlsph_series_family *f, size_t *offset)
 {
-    int rc = -1;
-    hid_t fam = H5I_INVALID_HID, g = H5I_INVALID_HID;
-    if (f->always && (fam = make_group(obs, f->name)) < 0)
-        goto done;
-    for (size_t k = 0; k < f->count(m); k++) {
+    hid_t fam = f->always ? make_group(obs, f->name) : H5I_INVALID_HID;
+    int rc = f->always && fam < 0 ? -1 : 0;
+    for (size_t k = 0; k < f->count(m) && rc == 0; k++) {
         const char *item = f->item(m, k);
         if (!item)
             continue;
         if (fam < 0 && (fam = make_group(obs, f->name)) < 0)
-            goto done;
-        char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 64];
-        link_name(name, sizeof name, item);
-        snprintf(path, sizeof path, "/observables/%s/%s", f->name, name);
-        if ((g = make_group(fam, name)) < 0)
-            goto done;
-        if (create_columns(o, m, g, path, f->columns, f->ncolumns, offset) < 0)
-            goto done;
-        H5Gclose(g);
-        g = H5I_INVALID_HID;
+            rc = -1;
+        else
+            rc = create_item(o, m, fam, f, item, offset);
     }
-    rc = 0;
-done:
-    if (g >= 0)
-        H5Gclose(g);
     if (fam >= 0)
         H5Gclose(fam);
     return rc;
