@@ -72,6 +72,28 @@ static int in_range(double x, struct jc_range r)
     return 1;
 }
 
+/* obj[key], with its JSON pointer written to p.  NULL when absent: a required
+ * key is then reported missing, with detail (e.g. "(m)"; NULL: none) after its
+ * name, and the caller returns required ? -1 : 1. */
+static const json_t *member(const json_t *obj, const char *key, int required, const char *detail,
+                            const char *pointer, char p[512], struct tlsph_errors *err)
+{
+    tlsph_pointer_join(p, 512, pointer, key);
+    const json_t *v = json_object_get(obj, key);
+    if (!v && required)
+        tlsph_errors_add(err, p, "required field '%s'%s%s is missing", key, detail ? " " : "",
+                         detail ? detail : "");
+    return v;
+}
+
+/* Reports v at p as not of the expected kind (e.g. "an integer"); returns -1. */
+static int wrong_type(const char *p, const char *key, const char *expected, const json_t *v,
+                      struct tlsph_errors *err)
+{
+    tlsph_errors_add(err, p, "'%s' must be %s, got %s", key, expected, jc_type_name(v));
+    return -1;
+}
+
 int jc_number(const json_t *obj, const char *key, int required, struct jc_range r,
               const char *units, const char *pointer, double *out, struct tlsph_errors *err)
 {
@@ -82,19 +104,14 @@ int jc_number_why(const json_t *obj, const char *key, int required, struct jc_ra
                   const char *units, const char *above_max, const char *pointer, double *out,
                   struct tlsph_errors *err)
 {
-    char p[512];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v) {
-        if (required) {
-            tlsph_errors_add(err, p, "required field '%s' (%s) is missing", key, units);
-            return -1;
-        }
-        return 1;
-    }
+    char p[512], detail[256];
+    snprintf(detail, sizeof detail, "(%s)", units);
+    const json_t *v = member(obj, key, required, detail, pointer, p, err);
+    if (!v)
+        return required ? -1 : 1;
     if (!json_is_number(v)) {
-        tlsph_errors_add(err, p, "'%s' must be a number (%s), got %s", key, units, jc_type_name(v));
-        return -1;
+        snprintf(detail, sizeof detail, "a number (%s)", units);
+        return wrong_type(p, key, detail, v, err);
     }
     double x = json_number_value(v);
     if (!in_range(x, r)) {
@@ -116,19 +133,11 @@ int jc_integer(const json_t *obj, const char *key, int required, long min, long 
                const char *pointer, long *out, struct tlsph_errors *err)
 {
     char p[512];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v) {
-        if (required) {
-            tlsph_errors_add(err, p, "required field '%s' is missing", key);
-            return -1;
-        }
-        return 1;
-    }
-    if (!json_is_integer(v)) {
-        tlsph_errors_add(err, p, "'%s' must be an integer, got %s", key, jc_type_name(v));
-        return -1;
-    }
+    const json_t *v = member(obj, key, required, NULL, pointer, p, err);
+    if (!v)
+        return required ? -1 : 1;
+    if (!json_is_integer(v))
+        return wrong_type(p, key, "an integer", v, err);
     json_int_t x = json_integer_value(v);
     if (x < min || x > max) {
         tlsph_errors_add(err, p, "'%s' = %lld is out of range: must be in [%ld, %ld]", key,
@@ -143,19 +152,11 @@ int jc_boolean(const json_t *obj, const char *key, int required, const char *poi
                struct tlsph_errors *err)
 {
     char p[512];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v) {
-        if (required) {
-            tlsph_errors_add(err, p, "required field '%s' is missing", key);
-            return -1;
-        }
-        return 1;
-    }
-    if (!json_is_boolean(v)) {
-        tlsph_errors_add(err, p, "'%s' must be true or false, got %s", key, jc_type_name(v));
-        return -1;
-    }
+    const json_t *v = member(obj, key, required, NULL, pointer, p, err);
+    if (!v)
+        return required ? -1 : 1;
+    if (!json_is_boolean(v))
+        return wrong_type(p, key, "true or false", v, err);
     *out = json_is_true(v);
     return 0;
 }
@@ -164,19 +165,11 @@ int jc_string(const json_t *obj, const char *key, int required, const char *poin
               size_t size, struct tlsph_errors *err)
 {
     char p[512];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v) {
-        if (required) {
-            tlsph_errors_add(err, p, "required field '%s' is missing", key);
-            return -1;
-        }
-        return 1;
-    }
-    if (!json_is_string(v)) {
-        tlsph_errors_add(err, p, "'%s' must be a string, got %s", key, jc_type_name(v));
-        return -1;
-    }
+    const json_t *v = member(obj, key, required, NULL, pointer, p, err);
+    if (!v)
+        return required ? -1 : 1;
+    if (!json_is_string(v))
+        return wrong_type(p, key, "a string", v, err);
     const char *s = json_string_value(v);
     size_t len = json_string_length(v);
     if (len == 0 || len >= size || strlen(s) != len) {
@@ -191,17 +184,11 @@ int jc_string(const json_t *obj, const char *key, int required, const char *poin
 int jc_vector(const json_t *obj, const char *key, int required, int n, const char *units,
               const char *pointer, double *out, struct tlsph_errors *err)
 {
-    char p[512];
-    tlsph_pointer_join(p, sizeof p, pointer, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v) {
-        if (required) {
-            tlsph_errors_add(err, p, "required field '%s' (%d numbers, %s) is missing", key, n,
-                             units);
-            return -1;
-        }
-        return 1;
-    }
+    char p[512], detail[256];
+    snprintf(detail, sizeof detail, "(%d numbers, %s)", n, units);
+    const json_t *v = member(obj, key, required, detail, pointer, p, err);
+    if (!v)
+        return required ? -1 : 1;
     if (!json_is_array(v) || json_array_size(v) != (size_t)n) {
         tlsph_errors_add(err, p, "'%s' must be an array of %d numbers (%s)", key, n, units);
         return -1;
@@ -232,7 +219,7 @@ const json_t *jc_object(const json_t *obj, const char *key, int required, const 
         return NULL;
     }
     if (!json_is_object(v)) {
-        tlsph_errors_add(err, p, "'%s' must be an object, got %s", key, jc_type_name(v));
+        wrong_type(p, key, "an object", v, err);
         return NULL;
     }
     return v;

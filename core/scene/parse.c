@@ -192,6 +192,18 @@ static int parse_thermal(const json_t *mat, struct tlsph_material *m, const char
     return r < 0 ? -1 : 0;
 }
 
+int tlsph_require_plastic(const struct tlsph_material *m, const char *block, const char *why,
+                          const char *pointer, struct tlsph_errors *err)
+{
+    if (!m->strength || tlsph_material_is_plastic(m))
+        return 0;
+    tlsph_errors_add(err, pointer,
+                     "material '%s' has a %s block but strength '%s' is not plastic: %s (use a "
+                     "plastic strength model: %s)",
+                     m->name, block, m->strength->name, why, tlsph_strength_plastic_names());
+    return 1;
+}
+
 static int parse_material(const char *name, const json_t *mat, struct tlsph_material *m,
                           struct tlsph_errors *err)
 {
@@ -227,10 +239,8 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
     } else if (r == 0) {
         m->eos = tlsph_eos_find(type);
         if (!m->eos) {
-            char q[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(q, sizeof q, p, "type");
-            tlsph_errors_add(err, q, "unknown equation of state '%s' (accepted: %s)", type,
-                             tlsph_eos_names());
+            tlsph_key_error(err, p, "type", "unknown equation of state '%s' (accepted: %s)", type,
+                            tlsph_eos_names());
             bad = 1;
         } else if (m->eos->parse(obj, m, p, err) != 0) {
             bad = 1;
@@ -245,23 +255,17 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
     } else if (r == 0) {
         m->strength = tlsph_strength_find(type);
         if (!m->strength) {
-            char q[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(q, sizeof q, p, "type");
-            tlsph_errors_add(err, q, "unknown strength model '%s' (accepted: %s)", type,
-                             tlsph_strength_names());
+            tlsph_key_error(err, p, "type", "unknown strength model '%s' (accepted: %s)", type,
+                            tlsph_strength_names());
             bad = 1;
         } else if (m->strength->parse(obj, m, p, err) != 0) {
             bad = 1;
         }
     }
-    if (m->thermal.enabled && m->strength && !tlsph_material_is_plastic(m)) {
+    if (m->thermal.enabled) {
         tlsph_pointer_join(p, sizeof p, P, "thermal");
-        tlsph_errors_add(err, p,
-                         "material '%s' has a thermal block but strength '%s' is not plastic: "
-                         "adiabatic heating comes from plastic work (use a plastic strength "
-                         "model: %s)",
-                         m->name, m->strength->name, tlsph_strength_plastic_names());
-        bad = 1;
+        bad |= tlsph_require_plastic(m, "thermal", "adiabatic heating comes from plastic work",
+                                     p, err);
     }
     bad |= tlsph_parse_material_damage(mat, m, P, err) != 0;
     return bad ? -1 : 0;

@@ -30,11 +30,10 @@ static int parse_bc(const json_t *obj, size_t index, struct tlsph_scene *s,
         return -1;
     bc->kind = tlsph_bc_find(type);
     if (!bc->kind) {
-        char p[TLSPH_POINTER_MAX], names[256];
-        tlsph_pointer_join(p, sizeof p, P, "type");
+        char names[256];
         tlsph_bc_names(names, sizeof names, 0, "", ", ");
-        tlsph_errors_add(err, p, "unknown boundary condition type '%s' (accepted: %s)", type,
-                         names);
+        tlsph_key_error(err, P, "type", "unknown boundary condition type '%s' (accepted: %s)",
+                        type, names);
         return -1;
     }
     bad |= jc_unknown_keys(obj, bc->kind->keys, P, err) != 0;

@@ -12,29 +12,21 @@ int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, con
     const json_t *obj = jc_object(mat, "damage", 0, pointer, err);
     if (!obj)
         return json_object_get(mat, "damage") ? -1 : 0;
-    char P[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
+    char P[TLSPH_POINTER_MAX];
     tlsph_pointer_join(P, sizeof P, pointer, "damage");
     char type[64];
     if (jc_string(obj, "type", 1, P, type, sizeof type, err) != 0)
         return -1;
     const struct tlsph_damage_model *model = tlsph_damage_find(type);
     if (!model) {
-        tlsph_pointer_join(q, sizeof q, P, "type");
-        tlsph_errors_add(err, q, "unknown damage model '%s' (accepted: %s)", type,
-                         tlsph_damage_names());
+        tlsph_key_error(err, P, "type", "unknown damage model '%s' (accepted: %s)", type,
+                        tlsph_damage_names());
         return -1;
     }
     int bad = model->parse(obj, m, P, err) != 0;
     if (!model->porous)
         bad |= tlsph_damage_parse_evolution(obj, m, P, err) != 0;
-    if (m->strength && !tlsph_material_is_plastic(m)) {
-        tlsph_errors_add(err, P,
-                         "material '%s' has a damage block but strength '%s' is not plastic: "
-                         "ductile damage grows with plastic strain (use a plastic strength "
-                         "model: %s)",
-                         m->name, m->strength->name, tlsph_strength_plastic_names());
-        bad = 1;
-    }
+    bad |= tlsph_require_plastic(m, "damage", "ductile damage grows with plastic strain", P, err);
     m->damage.model = model; /* even when invalid: later checks must see it */
     return bad ? -1 : 0;
 }

@@ -25,6 +25,11 @@ int tlsph_scene_expr(struct tlsph_expr *ex, const json_t *v, const char *const *
                      const char *pointer, struct tlsph_errors *err);
 /* Index of the body named name, or -1. */
 int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name);
+/* A material block (thermal, damage) whose physics needs plastic flow: when
+ * m's strength model is not plastic, reports at pointer that `block` needs one
+ * because `why`, and returns 1; else 0. */
+int tlsph_require_plastic(const struct tlsph_material *m, const char *block, const char *why,
+                          const char *pointer, struct tlsph_errors *err);
 
 /* parse_geometry.c */
 int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *pointer,

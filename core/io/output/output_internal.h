@@ -1,0 +1,79 @@
+/* Internal interface between the files of the result-file writer: h5md.c
+ * (open, frames, series, close) and layout.c (every group, dataset and
+ * attribute, created before SWMR writing starts).  Not part of the engine's
+ * API: the engine sees only core/io/output/output.h. */
+#ifndef TLSPH_OUTPUT_INTERNAL_H
+#define TLSPH_OUTPUT_INTERNAL_H
+
+#include <hdf5.h>
+#include <stdint.h>
+
+#include "io/fields.h"
+#include "io/output/output.h"
+
+#define TLSPH_SERIES_CHUNK 1024   /* rows per series chunk and per memory buffer */
+#define TLSPH_OUTPUT_PATH_MAX 256 /* bytes of a frame field's or timeline's path */
+
+/* The step and time datasets of a family of elements (the frame fields, or
+ * the series columns): created in the family's first group, hard-linked into
+ * the others, as LAMMPS' dump h5md does. */
+struct output_timeline {
+    char step_path[TLSPH_OUTPUT_PATH_MAX], time_path[TLSPH_OUTPUT_PATH_MAX]; /* "" until created */
+    hid_t step, time; /* open once SWMR writing has started */
+};
+
+struct output_frame_value {
+    const struct tlsph_field *f;
+    hid_t value;
+};
+
+struct output_series_value {
+    char *path;       /* of the value dataset, for reopening after SWMR starts */
+    int ncomp;
+    size_t offset;    /* first column of this series in a buffered row */
+    hid_t value;
+};
+
+struct tlsph_output {
+    hid_t file;
+    size_t n;
+    char *h5_path, *xmf_path;
+
+    /* every present field, for the XDMF sidecar */
+    const struct tlsph_field **present;
+    size_t npresent;
+
+    struct output_frame_value *frames;
+    size_t nframe_fields;
+    struct output_timeline frame_timeline;
+    size_t nframes;
+    double *frame_times;
+    size_t frame_times_cap;
+    void *scratch; /* n * max ncomp * 8 bytes */
+
+    struct output_series_value *series;
+    size_t nseries;
+    struct output_timeline series_timeline;
+    size_t width;        /* doubles per buffered row */
+    double *rows;        /* [TLSPH_SERIES_CHUNK][width] */
+    int64_t *row_step;
+    double *row_time;
+    size_t nrows;
+    size_t nsamples;     /* rows written to the file */
+    int64_t last_step_written;
+    double last_series_write;
+    double last_xmf_write;    /* wall clock of the last sidecar rewrite, s */
+};
+
+/* layout.c: creates everything in o->file (open, nothing created yet): /h5md,
+ * /parameters, /particles (writing the reference fields, filling o->frames),
+ * /observables (filling o->series), /cost and /diagnostics.  The frame and
+ * series value datasets and the timelines stay closed.  Returns 0 or -1. */
+int tlsph_output_layout(struct tlsph_output *o, const struct tlsph_model *m);
+
+/* h5md.c: the values of field f into o->scratch, in the memory layout of its
+ * file type. */
+void tlsph_output_extract(struct tlsph_output *o, const struct tlsph_field *f,
+                          const struct tlsph_model *m);
+
+#endif
