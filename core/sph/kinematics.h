@@ -19,7 +19,9 @@ void tlsph_kinematics(struct tlsph_model *m, double dt);
 
 /* The start of particle i's gather, shared by every treatment: what each of
  * its pairs is measured against, i's reference position X_i (m), displacement
- * u_i = x_i - X_i (m) and velocity v_i (m/s). */
+ * u_i = x_i - X_i (m) and velocity v_i (m/s).  This and tlsph_pair_delta are
+ * always inlined, so the pair loops stay plain, and each difference is taken in
+ * one place, so every treatment rounds it alike. */
 struct tlsph_gather_origin {
     double X[3], u[3], v[3];
 };
