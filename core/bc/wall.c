@@ -98,7 +98,7 @@ const struct tlsph_bc_kind tlsph_bc_wall = {
     .carries_load = 0,
     .keys = keys,
     .parse = parse,
-    .select = NULL,
+    /* no select: a wall has no particle group; it stops whichever particle reaches it */
     .constrain = hold_on_wall,
     .before_drift = stop_at_wall,
 };

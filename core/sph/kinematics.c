@@ -12,7 +12,6 @@ static inline __attribute__((always_inline)) void
 gather_particle(struct tlsph_model *m, size_t i, double dt, const enum tlsph_approximation variant)
 {
     const int damage_aware = variant == TLSPH_APPROX_DAMAGE_AWARE;
-    const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict D = m->p.damage;
     const int64_t *restrict start = m->pairs.start;
     const int32_t *restrict nbr = m->pairs.j;
@@ -24,26 +23,23 @@ gather_particle(struct tlsph_model *m, size_t i, double dt, const enum tlsph_app
             m->p.Fdot[9 * i + a] = 0.0;
         return;
     }
-    const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
-    const double ui0 = x[3 * i] - Xi0, ui1 = x[3 * i + 1] - Xi1, ui2 = x[3 * i + 2] - Xi2;
-    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+    const struct tlsph_gather_origin o = tlsph_gather_origin(&m->p, i);
     double G[9] = {0}, Gd[9] = {0}, Gc[9] = {0};
     for (int64_t k = start[i]; k < start[i + 1]; k++) {
         const size_t j = (size_t)nbr[k];
-        const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
+        struct tlsph_pair_delta q = tlsph_pair_delta(&m->p, &o, j);
         const double s = vol0[j] * dw[k];
-        const double g[3] = {s * d0, s * d1, s * d2};
-        const double du0 = x[3 * j] - X[3 * j] - ui0, du1 = x[3 * j + 1] - X[3 * j + 1] - ui1,
-                     du2 = x[3 * j + 2] - X[3 * j + 2] - ui2;
-        double dv[3] = {v[3 * j] - vi0, v[3 * j + 1] - vi1, v[3 * j + 2] - vi2};
-        G[0] += du0 * g[0]; G[1] += du0 * g[1]; G[2] += du0 * g[2];
-        G[3] += du1 * g[0]; G[4] += du1 * g[1]; G[5] += du1 * g[2];
-        G[6] += du2 * g[0]; G[7] += du2 * g[1]; G[8] += du2 * g[2];
+        const double g[3] = {s * q.d[0], s * q.d[1], s * q.d[2]};
+        /* clang-format off */
+        G[0] += q.du[0] * g[0]; G[1] += q.du[0] * g[1]; G[2] += q.du[0] * g[2];
+        G[3] += q.du[1] * g[0]; G[4] += q.du[1] * g[1]; G[5] += q.du[1] * g[2];
+        G[6] += q.du[2] * g[0]; G[7] += q.du[2] * g[1]; G[8] += q.du[2] * g[2];
         if (damage_aware)
-            tlsph_damage_aware_transmit(dt, D[j], g, dv, Gc);
-        Gd[0] += dv[0] * g[0]; Gd[1] += dv[0] * g[1]; Gd[2] += dv[0] * g[2];
-        Gd[3] += dv[1] * g[0]; Gd[4] += dv[1] * g[1]; Gd[5] += dv[1] * g[2];
-        Gd[6] += dv[2] * g[0]; Gd[7] += dv[2] * g[1]; Gd[8] += dv[2] * g[2];
+            tlsph_damage_aware_transmit(dt, D[j], g, q.dv, Gc);
+        Gd[0] += q.dv[0] * g[0]; Gd[1] += q.dv[0] * g[1]; Gd[2] += q.dv[0] * g[2];
+        Gd[3] += q.dv[1] * g[0]; Gd[4] += q.dv[1] * g[1]; Gd[5] += q.dv[1] * g[2];
+        Gd[6] += q.dv[2] * g[0]; Gd[7] += q.dv[2] * g[1]; Gd[8] += q.dv[2] * g[2];
+        /* clang-format on */
     }
     if (damage_aware)
         tlsph_damage_aware_close(m->p.crack_gradient + 9 * i, Gc, G);

@@ -17,6 +17,48 @@
  * Fdot = 0 and no update. */
 void tlsph_kinematics(struct tlsph_model *m, double dt);
 
+/* The start of particle i's gather, shared by every treatment: what each of
+ * its pairs is measured against, i's reference position X_i (m), displacement
+ * u_i = x_i - X_i (m) and velocity v_i (m/s).  This and tlsph_pair_delta are
+ * always inlined, so the pair loops stay plain, and each difference is taken in
+ * one place, so every treatment rounds it alike. */
+struct tlsph_gather_origin {
+    double X[3], u[3], v[3];
+};
+
+static inline __attribute__((always_inline)) struct tlsph_gather_origin
+tlsph_gather_origin(const struct tlsph_particles *p, size_t i)
+{
+    const double *Xi = p->X + 3 * i, *xi = p->x + 3 * i, *vi = p->v + 3 * i;
+    struct tlsph_gather_origin o;
+    for (int a = 0; a < 3; a++) {
+        o.X[a] = Xi[a];
+        o.u[a] = xi[a] - Xi[a];
+        o.v[a] = vi[a];
+    }
+    return o;
+}
+
+/* Pair (i, j) of i's gather: the differences j - i of reference position
+ * d = X_j - X_i (m), displacement du = u_j - u_i (m) and velocity
+ * dv = v_j - v_i (m/s). */
+struct tlsph_pair_delta {
+    double d[3], du[3], dv[3];
+};
+
+static inline __attribute__((always_inline)) struct tlsph_pair_delta
+tlsph_pair_delta(const struct tlsph_particles *p, const struct tlsph_gather_origin *o, size_t j)
+{
+    const double *Xj = p->X + 3 * j, *xj = p->x + 3 * j, *vj = p->v + 3 * j;
+    struct tlsph_pair_delta q;
+    for (int a = 0; a < 3; a++) {
+        q.d[a] = Xj[a] - o->X[a];
+        q.du[a] = xj[a] - Xj[a] - o->u[a];
+        q.dv[a] = vj[a] - o->v[a];
+    }
+    return q;
+}
+
 /* The end of particle i's gather, shared by every treatment: G and Gd are the
  * uncorrected sums of V_j (u_j - u_i) (x) grad W and V_j (v_j - v_i) (x) grad W.
  * Books the first half of the trapezoidal energy update with the old P_tilde,

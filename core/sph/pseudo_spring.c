@@ -18,7 +18,6 @@
 void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
 {
     const size_t n = m->p.n;
-    const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict vol0 = m->p.vol0;
     const double *restrict D = m->p.damage;
     const int64_t *restrict start = m->pairs.start;
@@ -35,25 +34,20 @@ void tlsph_pseudo_spring_kinematics(struct tlsph_model *m, double dt)
                 Fdot[9 * i + a] = 0.0;
             continue;
         }
-        const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
-        const double ui0 = x[3 * i] - Xi0, ui1 = x[3 * i + 1] - Xi1, ui2 = x[3 * i + 2] - Xi2;
-        const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+        const struct tlsph_gather_origin o = tlsph_gather_origin(&m->p, i);
         double G[9] = {0}, Gd[9] = {0}, L[9] = {0};
         for (int64_t k = start[i]; k < start[i + 1]; k++) {
             const size_t j = (size_t)nbr[k];
             const double sij = tlsph_pseudo_spring_scale(D[i], D[j]);
             if (sij <= 0.0)
                 continue;
-            const double d[3] = {X[3 * j] - Xi0, X[3 * j + 1] - Xi1, X[3 * j + 2] - Xi2};
             const double s = sij * vol0[j] * dw[k];
-            const double du[3] = {x[3 * j] - X[3 * j] - ui0, x[3 * j + 1] - X[3 * j + 1] - ui1,
-                                  x[3 * j + 2] - X[3 * j + 2] - ui2};
-            const double dv[3] = {v[3 * j] - vi0, v[3 * j + 1] - vi1, v[3 * j + 2] - vi2};
+            const struct tlsph_pair_delta q = tlsph_pair_delta(&m->p, &o, j);
             for (int a = 0; a < 3; a++)
                 for (int b = 0; b < 3; b++) {
-                    G[3 * a + b] += du[a] * s * d[b];
-                    Gd[3 * a + b] += dv[a] * s * d[b];
-                    L[3 * a + b] += s * d[a] * d[b];
+                    G[3 * a + b] += q.du[a] * s * q.d[b];
+                    Gd[3 * a + b] += q.dv[a] * s * q.d[b];
+                    L[3 * a + b] += s * q.d[a] * q.d[b];
                 }
         }
         /* the new L^-1 is for F and Fdot; the energy half-step still uses the old

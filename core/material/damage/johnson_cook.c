@@ -114,7 +114,6 @@ const struct tlsph_damage_model tlsph_damage_johnson_cook = {
     .name = "johnson_cook",
     .module = "damage:johnson_cook",
     .keys = &table,
-    .needs_sigma1 = 0,
     .parse = parse,
     .initiation = initiation,
 };

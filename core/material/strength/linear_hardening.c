@@ -17,28 +17,20 @@ static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "linear_hardening", keys);
 /* clang-format on */
 
-static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
-                 struct tlsph_errors *err)
-{
-    const struct tlsph_key_target to = strength_target(m);
-    return tlsph_keys_read(obj, &table, pointer, &to, err);
-}
-
 static void flow(const struct tlsph_material *m, double eps_p, double rate, double T,
                  struct tlsph_flow *out)
 {
     (void)rate;
     (void)T;
-    out->stress = m->strength_params[SIGMA0] + m->strength_params[H] * eps_p;
-    out->d_strain = m->strength_params[H];
-    out->d_rate = 0.0;
-    out->d_temperature = 0.0;
+    const double s0 = m->strength_params[SIGMA0], h = m->strength_params[H];
+    /* no rate and no temperature term: d_rate = d_temperature = 0 */
+    *out = (struct tlsph_flow){.stress = s0 + h * eps_p, .d_strain = h};
 }
 
 const struct tlsph_strength_model tlsph_strength_linear_hardening = {
     .name = "linear_hardening",
     .module = "strength:linear_hardening",
     .keys = &table,
-    .parse = parse,
+    .parse = tlsph_strength_parse,
     .flow = flow,
 };

@@ -1,5 +1,6 @@
 /* What the flow-law parsers in core/material/strength/ share: where their
- * parameters go, and the row of a flow-stress parameter. */
+ * parameters go, the parse of a law that is its key table, and the rows of
+ * flow-stress parameters. */
 #ifndef TLSPH_STRENGTH_PARSE_UTIL_H
 #define TLSPH_STRENGTH_PARSE_UTIL_H
 
@@ -15,6 +16,12 @@ static inline struct tlsph_key_target strength_target(struct tlsph_material *m)
     return (struct tlsph_key_target){.base = m->strength_params, .terms = &m->strength_terms,
                                      .youngs_modulus = m->youngs_modulus};
 }
+
+/* The parse of a law whose parameters are its key table (strength.h):
+ * reads m->strength's keys into m (strength_target), then, when they read
+ * cleanly, runs its check.  Returns 0 or -1. */
+int tlsph_strength_parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
+                         struct tlsph_errors *err);
 
 /* A required stress (Pa) at parameter index i: > 0, or >= 0 with lo = JC_CLOSED,
  * and below the Young's modulus. */

@@ -1,8 +1,7 @@
 /* The table of strength models (strength.h): the elastic model, then the
  * flow laws. */
-#include <string.h>
-
 #include "material/strength/strength.h"
+#include "util/name_list.h"
 
 /* One row per flow law, in the order of the scene's lists of accepted names:
  * ROW(name) stands for the descriptor tlsph_strength_<name>, whose .name is
@@ -16,15 +15,12 @@ FLOW_LAWS(DECLARE)
 static const struct tlsph_strength_model *const models[] = {&tlsph_strength_elastic,
                                                             FLOW_LAWS(ENTRY)};
 
+/* "elastic, linear_hardening, johnson_cook, ...": the rows of models[] */
+const char *tlsph_strength_names(void) { return "elastic" FLOW_LAWS(TLSPH_LISTED); }
+const char *tlsph_strength_plastic_names(void) { return FLOW_LAWS(TLSPH_LISTED) + 2; }
+
 const struct tlsph_strength_model *tlsph_strength_find(const char *name)
 {
-    for (size_t i = 0; i < sizeof models / sizeof *models; i++)
-        if (strcmp(models[i]->name, name) == 0)
-            return models[i];
-    return NULL;
+    const int k = tlsph_name_list_index(tlsph_strength_names(), name);
+    return k < 0 ? NULL : models[k];
 }
-
-/* ", linear_hardening, johnson_cook, ..." */
-#define LISTED(id) ", " #id
-const char *tlsph_strength_names(void) { return "elastic" FLOW_LAWS(LISTED); }
-const char *tlsph_strength_plastic_names(void) { return FLOW_LAWS(LISTED) + 2; }

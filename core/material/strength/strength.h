@@ -8,8 +8,10 @@
  * allocated and no return mapping runs for its particles.
  *
  * A new flow law provides, in its own file, a descriptor tlsph_strength_<name>
- * with every member below (flow non-NULL), and one row ROW(<name>) in
- * registry.c's FLOW_LAWS (which also makes the lists of accepted names).
+ * with every member below (flow non-NULL; check only where its parse is
+ * tlsph_strength_parse and its parameters have relations to check), and one
+ * row ROW(<name>) in registry.c's FLOW_LAWS (which also makes the lists of
+ * accepted names).
  * Nothing outside this folder names a model, except the scene parser's
  * default (tlsph_strength_elastic).
  *
@@ -40,10 +42,17 @@ struct tlsph_strength_model {
     const char *module; /* "strength:<name>", for the run's list of active modules */
     /* Reads the model's parameters from obj (its "type" key is already checked)
      * into m->strength_params / m->strength_terms, reporting unknown keys and bad
-     * values.  m's elastic constants and its thermal block are already parsed.
-     * Returns 0 or -1. */
+     * values.  m's elastic constants and its thermal block are already parsed,
+     * and m->strength is this model.  Returns 0 or -1.  A law whose parameters
+     * are its key table, plus the relations of check, uses
+     * tlsph_strength_parse (parse_util.h). */
     int (*parse)(const json_t *obj, struct tlsph_material *m, const char *pointer,
                  struct tlsph_errors *err);
+    /* For tlsph_strength_parse: the relations between the law's parameters
+     * that its key table cannot state (K eps_0^n below E, sigma_s not below
+     * sigma_0), checked once every key has read cleanly; reports each one that
+     * fails under pointer.  Returns 0 or -1.  NULL: none. */
+    int (*check)(const struct tlsph_material *m, const char *pointer, struct tlsph_errors *err);
     /* Flow stress at equivalent plastic strain eps_p >= 0 (1), plastic strain
      * rate >= 0 (1/s) and temperature T (K; only read when the material's
      * TLSPH_FLOW_THERMAL term is on).  NULL for the elastic model. */

@@ -22,20 +22,16 @@ static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "swift", keys);
 /* clang-format on */
 
-static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
-                 struct tlsph_errors *err)
+static int check(const struct tlsph_material *m, const char *pointer, struct tlsph_errors *err)
 {
-    const struct tlsph_key_target to = strength_target(m);
-    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
     const double *q = m->strength_params, yield = q[K] * pow(q[EPS0], q[N]);
-    if (!bad && m->youngs_modulus > 0.0 && yield >= m->youngs_modulus) {
-        tlsph_key_error(err, pointer, "strength_coefficient",
-                        "initial yield stress K eps_0^n = %g Pa must be below the Young's "
-                        "modulus %g Pa",
-                        yield, m->youngs_modulus);
-        bad = 1;
-    }
-    return bad ? -1 : 0;
+    if (m->youngs_modulus <= 0.0 || yield < m->youngs_modulus) /* E = 0: invalid, reported */
+        return 0;
+    tlsph_key_error(err, pointer, "strength_coefficient",
+                    "initial yield stress K eps_0^n = %g Pa must be below the Young's modulus "
+                    "%g Pa",
+                    yield, m->youngs_modulus);
+    return -1;
 }
 
 static void flow(const struct tlsph_material *m, double eps_p, double rate, double T,
@@ -46,16 +42,15 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
     const double k = m->strength_params[K], n = m->strength_params[N];
     const double base = m->strength_params[EPS0] + eps_p;
     const double s = k * pow(base, n);
-    out->stress = s;
-    out->d_strain = n * s / base;
-    out->d_rate = 0.0;
-    out->d_temperature = 0.0;
+    /* no rate and no temperature term: d_rate = d_temperature = 0 */
+    *out = (struct tlsph_flow){.stress = s, .d_strain = n * s / base};
 }
 
 const struct tlsph_strength_model tlsph_strength_swift = {
     .name = "swift",
     .module = "strength:swift",
     .keys = &table,
-    .parse = parse,
+    .parse = tlsph_strength_parse,
+    .check = check,
     .flow = flow,
 };

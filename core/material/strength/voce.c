@@ -20,20 +20,16 @@ static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/materials/*/strength", "voce", keys);
 /* clang-format on */
 
-static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,
-                 struct tlsph_errors *err)
+static int check(const struct tlsph_material *m, const char *pointer, struct tlsph_errors *err)
 {
-    const struct tlsph_key_target to = strength_target(m);
-    int bad = tlsph_keys_read(obj, &table, pointer, &to, err) != 0;
     const double *q = m->strength_params;
-    if (!bad && q[SIGMAS] < q[SIGMA0]) {
-        tlsph_key_error(err, pointer, "saturation_stress",
-                        "'saturation_stress' = %g Pa must not be below 'yield_stress' = %g Pa "
-                        "(softening laws are not supported)",
-                        q[SIGMAS], q[SIGMA0]);
-        bad = 1;
-    }
-    return bad ? -1 : 0;
+    if (q[SIGMAS] >= q[SIGMA0])
+        return 0;
+    tlsph_key_error(err, pointer, "saturation_stress",
+                    "'saturation_stress' = %g Pa must not be below 'yield_stress' = %g Pa "
+                    "(softening laws are not supported)",
+                    q[SIGMAS], q[SIGMA0]);
+    return -1;
 }
 
 static void flow(const struct tlsph_material *m, double eps_p, double rate, double T,
@@ -44,16 +40,15 @@ static void flow(const struct tlsph_material *m, double eps_p, double rate, doub
     const double s0 = m->strength_params[SIGMA0], ss = m->strength_params[SIGMAS];
     const double b = m->strength_params[B];
     const double decay = (ss - s0) * exp(-b * eps_p);
-    out->stress = ss - decay;
-    out->d_strain = b * decay;
-    out->d_rate = 0.0;
-    out->d_temperature = 0.0;
+    /* no rate and no temperature term: d_rate = d_temperature = 0 */
+    *out = (struct tlsph_flow){.stress = ss - decay, .d_strain = b * decay};
 }
 
 const struct tlsph_strength_model tlsph_strength_voce = {
     .name = "voce",
     .module = "strength:voce",
     .keys = &table,
-    .parse = parse,
+    .parse = tlsph_strength_parse,
+    .check = check,
     .flow = flow,
 };
