@@ -19,7 +19,9 @@
 #include <string.h>
 
 #include "bc/kind.h"
+#include "material/damage/damage.h"
 #include "material/eos/eos.h"
+#include "material/strength/strength.h"
 #include "scene/scene.h"
 #include "support/check_main.h"
 
@@ -574,6 +576,59 @@ START_TEST(test_files)
 }
 END_TEST
 
+/* Every model family lists its accepted names from its table (the text of
+ * "accepted: ..." errors), and finding a listed name returns the row whose
+ * scene name it is: the list, the lookup and the descriptors agree. */
+static int each_listed_name_finds_its_row(const char *list, const char *(*name_of)(const char *))
+{
+    char buf[512];
+    snprintf(buf, sizeof buf, "%s", list);
+    int n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, ", ", &save); tok;
+         tok = strtok_r(NULL, ", ", &save), n++) {
+        const char *found = name_of(tok);
+        ck_assert_msg(found && strcmp(found, tok) == 0, "'%s' finds %s", tok, found ? found : "nothing");
+    }
+    return n;
+}
+
+static const char *eos_name(const char *s)
+{
+    const struct tlsph_eos_model *m = tlsph_eos_find(s);
+    return m ? m->name : NULL;
+}
+static const char *strength_name(const char *s)
+{
+    const struct tlsph_strength_model *m = tlsph_strength_find(s);
+    return m ? m->name : NULL;
+}
+static const char *damage_name(const char *s)
+{
+    const struct tlsph_damage_model *m = tlsph_damage_find(s);
+    return m ? m->name : NULL;
+}
+static const char *bc_name(const char *s)
+{
+    const struct tlsph_bc_kind *k = tlsph_bc_find(s);
+    return k ? k->name : NULL;
+}
+
+START_TEST(test_registries_find_their_rows)
+{
+    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_eos_names(), eos_name), 2);
+    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_strength_names(), strength_name), 5);
+    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_strength_plastic_names(), strength_name), 4);
+    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_damage_names(), damage_name), 3);
+    char bcs[256];
+    tlsph_bc_names(bcs, sizeof bcs, 0, "", ", ");
+    ck_assert_int_eq(each_listed_name_finds_its_row(bcs, bc_name), 5);
+    ck_assert_ptr_null(tlsph_eos_find("linearx"));
+    ck_assert_ptr_null(tlsph_strength_find("johnson"));
+    ck_assert_ptr_null(tlsph_damage_find(""));
+    ck_assert_ptr_null(tlsph_bc_find("wal"));
+}
+END_TEST
+
 static Suite *scene_suite(void)
 {
     Suite *s = suite_create("scene");
@@ -591,6 +646,7 @@ static Suite *scene_suite(void)
     tcase_add_test(tc, test_error_pointers);
     tcase_add_test(tc, test_all_errors_collected);
     tcase_add_test(tc, test_files);
+    tcase_add_test(tc, test_registries_find_their_rows);
     suite_add_tcase(s, tc);
     return s;
 }
