@@ -31,6 +31,16 @@ const struct tlsph_key *tlsph_key_find(const struct tlsph_key_table *t, const ch
     return NULL;
 }
 
+void tlsph_keys_names(const struct tlsph_key_table *t, char *buf, size_t size)
+{
+    size_t len = 0;
+    buf[0] = '\0';
+    for (size_t i = 0; i < t->nkeys && len + 1 < size; i++) {
+        const int w = snprintf(buf + len, size - len, "%s%s", i ? ", " : "", t->keys[i].name);
+        len += w > 0 ? (size_t)w : 0;
+    }
+}
+
 int tlsph_keys_unknown(const json_t *obj, const struct tlsph_key_table *t, const char *pointer,
                        struct tlsph_errors *err)
 {

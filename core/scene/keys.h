@@ -16,8 +16,10 @@
  * tests/support/scene_keys_check.py compares both documents with them.
  *
  * Tables: the scene's own sections in core/scene/scene_keys.c (the root is
- * tlsph_scene_keys; the others hang from it through .table), each model's
- * parameters next to its law in core/material/{eos,strength,damage}/. */
+ * tlsph_scene_keys; the others hang from it through .table), the geometry
+ * primitives next to their parsers in core/scene/parse_geometry.c, each model's
+ * parameters next to its law in core/material/{eos,strength,damage}/, each
+ * boundary-condition kind's keys in its file in core/bc/. */
 #ifndef TLSPH_SCENE_KEYS_H
 #define TLSPH_SCENE_KEYS_H
 
@@ -108,16 +110,29 @@ struct tlsph_key_table {
     const char *model; /* a model's parameters: the "type" that selects this table */
     const struct tlsph_key *keys;
     size_t nkeys;
+    /* The object holds exactly one of the keys, and its name says what the object is
+     * (a geometry: {"box": {...}}). */
+    int one_of;
 };
 
 /* clang-format off */
-#define TLSPH_KEY_TABLE(path, model, keys) {(path), (model), (keys), sizeof(keys) / sizeof *(keys)}
+#define TLSPH_KEY_TABLE(path_, model_, keys_)                                                  \
+    {.path = (path_), .model = (model_), .keys = (keys_), .nkeys = sizeof(keys_) / sizeof *(keys_)}
 
 /* The "type" key of a model's table: read by the caller to choose the model. */
 #define TLSPH_KEY_MODEL_TYPE                                                                   \
     {.name = "type", .kind = TLSPH_KEY_STRING,                                                 \
      .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, .size = 64,                               \
      .description = "the model's name"}
+
+/* A point, and a direction of any non-zero length, both 3 numbers and read by the
+ * caller (jc_vector, tlsph_parse_direction). */
+#define TLSPH_KEY_POINT(key, what)                                                             \
+    {.name = (key), .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,  \
+     .unit = "m", .description = (what)}
+#define TLSPH_KEY_DIRECTION(key, what)                                                         \
+    {.name = (key), .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,  \
+     .unit = "1", .description = (what)}
 /* clang-format on */
 
 /* What the reader writes to. */
@@ -154,6 +169,9 @@ int tlsph_keys_member(const json_t *obj, const struct tlsph_key_table *parent, c
                       struct tlsph_errors *err);
 /* Writes the defaults of t, and of the objects tlsph_keys_values reads with it. */
 void tlsph_keys_defaults(const struct tlsph_key_table *t, void *base);
+/* The names of t's keys in order, separated by ", ", into buf (size bytes; cut
+ * short when it is too small).  For messages that list them. */
+void tlsph_keys_names(const struct tlsph_key_table *t, char *buf, size_t size);
 /* The row of t named name, or NULL. */
 const struct tlsph_key *tlsph_key_find(const struct tlsph_key_table *t, const char *name);
 /* printf-style error at pointer/key: for the checks that follow a table. */
