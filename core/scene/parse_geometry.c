@@ -1,6 +1,8 @@
 /* Scene geometry objects: {"box"|"cylinder"|"sphere"|"plate"|"notched_bar"|
  * "union"|"difference": ...} -> struct tlsph_geometry (see core/scene/scene.h for the
- * meaning of a[]).  Vectors always have 3 components; in 2-D the z components
+ * meaning of a[]).  Each primitive's keys are a table (core/scene/keys.h): its
+ * lengths are read by the generic reader into a[], its points and directions
+ * here.  Vectors always have 3 components; in 2-D the z components
  * of points and directions are ignored (set to 0), a box spans z in
  * [-0.5, 0.5] (the unit thickness), a sphere is a disk in the x-y plane and a
  * plate is a rectangle of thickness "thickness" along its in-plane normal and
@@ -11,8 +13,22 @@
 
 #include "scene/parse_internal.h"
 
-static const char *const kinds[] = {"box", "cylinder", "sphere", "plate", "notched_bar",
-                                    "union", "difference", NULL};
+/* clang-format off */
+/* A length > 0 stored in a[slot]. */
+#define LENGTH(key, slot, what)                                                                 \
+    {.name = (key), .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,                      \
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(slot),          \
+     .description = (what)}
+#define PRIMITIVE(name, keys) TLSPH_KEY_TABLE("/bodies/*/geometry/" name, NULL, keys)
+/* clang-format on */
+
+/* Reads the lengths of a primitive's table into a[]. */
+static int read_lengths(const json_t *o, const struct tlsph_key_table *t, const char *P,
+                        double *a, struct tlsph_errors *err)
+{
+    const struct tlsph_key_target to = {.base = a};
+    return tlsph_keys_values(o, t, P, &to, err);
+}
 
 void tlsph_geometry_free(struct tlsph_geometry *g)
 {
@@ -52,10 +68,17 @@ int tlsph_parse_direction(const json_t *obj, const char *key, int dimension, con
     return 0;
 }
 
+/* clang-format off */
+static const struct tlsph_key box_keys[] = {
+    TLSPH_KEY_POINT("min", "minimum corner"),
+    TLSPH_KEY_POINT("max", "maximum corner, greater than min in every used axis"),
+};
+static const struct tlsph_key_table box_table = PRIMITIVE("box", box_keys);
+/* clang-format on */
+
 static int parse_box(const json_t *o, int dim, const char *P, double *a, struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"min", "max", NULL};
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, &box_table, P, err) != 0;
     int r1 = jc_vector(o, "min", 1, 3, "m", P, a, err);
     int r2 = jc_vector(o, "max", 1, 3, "m", P, a + 3, err);
     if (r1 || r2)
@@ -76,30 +99,57 @@ static int parse_box(const json_t *o, int dim, const char *P, double *a, struct 
     return bad ? -1 : 0;
 }
 
+/* clang-format off */
+static const struct tlsph_key cylinder_keys[] = {
+    TLSPH_KEY_POINT("base", "centre of the base disc"),
+    TLSPH_KEY_DIRECTION("axis", "axis from the base, any non-zero length"),
+    LENGTH("radius", 6, "radius"),
+    LENGTH("length", 7, "length along the axis"),
+};
+static const struct tlsph_key_table cylinder_table = PRIMITIVE("cylinder", cylinder_keys);
+/* clang-format on */
+
 static int parse_cylinder(const json_t *o, int dim, const char *P, double *a,
                           struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"base", "axis", "radius", "length", NULL};
     (void)dim;
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, &cylinder_table, P, err) != 0;
     bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
     bad |= tlsph_parse_direction(o, "axis", 3, P, a + 3, err) != 0;
-    bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
-    bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
+    bad |= read_lengths(o, &cylinder_table, P, a, err) != 0;
     return bad ? -1 : 0;
 }
+
+/* clang-format off */
+static const struct tlsph_key sphere_keys[] = {
+    TLSPH_KEY_POINT("center", "centre"),
+    LENGTH("radius", 3, "radius"),
+};
+static const struct tlsph_key_table sphere_table = PRIMITIVE("sphere", sphere_keys);
+/* clang-format on */
 
 static int parse_sphere(const json_t *o, int dim, const char *P, double *a,
                         struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"center", "radius", NULL};
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, &sphere_table, P, err) != 0;
     bad |= jc_vector(o, "center", 1, 3, "m", P, a, err) != 0;
-    bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[3], err) != 0;
+    bad |= read_lengths(o, &sphere_table, P, a, err) != 0;
     if (dim == 2)
         a[2] = 0.0;
     return bad ? -1 : 0;
 }
+
+/* clang-format off */
+static const struct tlsph_key plate_keys[] = {
+    TLSPH_KEY_POINT("center", "centre"),
+    TLSPH_KEY_DIRECTION("normal", "normal, any non-zero length"),
+    {.name = "size", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
+     .unit = "m", .description = "in-plane side lengths [a, b] along the in-plane axes u and w, "
+                                 "both > 0; b ignored in 2-D"},
+    LENGTH("thickness", 6, "thickness along the normal"),
+};
+static const struct tlsph_key_table plate_table = PRIMITIVE("plate", plate_keys);
+/* clang-format on */
 
 /* In-plane axis u (stored in a[9..11]): 3-D: u = normalise(n x e_k), e_k the
  * coordinate axis least aligned with n (first on ties); 2-D: u = e_z x n. */
@@ -128,12 +178,11 @@ static void plate_axes(int dim, double *a)
 static int parse_plate(const json_t *o, int dim, const char *P, double *a,
                        struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"center", "normal", "size", "thickness", NULL};
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, &plate_table, P, err) != 0;
     bad |= jc_vector(o, "center", 1, 3, "m", P, a, err) != 0;
     const int normal_bad = tlsph_parse_direction(o, "normal", dim, P, a + 3, err) != 0;
     bad |= normal_bad;
-    bad |= jc_number(o, "thickness", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
+    bad |= read_lengths(o, &plate_table, P, a, err) != 0;
     double size[2];
     if (jc_vector(o, "size", 1, 2, "m", P, size, err) != 0) {
         bad = 1;
@@ -154,22 +203,28 @@ static int parse_plate(const json_t *o, int dim, const char *P, double *a,
     return bad ? -1 : 0;
 }
 
+/* clang-format off */
+static const struct tlsph_key notched_bar_keys[] = {
+    TLSPH_KEY_POINT("base", "centre of the base disc"),
+    TLSPH_KEY_DIRECTION("axis", "axis from the base, any non-zero length"),
+    LENGTH("radius", 6, "bar radius R0"),
+    LENGTH("length", 7, "bar length L"),
+    LENGTH("notch_root_radius", 8, "bar radius r at the notch root, r < R0"),
+    LENGTH("notch_radius", 9, "radius R of the notch profile"),
+    LENGTH("notch_position", 10, "axial position of the notch centre from the base; the notch "
+                                 "lies inside the bar"),
+};
+static const struct tlsph_key_table notched_bar_table = PRIMITIVE("notched_bar", notched_bar_keys);
+/* clang-format on */
+
 static int parse_notched_bar(const json_t *o, int dim, const char *P, double *a,
                              struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"base", "axis", "radius", "length", "notch_root_radius",
-                                       "notch_radius", "notch_position", NULL};
     (void)dim;
-    int bad = jc_unknown_keys(o, keys, P, err) != 0;
+    int bad = tlsph_keys_unknown(o, &notched_bar_table, P, err) != 0;
     bad |= jc_vector(o, "base", 1, 3, "m", P, a, err) != 0;
     bad |= tlsph_parse_direction(o, "axis", 3, P, a + 3, err) != 0;
-    int dims_bad = 0;
-    dims_bad |= jc_number(o, "radius", 1, JC_POSITIVE, "m", P, &a[6], err) != 0;
-    dims_bad |= jc_number(o, "length", 1, JC_POSITIVE, "m", P, &a[7], err) != 0;
-    dims_bad |= jc_number(o, "notch_root_radius", 1, JC_POSITIVE, "m", P, &a[8], err) != 0;
-    dims_bad |= jc_number(o, "notch_radius", 1, JC_POSITIVE, "m", P, &a[9], err) != 0;
-    dims_bad |= jc_number(o, "notch_position", 1, JC_POSITIVE, "m", P, &a[10], err) != 0;
-    if (dims_bad)
+    if (read_lengths(o, &notched_bar_table, P, a, err) != 0)
         return -1;
     const double R0 = a[6], L = a[7], r = a[8], R = a[9], zc = a[10];
     char p[TLSPH_POINTER_MAX];
@@ -193,6 +248,37 @@ static int parse_notched_bar(const json_t *o, int dim, const char *P, double *a,
     }
     return bad ? -1 : 0;
 }
+
+/* A geometry holds exactly one of these keys: its name says what the geometry is. */
+/* clang-format off */
+static const struct tlsph_key geometry_keys[] = {
+    {.name = "box", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &box_table,
+     .description = "axis-aligned box"},
+    {.name = "cylinder", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER,
+     .table = &cylinder_table, .description = "solid circular cylinder (3-D only)"},
+    {.name = "sphere", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &sphere_table,
+     .description = "solid sphere; a disk in the x-y plane in 2-D"},
+    {.name = "plate", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &plate_table,
+     .description = "thin rectangular plate"},
+    {.name = "notched_bar", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER,
+     .table = &notched_bar_table,
+     .description = "round bar with a circumferential notch (3-D only)"},
+    {.name = "union", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER,
+     .description = "at least 1 geometry: points inside any of them"},
+    {.name = "difference", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER,
+     .description = "at least 2 geometries: points inside the first and none of the others"},
+};
+const struct tlsph_key_table tlsph_geometry_keys = {
+    .path = "/bodies/*/geometry", .keys = geometry_keys,
+    .nkeys = sizeof geometry_keys / sizeof *geometry_keys, .one_of = 1};
+
+/* What each row of geometry_keys makes, in the same order. */
+static const enum tlsph_geometry_type types[] = {
+    TLSPH_GEOM_BOX,         TLSPH_GEOM_CYLINDER, TLSPH_GEOM_SPHERE,    TLSPH_GEOM_PLATE,
+    TLSPH_GEOM_NOTCHED_BAR, TLSPH_GEOM_UNION,    TLSPH_GEOM_DIFFERENCE};
+_Static_assert(sizeof types / sizeof *types == sizeof geometry_keys / sizeof *geometry_keys,
+               "one geometry type per row");
+/* clang-format on */
 
 static int parse_list(const json_t *v, int dim, int depth, int min_items, const char *kind,
                       const char *P, struct tlsph_geometry *g, struct tlsph_errors *err)
@@ -232,30 +318,24 @@ int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *
                          TLSPH_GEOMETRY_MAX_DEPTH);
         return -1;
     }
+    char names[128]; /* the accepted keys, for the messages */
     if (!json_is_object(v) || json_object_size(v) != 1) {
-        tlsph_errors_add(err, pointer,
-                         "a geometry must be an object with exactly one key (box, cylinder, "
-                         "sphere, plate, notched_bar, union, difference)");
+        tlsph_keys_names(&tlsph_geometry_keys, names, sizeof names);
+        tlsph_errors_add(err, pointer, "a geometry must be an object with exactly one key (%s)",
+                         names);
         return -1;
     }
     const char *kind = json_object_iter_key(json_object_iter((json_t *)v));
     const json_t *body = json_object_get(v, kind);
     char P[TLSPH_POINTER_MAX];
     tlsph_pointer_join(P, sizeof P, pointer, kind);
-    int k = 0;
-    while (kinds[k] && strcmp(kinds[k], kind) != 0)
-        k++;
-    if (!kinds[k]) {
-        tlsph_errors_add(err, P,
-                         "unknown geometry '%s' (accepted: box, cylinder, sphere, plate, "
-                         "notched_bar, union, difference)",
-                         kind);
+    const struct tlsph_key *row = tlsph_key_find(&tlsph_geometry_keys, kind);
+    if (!row) {
+        tlsph_keys_names(&tlsph_geometry_keys, names, sizeof names);
+        tlsph_errors_add(err, P, "unknown geometry '%s' (accepted: %s)", kind, names);
         return -1;
     }
-    static const enum tlsph_geometry_type types[] = {
-        TLSPH_GEOM_BOX, TLSPH_GEOM_CYLINDER, TLSPH_GEOM_SPHERE, TLSPH_GEOM_PLATE,
-        TLSPH_GEOM_NOTCHED_BAR, TLSPH_GEOM_UNION, TLSPH_GEOM_DIFFERENCE};
-    g->type = types[k];
+    g->type = types[row - geometry_keys];
     if (g->type == TLSPH_GEOM_UNION)
         return parse_list(body, dimension, depth, 1, kind, P, g, err);
     if (g->type == TLSPH_GEOM_DIFFERENCE)

@@ -32,6 +32,9 @@ int tlsph_require_plastic(const struct tlsph_material *m, const char *block, con
                           const char *pointer, struct tlsph_errors *err);
 
 /* parse_geometry.c */
+/* "/bodies/<i>/geometry": one row per primitive, each with its table, and the
+ * union and difference arrays. */
+extern const struct tlsph_key_table tlsph_geometry_keys;
 int tlsph_parse_geometry(const json_t *v, int dimension, int depth, const char *pointer,
                          struct tlsph_geometry *g, struct tlsph_errors *err);
 void tlsph_geometry_free(struct tlsph_geometry *g);

@@ -1,8 +1,9 @@
 /* The key tables of the scene's own objects (see keys.h): the root, its
  * sections, a material's scalars and thermal block, a body, a gauge and a
  * section.  The models' parameter tables live next to their laws in
- * core/material/; boundary conditions and geometry objects are read by their
- * own files (core/scene/parse_bcs.c, parse_geometry.c). */
+ * core/material/, the geometry primitives' next to their parsers
+ * (core/scene/parse_geometry.c), each boundary-condition kind's in its file in
+ * core/bc/. */
 #include <stddef.h>
 #include <string.h>
 
@@ -162,10 +163,8 @@ const struct tlsph_key_table tlsph_gauge_keys =
 static const struct tlsph_key section_keys[] = {
     {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER,
      .size = TLSPH_NAME_MAX, .description = "unique among the sections; names the output series"},
-    {.name = "point", .kind = TLSPH_KEY_ARRAY, .flags = REQUIRED | CALLER, .unit = "m",
-     .description = "a point of the plane"},
-    {.name = "normal", .kind = TLSPH_KEY_ARRAY, .flags = REQUIRED | CALLER, .unit = "1",
-     .description = "normal of the plane, any non-zero length"},
+    TLSPH_KEY_POINT("point", "a point of the plane"),
+    TLSPH_KEY_DIRECTION("normal", "normal of the plane, any non-zero length"),
     {.name = "thickness", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 0.0, JC_OPEN, JC_NONE},
      .unit = "m", .offset = offsetof(struct tlsph_section, thickness),
      .description = "slab thickness across the plane"},
@@ -253,7 +252,7 @@ static const struct tlsph_key body_keys[] = {
      .description = "lattice origin: points sit at origin + (i + 1/2) h; absent = the minimum "
                     "corner of the geometry's bounding box"},
     {.name = "geometry", .kind = TLSPH_KEY_OBJECT, .flags = REQUIRED | CALLER,
-     .description = "the region the particles fill"},
+     .table = &tlsph_geometry_keys, .description = "the region the particles fill"},
     {.name = "initial_velocity", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .unit = "m/s",
      .description = "3 items, each a number or an expression of x, y, z; absent = 0"},
 };

@@ -135,8 +135,8 @@ static int print_json(void)
         json_t *keys = json_array();
         for (size_t k = 0; k < t->nkeys; k++)
             json_array_append_new(keys, key_json(&t->keys[k]));
-        json_array_append_new(
-            arr, json_pack("{s:s, s:s?, s:o}", "path", t->path, "model", t->model, "keys", keys));
+        json_array_append_new(arr, json_pack("{s:s, s:s?, s:b, s:o}", "path", t->path, "model",
+                                             t->model, "one_of", t->one_of, "keys", keys));
     }
     json_t *doc = json_pack("{s:o}", "tables", arr);
     const int rc = doc ? json_dumpf(doc, stdout, JSON_INDENT(1)) : -1;
@@ -356,6 +356,7 @@ END_TEST
 static size_t target_size(const char *path)
 {
     static const struct tlsph_material m;
+    static const struct tlsph_geometry g;
     static const struct {
         const char *path;
         size_t size;
@@ -366,6 +367,7 @@ static size_t target_size(const char *path)
         {"/materials/*/damage/evolution", sizeof(struct tlsph_damage)},
         {"/materials/*/damage", sizeof m.damage.params}, /* and its nucleation */
         {"/materials/*", sizeof(struct tlsph_material)},
+        {"/bodies/*/geometry", sizeof g.a}, /* its primitives' lengths */
         {"/bodies/*", sizeof(struct tlsph_body)},
         {"/output/gauges/*", sizeof(struct tlsph_gauge)},
         {"/output/sections/*", sizeof(struct tlsph_section)},

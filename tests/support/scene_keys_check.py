@@ -12,7 +12,9 @@ schemas/scene.schema.json: each table's object (found by its path; a model's
   branch of a oneOf by its "type" const) has exactly the table's keys; per key
   the JSON type, minimum / maximum / exclusive bounds, enum values, "default"
   (and a "default X" in the description), required and dependentRequired, the
-  x-unit and the unit in the description's parentheses.
+  x-unit and the unit in the description's parentheses (vectors read by the
+  caller too).  A table whose object holds exactly one of its keys (a
+  geometry) is a oneOf of one-key branches.
 docs/scene.md: every table marked <!-- keys PATH [MODEL] --> documents only keys
   the engine accepts, with the same unit, default (or "**required**",
   "required with `X`") and range; every key of every table is documented.
@@ -167,6 +169,8 @@ def check_key_schema(schema, w, key, prop, required, dependent):
     if key.get("caller") and kind in ("object", "array", "string") and name != "type":
         if kind in SCHEMA_TYPES and prop.get("type", kind) != kind:
             problem("%s: schema type %s, the engine reads a %s" % (w, prop.get("type"), kind))
+        if kind == "array" and key["unit"]:  # a vector read by the caller
+            check_unit(w, key, prop)
         return
     if name == "type" and "const" in prop:
         return
@@ -191,11 +195,37 @@ def check_key_schema(schema, w, key, prop, required, dependent):
     check_default(w, key, prop)
 
 
+def check_one_of(schema, t, nodes):
+    """A table whose object holds exactly one of its keys (a geometry): one schema
+    branch per key, each with that key alone, required."""
+    props = {}
+    for node in nodes:
+        own = node.get("properties", {})
+        if len(own) != 1 or node.get("required") != list(own) or \
+                node.get("additionalProperties", True) is not False:
+            problem("%s: schema branch %s is not one required key and nothing else" %
+                    (where(t["path"], t["model"]), sorted(own)))
+        props.update(own)
+    names = [k["name"] for k in t["keys"]]
+    for extra in sorted(set(props) - set(names)):
+        problem("%s: in the schema, not accepted by the engine" %
+                where(t["path"], t["model"], extra))
+    for k in t["keys"]:
+        w = where(t["path"], t["model"], k["name"])
+        if k["name"] not in props:
+            problem("%s: accepted by the engine, not in the schema" % w)
+        else:
+            check_key_schema(schema, w, k, props[k["name"]], [], {})
+
+
 def check_schema(schema, tables):
     for t in tables:
         nodes = resolve(schema, t["path"], t["model"])
         if not nodes:
             problem("%s: no object in the schema" % where(t["path"], t["model"]))
+            continue
+        if t.get("one_of"):
+            check_one_of(schema, t, nodes)
             continue
         names = [k["name"] for k in t["keys"] if not k["refused"]]
         for node in nodes:
