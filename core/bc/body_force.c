@@ -19,7 +19,7 @@ static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
         tlsph_errors_add(err, q, "in a 2-D scene the z acceleration must be 0 m/s^2");
         bad = 1;
     }
-    bad |= tlsph_selector_parse(obj, 0, s, &bc->select, P, err) != 0;
+    bad |= tlsph_selector_parse(obj, s, bc, P, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -39,13 +39,23 @@ static void force(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group
     *power = sum;
 }
 
-static const char *const keys[] = {"type", "name", "acceleration", "select", NULL};
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_BC_KEYS,
+    {.name = "acceleration", .kind = TLSPH_KEY_ARRAY,
+     .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, .unit = "m/s^2",
+     .description = "uniform acceleration, 3 numbers; in 2-D the z one must be 0"},
+    TLSPH_BC_SELECT(0, "the particles accelerated; absent = every particle"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", "body_force", keys);
+/* clang-format on */
 
 const struct tlsph_bc_kind tlsph_bc_body_force = {
     .name = "body_force",
     .module = "bc:body_force",
     .carries_load = 0,
-    .keys = keys,
+    .keys = &table,
     .parse = parse,
     .select = tlsph_selector_select,
     .force = force,

@@ -5,12 +5,6 @@
 #include "bc/kind.h"
 #include "bc/selector.h"
 
-static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
-                 const char *pointer, struct tlsph_errors *err)
-{
-    return tlsph_selector_parse(obj, 1, s, &bc->select, pointer, err);
-}
-
 static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
                       double t, double t_mid, double *work)
 {
@@ -22,14 +16,21 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     *work = w;
 }
 
-static const char *const keys[] = {"type", "name", "select", NULL};
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_BC_KEYS,
+    TLSPH_BC_SELECT(TLSPH_KEY_REQUIRED, "the particles held at rest"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", "fixed", keys);
+/* clang-format on */
 
 const struct tlsph_bc_kind tlsph_bc_fixed = {
     .name = "fixed",
     .module = "bc:fixed",
     .carries_load = 1,
-    .keys = keys,
-    .parse = parse,
+    .keys = &table,
+    .parse = tlsph_selector_parse,
     .select = tlsph_selector_select,
     .constrain = constrain,
 };

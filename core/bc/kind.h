@@ -5,7 +5,9 @@
  * descriptors, one row each.  The scene names a row by its "type"; the scene
  * parser (core/scene/parse_bcs.c), the step (core/bc/boundary.c), the module
  * list, the output and the gauges read only the descriptor, so adding a kind is
- * its file, its row, its schema entry (schemas/scene.schema.json) and its docs.
+ * its file, its row, its schema entry (schemas/scene.schema.json) and its docs
+ * (docs/scene.md); its key table is what tests/engine/scene_keys.sh compares
+ * them with.
  *
  * Machinery shared by the kinds: selectors (core/bc/selector.h), planes
  * (core/bc/plane.h), velocity constraints and their impulses
@@ -24,24 +26,44 @@
 #include <stdint.h>
 #include <jansson.h>
 
+#include "scene/keys.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
 struct tlsph_model; /* core/run/model.h */
 struct tlsph_group;
 
+/* Longest "type" (a kind's name), with its NUL. */
+#define TLSPH_BC_TYPE_SIZE 32
+
+/* The first two rows of every kind's key table.  core/scene/parse_bcs.c reads
+ * both before it knows the kind: "type" to find it, "name" (with the reader,
+ * into bc->name; absent: bc<index>) so that a name is checked even when the type
+ * is not valid. */
+/* clang-format off */
+#define TLSPH_BC_KEYS                                                                          \
+    {.name = "type", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, \
+     .size = TLSPH_BC_TYPE_SIZE, .description = "the kind of condition"},                      \
+    {.name = "name", .kind = TLSPH_KEY_STRING, .size = TLSPH_NAME_MAX,                         \
+     .offset = offsetof(struct tlsph_bc, name),                                                \
+     .description = "unique among the boundary conditions; names its output series; "          \
+                    "absent = bc<index>"}
+/* clang-format on */
+
 struct tlsph_bc_kind {
     const char *name;        /* as written in the scene: {"type": name, ...} */
     const char *module;      /* its entry in the result's module list, "bc:<name>" */
     int carries_load;        /* its group's reaction is a support load: written as a time
                                 series (core/io/fields.c) and usable by gauges */
-    const char *const *keys; /* every key its scene object accepts, "type" and "name"
-                                included, NULL-terminated (listed in "unknown field" errors) */
+    /* Every key its scene object accepts, at "/boundary_conditions/<i>" with the
+     * kind's name as model: TLSPH_BC_KEYS, then the kind's own keys, which its
+     * parse reads.  "Unknown field" messages list the rows in this order. */
+    const struct tlsph_key_table *keys;
 
-    /* Reads the kind's fields from obj ("type" and "name" are done, unknown keys
-     * reported) into bc, reporting every problem under pointer.  In 2-D the z
-     * components of points and normals are ignored (zeroed), and a z velocity or
-     * acceleration must be 0.  Returns 0 or -1. */
+    /* Reads the kind's own keys from obj ("type" and "name" are done, bc->kind
+     * set, unknown keys reported) into bc, reporting every problem under pointer.
+     * In 2-D the z components of points and normals are ignored (zeroed), and a
+     * z velocity or acceleration must be 0.  Returns 0 or -1. */
     int (*parse)(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                  const char *pointer, struct tlsph_errors *err);
 

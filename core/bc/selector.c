@@ -1,14 +1,37 @@
 #include "bc/selector.h"
 
+#include "bc/kind.h"
 #include "run/model.h"
 #include "scene/parse_internal.h"
 
+/* clang-format off */
+static const struct tlsph_key box_keys[] = {
+    TLSPH_KEY_POINT("min", "minimum corner"),
+    TLSPH_KEY_POINT("max", "maximum corner, greater than min in every used axis"),
+};
+static const struct tlsph_key_table box_table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*/select/box", NULL, box_keys);
+
+static const struct tlsph_key selector_keys[] = {
+    {.name = "body", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_CALLER, .size = TLSPH_NAME_MAX,
+     .description = "name of a body; absent = every body"},
+    {.name = "box", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &box_table,
+     .description = "axis-aligned box, closed, around the reference positions; z ignored in 2-D"},
+    {.name = "expression", .kind = TLSPH_KEY_EXPRESSION, .flags = TLSPH_KEY_CALLER,
+     .description = "condition of the reference position x, y, z: non-zero selects"},
+};
+const struct tlsph_key_table tlsph_selector_keys =
+    TLSPH_KEY_TABLE("/boundary_conditions/*/select", NULL, selector_keys);
+/* clang-format on */
+
 static const char *const xyz[] = {"x", "y", "z"};
 
-int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
-                         struct tlsph_selector *sel, const char *P, struct tlsph_errors *err)
+int tlsph_selector_parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                         const char *P, struct tlsph_errors *err)
 {
-    static const char *const keys[] = {"body", "box", "expression", NULL};
+    const struct tlsph_key *row = tlsph_key_find(bc->kind->keys, "select");
+    const int required = row && (row->flags & TLSPH_KEY_REQUIRED);
+    struct tlsph_selector *sel = &bc->select;
     sel->body = -1;
     sel->has_box = 0;
     const json_t *v = json_object_get(obj, "select");
@@ -27,7 +50,7 @@ int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
         tlsph_errors_add(err, p, "'select' must be an object, got %s", jc_type_name(v));
         return -1;
     }
-    int bad = jc_unknown_keys(v, keys, p, err) != 0;
+    int bad = tlsph_keys_unknown(v, &tlsph_selector_keys, p, err) != 0;
     if (!json_object_get(v, "body") && !json_object_get(v, "box") &&
         !json_object_get(v, "expression")) {
         tlsph_errors_add(err, p, "'select' needs at least one of body, box, expression");
@@ -44,9 +67,8 @@ int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
     }
     const json_t *box = jc_object(v, "box", 0, p, err);
     if (box) {
-        static const char *const box_keys[] = {"min", "max", NULL};
         tlsph_pointer_join(q, sizeof q, p, "box");
-        bad |= jc_unknown_keys(box, box_keys, q, err) != 0;
+        bad |= tlsph_keys_unknown(box, &box_table, q, err) != 0;
         int r1 = jc_vector(box, "min", 1, 3, "m", q, sel->box_min, err);
         int r2 = jc_vector(box, "max", 1, 3, "m", q, sel->box_max, err);
         if (r1 || r2) {

@@ -8,18 +8,28 @@
 #include <stdint.h>
 #include <jansson.h>
 
+#include "scene/keys.h"
 #include "scene/scene.h"
 #include "util/errors.h"
 
 struct tlsph_model;
 
-/* Reads obj's "select" into sel (body index, box in m, expression of x, y, z
- * with comparisons); pointer is the condition's.  required = 0: an absent
- * selector selects every particle.  In 2-D the box spans all z.  Returns 0 or
- * -1 with every problem in err. */
-int tlsph_selector_parse(const json_t *obj, int required, struct tlsph_scene *s,
-                         struct tlsph_selector *sel, const char *pointer,
-                         struct tlsph_errors *err);
+/* The keys of "select" ("/boundary_conditions/<i>/select"), and of its box. */
+extern const struct tlsph_key_table tlsph_selector_keys;
+
+/* A kind's "select" row: flags TLSPH_KEY_REQUIRED, or 0 when an absent selector
+ * has a meaning the description gives. */
+#define TLSPH_BC_SELECT(flags_, what)                                                          \
+    {.name = "select", .kind = TLSPH_KEY_OBJECT, .flags = (flags_) | TLSPH_KEY_CALLER,       \
+     .table = &tlsph_selector_keys, .description = (what)}
+
+/* Reads obj's "select" into bc->select (body index, box in m, expression of x,
+ * y, z with comparisons); pointer is the condition's.  Required when the
+ * "select" row of bc->kind's table says so; otherwise an absent selector
+ * selects every particle.  In 2-D the box spans all z.  Returns 0 or -1 with
+ * every problem in err.  A kind's parse hook when "select" is its only key. */
+int tlsph_selector_parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
+                         const char *pointer, struct tlsph_errors *err);
 
 /* Whether the scene gave any test (an absent selector selects everything). */
 int tlsph_selector_given(const struct tlsph_selector *sel);

@@ -13,7 +13,7 @@ static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                  const char *pointer, struct tlsph_errors *err)
 {
     int bad = tlsph_plane_parse(obj, s, bc, pointer, err) != 0;
-    bad |= tlsph_selector_parse(obj, 0, s, &bc->select, pointer, err) != 0;
+    bad |= tlsph_selector_parse(obj, s, bc, pointer, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -50,13 +50,23 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     }
 }
 
-static const char *const keys[] = {"type", "name", "point", "normal", "select", NULL};
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_BC_KEYS,
+    TLSPH_KEY_POINT("point", "a point of the symmetry plane"),
+    TLSPH_KEY_DIRECTION("normal", "normal of the plane, any non-zero length"),
+    TLSPH_BC_SELECT(0, "the particles held on the plane; absent = those within half a lattice "
+                       "spacing of it"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", "symmetry", keys);
+/* clang-format on */
 
 const struct tlsph_bc_kind tlsph_bc_symmetry = {
     .name = "symmetry",
     .module = "bc:symmetry",
     .carries_load = 0,
-    .keys = keys,
+    .keys = &table,
     .parse = parse,
     .select = select_on_plane,
     .constrain = constrain,

@@ -61,7 +61,7 @@ static int parse_velocity(const json_t *obj, struct tlsph_scene *s, struct tlsph
 static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                  const char *pointer, struct tlsph_errors *err)
 {
-    int bad = tlsph_selector_parse(obj, 1, s, &bc->select, pointer, err) != 0;
+    int bad = tlsph_selector_parse(obj, s, bc, pointer, err) != 0;
     bad |= parse_velocity(obj, s, bc, pointer, err) != 0;
     return bad ? -1 : 0;
 }
@@ -82,13 +82,23 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     *work = w;
 }
 
-static const char *const keys[] = {"type", "name", "select", "velocity", NULL};
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_BC_KEYS,
+    TLSPH_BC_SELECT(TLSPH_KEY_REQUIRED, "the particles whose velocity is prescribed"),
+    {.name = "velocity", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
+     .unit = "m/s", .description = "3 items, each a number, an expression of t (s) or null (a "
+                                   "free component); at least one not null"},
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", "velocity", keys);
+/* clang-format on */
 
 const struct tlsph_bc_kind tlsph_bc_velocity = {
     .name = "velocity",
     .module = "bc:velocity",
     .carries_load = 1,
-    .keys = keys,
+    .keys = &table,
     .parse = parse,
     .select = tlsph_selector_select,
     .constrain = constrain,

@@ -90,13 +90,22 @@ static void stop_at_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
     m->energy.external_work += work;
 }
 
-static const char *const keys[] = {"type", "name", "point", "normal", NULL};
+/* clang-format off */
+static const struct tlsph_key keys[] = {
+    TLSPH_BC_KEYS,
+    TLSPH_KEY_POINT("point", "a point of the wall's plane"),
+    TLSPH_KEY_DIRECTION("normal", "normal of the plane, pointing into the solid; any non-zero "
+                                  "length"),
+};
+static const struct tlsph_key_table table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", "wall", keys);
+/* clang-format on */
 
 const struct tlsph_bc_kind tlsph_bc_wall = {
     .name = "wall",
     .module = "bc:wall",
     .carries_load = 0,
-    .keys = keys,
+    .keys = &table,
     .parse = parse,
     /* no select: a wall has no particle group; it stops whichever particle reaches it */
     .constrain = hold_on_wall,

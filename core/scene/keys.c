@@ -101,7 +101,8 @@ void tlsph_keys_defaults(const struct tlsph_key_table *t, void *base)
         }
         case TLSPH_KEY_STRING: snprintf(at, k->size, "%s", k->def_text); break;
         case TLSPH_KEY_OBJECT:
-        case TLSPH_KEY_ARRAY: break;
+        case TLSPH_KEY_ARRAY:
+        case TLSPH_KEY_EXPRESSION: break;
         }
     }
 }
@@ -196,7 +197,8 @@ static int read_key(const json_t *obj, const struct tlsph_key *k, const char *po
             r = jc_string(obj, k->name, required, pointer, at, k->size, err);
         break;
     case TLSPH_KEY_OBJECT: r = read_object(obj, k, pointer, to, err); break;
-    case TLSPH_KEY_ARRAY: break;
+    case TLSPH_KEY_ARRAY:
+    case TLSPH_KEY_EXPRESSION: break;
     }
     if (r == 0 && to->terms)
         *to->terms |= k->term;

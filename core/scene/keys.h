@@ -36,7 +36,10 @@ enum tlsph_key_kind {
     TLSPH_KEY_CHOICE,  /* a string among .choices, stored as the choice's int value */
     TLSPH_KEY_STRING,  /* char[.size], 1 to .size - 1 characters */
     TLSPH_KEY_OBJECT,  /* keys described by .table (with TLSPH_KEY_MAP: each member is) */
-    TLSPH_KEY_ARRAY    /* items described by .table when they are objects */
+    TLSPH_KEY_ARRAY,   /* items described by .table when they are objects */
+    /* a string expression of the scene's parameters and some variables (or a
+     * condition), compiled by the caller: always TLSPH_KEY_CALLER */
+    TLSPH_KEY_EXPRESSION
 };
 
 /* .flags */

@@ -1,6 +1,7 @@
 /* Scene boundary conditions: "boundary_conditions": [{type, name, ...}, ...]
  * -> s->bcs.  This file reads what every condition has (its type, which names
- * its kind in core/bc/registry.c, and its name); the kind reads the rest
+ * its kind in core/bc/registry.c, and its name: TLSPH_BC_KEYS) and reports the
+ * keys the kind's table does not list; the kind reads the rest
  * (core/bc/<type>.c).  In 2-D the z components of points and normals are
  * ignored, z velocities and accelerations must be 0 (or null), and a selector
  * box spans all z. */
@@ -10,6 +11,11 @@
 
 #include "bc/kind.h"
 #include "scene/parse_internal.h"
+
+/* The rows every kind's table starts with, read before the kind is known. */
+static const struct tlsph_key common_keys[] = {TLSPH_BC_KEYS};
+static const struct tlsph_key_table common_table =
+    TLSPH_KEY_TABLE("/boundary_conditions/*", NULL, common_keys);
 
 static int parse_bc(const json_t *obj, size_t index, struct tlsph_scene *s,
                     struct tlsph_errors *err)
@@ -24,8 +30,9 @@ static int parse_bc(const json_t *obj, size_t index, struct tlsph_scene *s,
                          jc_type_name(obj));
         return -1;
     }
-    int bad = jc_string(obj, "name", 0, P, bc->name, sizeof bc->name, err) < 0;
-    char type[32];
+    const struct tlsph_key_target to = {.base = bc};
+    int bad = tlsph_keys_values(obj, &common_table, P, &to, err) != 0;
+    char type[TLSPH_BC_TYPE_SIZE];
     if (jc_string(obj, "type", 1, P, type, sizeof type, err) != 0)
         return -1;
     bc->kind = tlsph_bc_find(type);
@@ -36,7 +43,7 @@ static int parse_bc(const json_t *obj, size_t index, struct tlsph_scene *s,
                         type, names);
         return -1;
     }
-    bad |= jc_unknown_keys(obj, bc->kind->keys, P, err) != 0;
+    bad |= tlsph_keys_unknown(obj, bc->kind->keys, P, err) != 0;
     bad |= bc->kind->parse(obj, s, bc, P, err) != 0;
     return bad ? -1 : 0;
 }

@@ -6,7 +6,8 @@
  * leaves in a scene that sets nothing are the tables' defaults.
  *
  * With --json it prints every table instead (the root's, the tables hanging
- * from it, and each model's): tests/engine/scene_keys.sh hands that to
+ * from it, each model's and each boundary-condition kind's):
+ * tests/engine/scene_keys.sh hands that to
  * tests/support/scene_keys_check.py, which compares it with
  * schemas/scene.schema.json and docs/scene.md. */
 #include <check.h>
@@ -15,6 +16,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "bc/kind.h"
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
@@ -51,6 +53,14 @@ static void add_tree(struct tables *all, const struct tlsph_key_table *t)
             add_tree(all, find(s)->keys);                                                      \
     } while (0)
 
+/* The boundary-condition kinds' names, as the families' names() give theirs. */
+static const char *bc_names(void)
+{
+    static char names[256];
+    tlsph_bc_names(names, sizeof names, 0, "", ", ");
+    return names;
+}
+
 static struct tables all_tables(void)
 {
     struct tables all = {.n = 0};
@@ -58,13 +68,14 @@ static struct tables all_tables(void)
     ADD_FAMILY(&all, tlsph_eos_names, tlsph_eos_find);
     ADD_FAMILY(&all, tlsph_strength_names, tlsph_strength_find);
     ADD_FAMILY(&all, tlsph_damage_names, tlsph_damage_find);
+    ADD_FAMILY(&all, bc_names, tlsph_bc_find);
     return all;
 }
 
 static const char *kind_name(enum tlsph_key_kind k)
 {
     static const char *const names[] = {"number", "integer", "boolean", "choice",
-                                        "string", "object",  "array"};
+                                        "string", "object",  "array",   "expression"};
     return names[k];
 }
 
@@ -193,6 +204,8 @@ static void check_key(const struct tlsph_key_table *t, size_t i)
     }
     if (k->kind == TLSPH_KEY_STRING)
         ck_assert_msg(k->size > 1, "%s: string size", where);
+    if (k->kind == TLSPH_KEY_EXPRESSION)
+        ck_assert_msg(k->flags & TLSPH_KEY_CALLER, "%s: an expression is the caller's", where);
     if (k->table) {
         char want[256];
         const int many = k->kind == TLSPH_KEY_ARRAY || (k->flags & TLSPH_KEY_MAP);
@@ -234,6 +247,27 @@ START_TEST(test_models)
     CHECK_FAMILY(tlsph_eos_names, tlsph_eos_find, "eos");
     CHECK_FAMILY(tlsph_strength_names, tlsph_strength_find, "strength");
     CHECK_FAMILY(tlsph_damage_names, tlsph_damage_find, "damage");
+}
+END_TEST
+
+/* Each boundary-condition kind's table sits at /boundary_conditions/<i>, names the
+ * kind and starts with the rows parse_bcs.c reads before it knows the kind. */
+START_TEST(test_bc_kinds)
+{
+    char list[256];
+    snprintf(list, sizeof list, "%s", bc_names());
+    for (char *save, *s = strtok_r(list, ", ", &save); s; s = strtok_r(NULL, ", ", &save)) {
+        const struct tlsph_key_table *t = tlsph_bc_find(s)->keys;
+        ck_assert_msg(t != NULL, "%s has no key table", s);
+        ck_assert_str_eq(t->path, "/boundary_conditions/*");
+        ck_assert_str_eq(t->model, s);
+        ck_assert_uint_ge(t->nkeys, 3);
+        ck_assert_str_eq(t->keys[0].name, "type");
+        ck_assert_str_eq(t->keys[1].name, "name");
+        for (size_t k = 2; k < t->nkeys; k++)
+            ck_assert_msg(t->keys[k].flags & TLSPH_KEY_CALLER, "%s %s: read by the kind", s,
+                          t->keys[k].name);
+    }
 }
 END_TEST
 
@@ -369,6 +403,7 @@ static size_t target_size(const char *path)
         {"/materials/*", sizeof(struct tlsph_material)},
         {"/bodies/*/geometry", sizeof g.a}, /* its primitives' lengths */
         {"/bodies/*", sizeof(struct tlsph_body)},
+        {"/boundary_conditions/*", sizeof(struct tlsph_bc)},
         {"/output/gauges/*", sizeof(struct tlsph_gauge)},
         {"/output/sections/*", sizeof(struct tlsph_section)},
         {"", sizeof(struct tlsph_scene)}, /* the root and its sections */
@@ -440,7 +475,7 @@ int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--json") == 0)
         return print_json();
-    const TTest *const tests[] = {test_tables_well_formed, test_models, test_offsets,
-                                  test_parser_defaults, test_reader};
+    const TTest *const tests[] = {test_tables_well_formed, test_models,         test_bc_kinds,
+                                  test_offsets,            test_parser_defaults, test_reader};
     return tlsph_check_run_tests("scene_keys", 0, tests, sizeof tests / sizeof *tests);
 }

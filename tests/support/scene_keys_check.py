@@ -17,7 +17,10 @@ schemas/scene.schema.json: each table's object (found by its path; a model's
   geometry) is a oneOf of one-key branches.
 docs/scene.md: every table marked <!-- keys PATH [MODEL] --> documents only keys
   the engine accepts, with the same unit, default (or "**required**",
-  "required with `X`") and range; every key of every table is documented.
+  "required with `X`") and range; every key of every table is documented.  In
+  a family's table (PATH of models chosen by "type", no MODEL) a "type" column
+  names the model of its row and the rows after it; "every type" documents a
+  key of every model.
 
 Prints one line per problem; exits 1 when there is one."""
 import json
@@ -149,7 +152,7 @@ def check_unit(w, key, prop):
 
 
 SCHEMA_TYPES = {"number": "number", "integer": "integer", "boolean": "boolean",
-                "string": "string", "array": "array"}
+                "string": "string", "array": "array", "expression": "string"}
 
 
 def check_key_schema(schema, w, key, prop, required, dependent):
@@ -166,8 +169,10 @@ def check_key_schema(schema, w, key, prop, required, dependent):
         if key["required"] and name not in dependent.get(key["with"], []):
             problem("%s: schema lacks dependentRequired %s: [%s] (required with it)" %
                     (w, key["with"], name))
-    if key.get("caller") and kind in ("object", "array", "string") and name != "type":
-        if kind in SCHEMA_TYPES and prop.get("type", kind) != kind:
+    if key.get("caller") and kind in ("object", "array", "string", "expression") and \
+            name != "type":
+        want = SCHEMA_TYPES.get(kind)
+        if want and prop.get("type", want) != want:
             problem("%s: schema type %s, the engine reads a %s" % (w, prop.get("type"), kind))
         if kind == "array" and key["unit"]:  # a vector read by the caller
             check_unit(w, key, prop)
@@ -246,16 +251,15 @@ def check_schema(schema, tables):
                     continue
                 check_key_schema(schema, w, k, props[k["name"]], node.get("required", []),
                                  node.get("dependentRequired", {}))
-    # every model of a family the engine knows, and no other
+    # every model of a family (the tables a "type" key chooses) the engine knows,
+    # and no other
     families = {}
     for t in tables:
-        if t["model"] and "/" not in t["path"][len("/materials/*/"):]:
+        if t["model"] and t["keys"][0]["name"] == "type":
             families.setdefault(t["path"], set()).add(t["model"])
     for path, models in families.items():
         consts = {b.get("properties", {}).get("type", {}).get("const")
-                  for n in resolve(schema, path.rsplit("/", 1)[0], None)
-                  for b in branches(schema, n.get("properties", {}).get(path.rsplit("/", 1)[1], {}),
-                                    None)}
+                  for b in resolve(schema, path, None)}
         if consts != models:
             problem("%s: schema models %s, engine models %s" % (path, sorted(consts - {None}),
                                                               sorted(models)))
@@ -395,9 +399,43 @@ def engine_range(key):
     return "%s%s, %s%s" % (lo, a, b, hi)
 
 
+EVERY_TYPE = "every type"
+
+
+def check_doc_field(line, path, m, field, cols, row, index, documented):
+    """One documented field (dotted into linked tables) of model m's table at path."""
+    t = index.get((path, m)) or index.get((path, None))
+    if t is None:
+        problem("docs line %d: %s documented, the engine has no such model" %
+                (line, where(path, m, field)))
+        return
+    parts = field.split(".")
+    key, parent = None, None
+    for depth, part in enumerate(parts):
+        key = next((k for k in t["keys"] if k["name"] == part), None)
+        if key is None or key["refused"]:
+            key = None
+            break
+        documented.add((t["path"], t["model"], part))
+        if depth < len(parts) - 1:
+            if not key.get("table"):
+                key = None
+                break
+            parent = part
+            t = index.get((key["table"], m)) or index.get((key["table"], None))
+    w = "docs line %d: %s" % (line, where(path, m, field))
+    if key is None:
+        problem("%s: documented, not accepted by the engine" % w)
+        return
+    check_doc_row(w, key, cols, row, parent)
+
+
 def check_docs(doc, tables):
     index = {(t["path"], t["model"]): t for t in tables}
-    families = {t["path"] for t in tables if t["model"]}
+    families = {}
+    for t in tables:
+        if t["model"]:
+            families.setdefault(t["path"], []).append(t["model"])
     documented = set()
     linked_docs = set()
     for line, path, model, header, rows in doc_tables(doc):
@@ -413,37 +451,15 @@ def check_docs(doc, tables):
         current = None
         for row in rows:
             cell = dict(zip(cols, row))
-            if family:
+            if family:  # the type column names the model; "every type": a key they share
                 if cell.get("type", "").strip("`"):
                     current = cell["type"].strip("`")
-                m = current
+                models = families[path] if current == EVERY_TYPE else [current]
             else:
-                m = model
-            t = index.get((path, m)) or index.get((path, None))
-            field = cell["field"].strip("`")
-            if t is None:
-                problem("docs line %d: %s documented, the engine has no such model" %
-                        (line, where(path, m, field)))
-                continue
-            parts = field.split(".")
-            key, parent = None, None
-            for depth, part in enumerate(parts):
-                key = next((k for k in t["keys"] if k["name"] == part), None)
-                if key is None or key["refused"]:
-                    key = None
-                    break
-                documented.add((t["path"], t["model"], part))
-                if depth < len(parts) - 1:
-                    if not key.get("table"):
-                        key = None
-                        break
-                    parent = part
-                    t = index.get((key["table"], m)) or index.get((key["table"], None))
-            w = "docs line %d: %s" % (line, where(path, m, field))
-            if key is None:
-                problem("%s: documented, not accepted by the engine" % w)
-                continue
-            check_doc_row(w, key, cols, row, parent)
+                models = [model]
+            for m in models:
+                check_doc_field(line, path, m, cell["field"].strip("`"), cols, row, index,
+                                documented)
     for t in tables:
         for k in t["keys"]:
             if k["refused"] or (t["model"] and k["name"] == "type"):
