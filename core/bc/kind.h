@@ -51,10 +51,10 @@ struct tlsph_group;
 /* clang-format on */
 
 struct tlsph_bc_kind {
-    const char *name;        /* as written in the scene: {"type": name, ...} */
-    const char *module;      /* its entry in the result's module list, "bc:<name>" */
-    int carries_load;        /* its group's reaction is a support load: written as a time
-                                series (core/io/fields.c) and usable by gauges */
+    const char *name;   /* as written in the scene: {"type": name, ...} */
+    const char *module; /* its entry in the result's module list, "bc:<name>" */
+    int carries_load;   /* its group's reaction is a support load: written as a time
+                           series (core/io/fields.c) and usable by gauges */
     /* Every key its scene object accepts, at "/boundary_conditions/<i>" with the
      * kind's name as model: TLSPH_BC_KEYS, then the kind's own keys, which its
      * parse reads.  "Unknown field" messages list the rows in this order. */

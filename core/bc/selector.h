@@ -19,9 +19,11 @@ extern const struct tlsph_key_table tlsph_selector_keys;
 
 /* A kind's "select" row: flags TLSPH_KEY_REQUIRED, or 0 when an absent selector
  * has a meaning the description gives. */
+/* clang-format off */
 #define TLSPH_BC_SELECT(flags_, what)                                                          \
     {.name = "select", .kind = TLSPH_KEY_OBJECT, .flags = (flags_) | TLSPH_KEY_CALLER,       \
      .table = &tlsph_selector_keys, .description = (what)}
+/* clang-format on */
 
 /* Reads obj's "select" into bc->select (body index, box in m, expression of x,
  * y, z with comparisons); pointer is the condition's.  Required when the

@@ -23,8 +23,8 @@
 /* clang-format on */
 
 /* Reads the lengths of a primitive's table into a[]. */
-static int read_lengths(const json_t *o, const struct tlsph_key_table *t, const char *P,
-                        double *a, struct tlsph_errors *err)
+static int read_lengths(const json_t *o, const struct tlsph_key_table *t, const char *P, double *a,
+                        struct tlsph_errors *err)
 {
     const struct tlsph_key_target to = {.base = a};
     return tlsph_keys_values(o, t, P, &to, err);

@@ -475,7 +475,7 @@ int main(int argc, char **argv)
 {
     if (argc == 2 && strcmp(argv[1], "--json") == 0)
         return print_json();
-    const TTest *const tests[] = {test_tables_well_formed, test_models,         test_bc_kinds,
-                                  test_offsets,            test_parser_defaults, test_reader};
+    const TTest *const tests[] = {test_tables_well_formed, test_models, test_bc_kinds, test_offsets,
+                                  test_parser_defaults,    test_reader};
     return tlsph_check_run_tests("scene_keys", 0, tests, sizeof tests / sizeof *tests);
 }
