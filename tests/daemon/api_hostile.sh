@@ -32,11 +32,11 @@ strip_scene 4e-4 2 tiny | "$PY" -c "import json,sys; print(json.dumps({'inputs':
 strip_scene 2e-2 100 | "$PY" -c "import json,sys; print(json.dumps({'inputs':{'scene':json.load(sys.stdin)}}))" >"$TMP/long.json"
 # a finished job (for Range / series / field errors)
 FID=$(submit "$B" "$TMP/tiny.json")
-wait_status "$B" "$FID" '^successful$' 30
+wait_status "$B" "$FID" '^successful$'
 # a running job and a queued one (max-jobs 1) for 409s
 RID=$(submit "$B" "$TMP/long.json")
 QID=$(submit "$B" "$TMP/long.json")
-wait_status "$B" "$RID" '^running$' 20
+wait_status "$B" "$RID" '^running$'
 HEX=0123456789abcdef0123456789abcdef
 RUN=$B/processes/run/execution
 STUDY=$B/processes/study/execution

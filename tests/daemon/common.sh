@@ -97,14 +97,54 @@ submit() {
         "$PY" -c "import json,sys; print(json.load(sys.stdin).get('jobID',''))" 2>/dev/null
 }
 job_status() { curl -s "$1/jobs/$2" | "$PY" -c "import json,sys; print(json.load(sys.stdin)['status'])" 2>/dev/null; }
-# wait_status URL ID REGEX TIMEOUT_S: polls until the status matches
+# Waits are hang detectors, never speed tests: on a loaded machine (CI runs the
+# optimised and the ASan builds' tests side by side) a job that takes 2 s alone
+# can take a minute.  A wait fails only when nothing has happened for HANG_S
+# seconds.
+HANG_S=${HANG_S:-300}
+# wait_until CMD [ARGS...]: polls CMD every 0.1 s until it succeeds; 1 after HANG_S.
+wait_until() {
+    local end=$(($(date +%s) + HANG_S))
+    until "$@"; do
+        [ "$(date +%s)" -le "$end" ] || return 1
+        sleep 0.1
+    done
+}
+# long_poll_final URL ID: long-polls GET /jobs/ID?wait=30 until the job is final
+# and leaves the last answer in BODY (req's file); gives up, like wait_status,
+# only when the answers stop changing for HANG_S seconds.
+long_poll_final() {
+    local end=$(($(date +%s) + HANG_S)) cap=$(($(date +%s) + 4 * HANG_S)) last="" s
+    while [ "$(date +%s)" -le "$cap" ]; do
+        req GET "$1/jobs/$2?wait=30"
+        s=$(jget "$BODY" "d['status']")
+        case "$s" in accepted | running) ;; *) return 0 ;; esac
+        if [ "$(cat "$BODY")" != "$last" ]; then
+            last=$(cat "$BODY")
+            end=$(($(date +%s) + HANG_S))
+        fi
+        [ "$(date +%s)" -le "$end" ] || break
+    done
+    echo "# long_poll_final: job $2 still '$s'" >&2
+    return 1
+}
+# wait_status URL ID REGEX: polls until the job's status matches REGEX.  Fails
+# only when the job's statusInfo (status, progress, message) has stayed the same
+# for HANG_S seconds: a slow job that advances is waited for, a stuck one is not
+# (and nothing is waited for longer than 4 HANG_S).
 wait_status() {
-    local end=$(($(date +%s) + $4)) s
-    while [ "$(date +%s)" -le "$end" ]; do
-        s=$(job_status "$1" "$2")
+    local end=$(($(date +%s) + HANG_S)) cap=$(($(date +%s) + 4 * HANG_S)) s info last=""
+    while [ "$(date +%s)" -le "$cap" ]; do
+        info=$(curl -s "$1/jobs/$2")
+        s=$(printf '%s' "$info" | "$PY" -c "import json,sys; print(json.load(sys.stdin)['status'])" 2>/dev/null)
         [[ "$s" =~ $3 ]] && return 0
+        if [ "$info" != "$last" ]; then
+            last=$info
+            end=$(($(date +%s) + HANG_S))
+        fi
+        [ "$(date +%s)" -le "$end" ] || break
         sleep 0.2
     done
-    echo "# wait_status: job $2 is '$s', wanted $3" >&2
+    echo "# wait_status: job $2 is '$s', wanted $3 (no change for $HANG_S s, or waited 4x that)" >&2
     return 1
 }

@@ -15,8 +15,10 @@ sed -e 's/"end": 2e-5/"end": 2e-3/' "$top_srcdir/tests/scenes/good/output_small.
 grep -q '"end": 2e-3' "$tmp/long.json" || { echo "FAIL: could not derive the long scene"; exit 1; }
 "$top_builddir/tlsph-run" "$tmp/long.json" -o "$tmp/out" --progress-fd 3 3>"$tmp/progress.jsonl" 2>"$tmp/err" &
 pid=$!
-for _ in $(seq 1 100); do
-  grep -q '"event":"progress"' "$tmp/progress.jsonl" 2>/dev/null && break
+# wait until it runs (a hang detector, not a speed bound: 300 s)
+end=$(($(date +%s) + 300))
+until grep -q '"event":"progress"' "$tmp/progress.jsonl" 2>/dev/null; do
+  [ "$(date +%s)" -le "$end" ] || { echo "FAIL: no progress event within 300 s"; kill -KILL $pid; exit 1; }
   sleep 0.1
 done
 kill -TERM $pid
