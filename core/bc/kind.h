@@ -87,7 +87,9 @@ struct tlsph_bc_kind {
      * middle of the step, t_mid (s) (counting the kinetic energy the reset
      * removes instead would book as external work the dt^2 |f|^2 / 4m each half
      * kick adds to a held particle).  A support that does not move (fixed,
-     * symmetry, a wall holding a resting particle) does no work. */
+     * symmetry, a wall holding a resting particle) does no work; a wall books
+     * here the end of an arrival (core/bc/wall.c), for which the kick just
+     * made is m->dt / 2 (m->dt is 0 at setup) with the forces m->p.f. */
     void (*constrain)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
                       double t, double t_mid, double *work);
 
@@ -96,7 +98,8 @@ struct tlsph_bc_kind {
      * drift respects the condition (a wall stops particles on its plane), books
      * the change in g->impulse and its own work directly in
      * m->energy.external_work (a wall: the kinetic energy an arriving particle
-     * loses, booked as negative work). */
+     * loses down to the drift velocity, booked as negative work; the rest is
+     * booked by its constrain hook). */
     void (*before_drift)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
                          double dt);
 
