@@ -18,7 +18,15 @@
  *    the chunk cache of open datasets (HDFGroup/hdf5 issue #1730);
  *  - per frame: every value dataset is extended and written, then step and
  *    time, each followed by H5Dflush, so a reader that takes len(step) as the
- *    frame count only ever reads complete frames.
+ *    frame count only ever reads complete frames;
+ *  - after every frame and every write of series rows, H5Fflush (commit): it
+ *    also records the end of the allocated space (EOA) in the superblock,
+ *    which SWMR writing otherwise leaves at its value after the layout.  A
+ *    file whose writer was killed stays marked open for writing; `h5clear -s`
+ *    closes the mark but cuts the file at the recorded EOA, so without the
+ *    commit it would cut every frame away (measured: 27.7 MB to 100 kB).  The
+ *    lossless repair, which the daemon runs, is `h5clear -s --increment=0`
+ *    (EOA = end of file); docs/output.md says what a user does.
  *
  * Frame fields and time-series columns share one step and one time dataset per
  * family through hard links (as LAMMPS' dump h5md does); to a reader they are
@@ -313,6 +321,13 @@ fail:
 
 /* ------------------------------------------------------------ writing */
 
+/* Makes what was written so far the file's recorded content (see the SWMR
+ * rules above). */
+static int commit(struct tlsph_output *o)
+{
+    return H5Fflush(o->file, H5F_SCOPE_LOCAL) < 0 ? -1 : 0;
+}
+
 static int flush_series(struct tlsph_output *o)
 {
     if (o->nrows == 0)
@@ -371,7 +386,7 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
     o->row_time[slot] = m->t;
     o->nrows = slot + 1;
     if (o->nrows == TLSPH_SERIES_CHUNK || tlsph_monotonic_seconds() - o->last_series_write >= SERIES_MAX_AGE)
-        return flush_series(o);
+        return flush_series(o) < 0 || commit(o) < 0 ? -1 : 0;
     return 0;
 }
 
@@ -399,7 +414,7 @@ int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
         o->frame_times_cap = cap;
     }
     o->frame_times[o->nframes++] = m->t;
-    if (flush_series(o) < 0)
+    if (flush_series(o) < 0 || commit(o) < 0)
         return -1;
     /* The sidecar lists every frame, so rewriting it after each one costs
      * O(frames^2) bytes over a run; ParaView cannot open the HDF5 file before
