@@ -8,7 +8,11 @@
  * Process groups: each engine is the leader of its own group (pgid = pid).  The
  * leader is never reaped before the group has been SIGKILLed: waitid(WNOWAIT)
  * detects the exit while the zombie still pins the pid/pgid, so kill(-pgid)
- * can never hit a recycled group. */
+ * can never hit a recycled group.
+ *
+ * Post-mortem: a result.h5 left open by a dead engine is repaired before the
+ * job's final state is recorded, or at start-up after a daemon crash
+ * (result_repair.h). */
 #ifndef _GNU_SOURCE
 #define _GNU_SOURCE
 #endif
@@ -38,6 +42,7 @@
 #include "errmsg.h"
 #include "jobdir.h"
 #include "queue.h"
+#include "result_repair.h"
 #include "util/clock.h"
 
 #define TSUP_TICK_MS 200             /* poll timeout: reaping, limits, cancels */
@@ -67,6 +72,7 @@ struct tsup {
     double wall_limit, kill_grace;
     long memory_limit_mb;
     long open_max;
+    char h5clear[PATH_MAX]; /* result_repair_find_tool's answer, "" none */
 
     int wake_rd, wake_wr;
     atomic_int stop;
@@ -140,6 +146,42 @@ static void read_progress(struct tsup *s, struct child *c)
     }
 }
 
+/* Repairs job id's result.h5 if its engine left it marked open; when it stays
+ * so, says why after *message (malloc'ed or NULL; NULL: no message wanted). */
+static void repair_result(struct tsup *s, const char *id, char **message)
+{
+    char msg[512];
+    const enum result_repair_rc rc =
+        result_repair_job(s->h5clear, s->jobs_dir, id, msg, sizeof msg);
+    if (rc == RESULT_NOTHING_TO_DO)
+        return;
+    tlog("supervisor: job %s: result.h5 left open by the engine%s: %s", id,
+         rc == RESULT_REPAIRED ? "" : ", not repaired", msg);
+    if (rc == RESULT_REPAIRED || !message)
+        return;
+    char *m = errmsg_format("%s%sresult.h5 was left open by the engine and could not be repaired "
+                            "(%s): read it with h5py's swmr=True, or run "
+                            "'h5clear -s --increment=0' on it",
+                            *message ? *message : "", *message ? "; " : "", msg);
+    if (m) { /* else out of memory: the engine's message stays */
+        free(*message);
+        *message = m;
+    }
+}
+
+/* At start-up, for the results that the engines of an earlier daemon left
+ * open: repairs those of final jobs (unfinished ones are cleared when they
+ * run again; no engine runs yet). */
+static void repair_if_final(const char *id, void *ctx)
+{
+    struct tsup *s = ctx;
+    struct tq_job j;
+    memset(&j, 0, sizeof j);
+    if (tq_get(s->q, id, &j) == TQ_OK && tq_status_final(j.status))
+        repair_result(s, id, NULL); /* logged; the job's message was recorded before */
+    tq_job_free(&j);
+}
+
 /* The leader has exited (zombie, not yet reaped): finish the job. */
 static void finish_child(struct tsup *s, struct child *c, int wstatus)
 {
@@ -184,6 +226,7 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
         } else {
             flush_progress(s, c, tlsph_monotonic_seconds());
         }
+        repair_result(s, c->id, &out.message); /* before the job is seen final */
         if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) == TQ_ERROR)
             tlog("supervisor: job %s: cannot record the final state", c->id);
     }
@@ -508,6 +551,8 @@ static void *sup_main(void *arg)
     int rc = tq_open(s->db_path, &s->q, err, sizeof err);
     if (rc == 0 && tq_recover(s->q, s->max_attempts) < 0)
         tlog("supervisor: start-up recovery failed");
+    if (rc == 0)
+        result_repair_each_left_open(s->jobs_dir, repair_if_final, s);
     pthread_mutex_lock(&s->mu);
     s->init_done = 1;
     s->init_rc = rc;
@@ -678,6 +723,9 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     }
     for (int i = 0; i < s->max_jobs; i++)
         s->kids[i].fd = -1;
+    if (result_repair_find_tool(s->h5clear, sizeof s->h5clear) < 0)
+        tlog("supervisor: h5clear (Debian: hdf5-tools) not found: results left open by killed "
+             "engines stay so (h5py opens them with swmr=True)");
     if (access(s->engine_path, X_OK) < 0) {
         errmsg_set(err, errsize, "engine %s is not executable: %s", s->engine_path, strerror(errno));
         tsup_free(s);
