@@ -9,6 +9,7 @@
 #     daemon before the job is final: downloaded through the API it opens with
 #     plain h5py (no swmr=True) and holds finite data for its complete frames,
 #     and its sidecar references complete frames only (killed_result.py);
+#     (and, where pvpython exists, ParaView's XDMF Reader reads it);
 #     without h5clear (TLSPHD_H5CLEAR="") the job's message says so, and the
 #     next daemon repairs the file at start-up;
 #   - a bare tlsph-run killed with -9: `h5clear -s` (what HDF5's error message
@@ -110,6 +111,13 @@ if command -v h5clear >/dev/null; then
     check "  sidecar lists every complete frame" [ "$(grep -c '<Grid Name="frame' "$TMP/j3.xmf")" = "$(frames_in "$TMP/j3.h5")" ]
     req GET "$E_URL/jobs/$J3"
     check "  job message says nothing of the file" bash -c "! grep -q 'result.h5' '$BODY'"
+    if command -v pvpython >/dev/null; then
+        mkdir -p "$TMP/j3" && cp "$TMP/j3.h5" "$TMP/j3/result.h5" && cp "$TMP/j3.xmf" "$TMP/j3/result.xmf"
+        check "  ParaView's XDMF Reader reads its frames (pvpython)" \
+            bash -c "pvpython '$here/paraview_open.py' '$TMP/j3/result.xmf' >'$TMP/pv.log' 2>&1 || { cat '$TMP/pv.log'; false; }"
+    else
+        echo "# SKIP: pvpython (Debian: python3-paraview) missing: no ParaView check"
+    fi
 else
     echo "# SKIP: h5clear (hdf5-tools) missing: no repair checks"
 fi
