@@ -44,8 +44,8 @@ struct tlsph_group;
 #define TLSPH_BC_KEYS                                                                          \
     {.name = "type", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, \
      .size = TLSPH_BC_TYPE_SIZE, .description = "the kind of condition"},                      \
-    {.name = "name", .kind = TLSPH_KEY_STRING, .size = TLSPH_NAME_MAX,                         \
-     .offset = offsetof(struct tlsph_bc, name),                                                \
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_NAME, .size = TLSPH_NAME_MAX, \
+     .offset = offsetof(struct tlsph_bc, name), .noun = "boundary condition name",             \
      .description = "unique among the boundary conditions; names its output series; "          \
                     "absent = bc<index>"}
 /* clang-format on */

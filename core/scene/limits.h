@@ -5,8 +5,10 @@
 #ifndef TLSPH_SCENE_LIMITS_H
 #define TLSPH_SCENE_LIMITS_H
 
+#include "util/names.h" /* the naming rule and its length */
+
 /* ---------------------------------------------------------------- ceilings */
-#define TLSPH_NAME_MAX           64        /* bytes of a name, with its NUL: 63 characters */
+#define TLSPH_NAME_MAX           (TLSPH_NAME_CHARS_MAX + 1) /* bytes of a name, with its NUL */
 #define TLSPH_MAX_PARTICLES      50000000L /* absolute ceiling; the scene may set a lower one */
 #define TLSPH_MAX_PARAMS         40        /* entries of "parameters" */
 #define TLSPH_MAX_MATERIALS      1000      /* entries of "materials" */

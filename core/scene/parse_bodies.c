@@ -65,12 +65,13 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     }
     b->material = -1;
     int bad = tlsph_keys_unknown(obj, &tlsph_body_keys, P, err) != 0;
-    if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0) {
+    tlsph_pointer_join(p, sizeof p, P, "name");
+    if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0 ||
+        tlsph_scene_check_name(b->name, "body name", p, err) != 0) {
         bad = 1;
     } else {
         for (size_t j = 0; j < index; j++)
             if (strcmp(s->bodies[j].name, b->name) == 0) {
-                tlsph_pointer_join(p, sizeof p, P, "name");
                 tlsph_errors_add(err, p, "duplicate body name '%s' (also used by /bodies/%zu)",
                                  b->name, j);
                 bad = 1;
