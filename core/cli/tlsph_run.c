@@ -9,6 +9,7 @@
  * With --progress-fd every outcome but 1 ends with a final event that carries
  * the errors or the diagnostic (docs/protocol.md); stderr is for people. */
 #include <errno.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,6 +113,12 @@ int main(int argc, char **argv)
     if (threads > 0)
         omp_set_num_threads((int)threads);
 #endif
+    /* No HDF5 clean-up at exit: the writer closes every file it opens, and
+     * HDF5 1.10's exit handler crashes (SIGSEGV in H5F__close_cb) on a file
+     * whose close failed -- a full disk or a file-size limit -- which would
+     * turn exit code 4 into a death by signal after the final event.  Must
+     * come before any other HDF5 call. */
+    H5dont_atexit();
 
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
