@@ -15,6 +15,9 @@
 #define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
 #define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
 #define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
+/* Objects (primitives, unions, differences) in one body's geometry: bounds the
+ * lattice walk at (lattice points in the bounding box) x (objects) box tests */
+#define TLSPH_GEOMETRY_MAX_OBJECTS 1000
 #define TLSPH_SCENE_FILE_MAX     (16L * 1024 * 1024) /* bytes of a scene file (16 MiB) */
 #define TLSPH_MAX_STEPS          1000000000000L      /* time.max_steps */
 #define TLSPH_MAX_EVERY          1000000000L /* stability.check_every, output.series_every (steps) */

@@ -51,12 +51,15 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
-/* geometry.c: lattice index range of body b over its geometry bounds
+/* lattice.c: lattice index range of body b over its geometry bounds
  * (i in [lo[d], hi[d]], empty when hi < lo) and the number of candidate
  * points (product of the ranges, as a double so that it cannot overflow). */
 double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], long hi[3]);
-/* Number of lattice points of body b inside its geometry (no allocation). */
-size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
+/* *count = the number of lattice points of body b inside its geometry; 0, or
+ * -1 when out of memory. */
+int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count);
+/* Objects (primitives, unions and differences) in geometry g, g included. */
+size_t tlsph_geometry_count(const struct tlsph_geometry *g);
 
 /* parse_damage.c: a material's "damage" block (after its strength and thermal
  * blocks). */

@@ -22,6 +22,7 @@ SEMANTIC_ONLY = {
     # need the lattice
     "empty_geometry",         # no lattice point inside the geometry
     "absurd_particle_count",  # estimate > 10 x max_particles
+    "bodies_candidates_in_all",  # the bodies' estimates together > 10 x max_particles
     "too_many_particles",     # actual count > max_particles
     # expression language (only the character set is in the schema)
     "expression_syntax",
