@@ -18,6 +18,11 @@
 /* Objects (primitives, unions, differences) in one body's geometry: bounds the
  * lattice walk at (lattice points in the bounding box) x (objects) box tests */
 #define TLSPH_GEOMETRY_MAX_OBJECTS 1000
+/* Smallest spacing / (largest |coordinate| of the body's geometry and origin):
+ * positions are doubles (53 bits, ~16 digits), so at this ratio a position is
+ * exact to ~1e-9 spacing and a step's displacement (~1e-3 spacing) to ~1e-6 of
+ * itself; far below it particles coincide (1e16 m at 1 m spacing) */
+#define TLSPH_MIN_RELATIVE_SPACING 1e-7
 #define TLSPH_SCENE_FILE_MAX     (16L * 1024 * 1024) /* bytes of a scene file (16 MiB) */
 #define TLSPH_MAX_STEPS          1000000000000L      /* time.max_steps */
 #define TLSPH_MAX_EVERY          1000000000L /* stability.check_every, output.series_every (steps) */

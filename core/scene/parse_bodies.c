@@ -116,6 +116,8 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     }
     if (s->dimension == 2)
         b->origin[2] = 0.0;
+    if (geometry_ok && r >= 0)
+        bad |= tlsph_check_body_precision(b, s->dimension, P, err) != 0;
     bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
     return bad ? -1 : 0;
 }

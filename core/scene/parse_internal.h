@@ -43,6 +43,12 @@ void tlsph_geometry_free(struct tlsph_geometry *g);
 int tlsph_parse_direction(const json_t *obj, const char *key, int dimension, const char *pointer,
                           double out[3], struct tlsph_errors *err);
 
+/* precision.c: body b's spacing against its largest coordinate (geometry and
+ * origin; TLSPH_MIN_RELATIVE_SPACING); 0, or -1 with an error under pointer
+ * ("/bodies/<i>"). */
+int tlsph_check_body_precision(const struct tlsph_body *b, int dimension, const char *pointer,
+                               struct tlsph_errors *err);
+
 /* parse_bodies.c: fills s->bodies (s->materials and s->params already parsed). */
 int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 /* Counts each body's lattice points against s->max_particles. */
