@@ -26,7 +26,6 @@
 #include "strbuf.h"
 #include "util/names.h"
 
-
 /* ------------------------------------------------------------ series */
 
 struct series {

@@ -93,8 +93,8 @@ static void stop_at_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
 /* At t = 0 no particle may lie behind the wall: the wall cannot push a body
  * through itself (it would stop those particles' motion away from the plane
  * and pull the body apart: non-finite values within a few steps). */
-static int check_sides(const struct tlsph_model *m, const struct tlsph_bc *bc,
-                       const char *pointer, struct tlsph_errors *err)
+static int check_sides(const struct tlsph_model *m, const struct tlsph_bc *bc, const char *pointer,
+                       struct tlsph_errors *err)
 {
     size_t behind = 0, deepest = 0;
     double depth = 0.0;
@@ -116,8 +116,8 @@ static int check_sides(const struct tlsph_model *m, const struct tlsph_bc *bc,
                      "plane (the deepest %.3g m behind, at (%g, %g, %g) m); the normal points "
                      "into the solid, so every body must start on that side (move the plane or "
                      "the body, or reverse the normal)",
-                     bc->name, m->scene.bodies[m->p.body[deepest]].name, behind, -depth, X[0],
-                     X[1], X[2]);
+                     bc->name, m->scene.bodies[m->p.body[deepest]].name, behind, -depth, X[0], X[1],
+                     X[2]);
     return -1;
 }
 

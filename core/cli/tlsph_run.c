@@ -41,8 +41,8 @@ static void on_signal(int sig)
  * written: the handler ends the process itself, with the final event
  * formatted beforehand (write and _exit are async-signal-safe). */
 static struct {
-    int fd;         /* --progress-fd, -1 none */
-    char line[96];  /* {"event":"finished","status":"cancelled"} and a newline */
+    int fd;        /* --progress-fd, -1 none */
+    char line[96]; /* {"event":"finished","status":"cancelled"} and a newline */
     size_t len;
 } setup_cancel = {.fd = -1};
 

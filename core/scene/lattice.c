@@ -111,8 +111,7 @@ static int walker_contains(const struct walker *w, size_t k, const double X[3])
         return 0;
     case TLSPH_GEOM_DIFFERENCE:
         /* the minuend is the first child, listed first when it meets the row */
-        if (nd->nactive == 0 || nd->active[0] != nd->child ||
-            !walker_contains(w, nd->child, X))
+        if (nd->nactive == 0 || nd->active[0] != nd->child || !walker_contains(w, nd->child, X))
             return 0;
         for (size_t a = 1; a < nd->nactive; a++)
             if (walker_contains(w, nd->active[a], X))
@@ -161,8 +160,8 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
 /* Visits the lattice in x-fastest order; stores up to cap points in out (when
  * non-NULL) and sets *count to the number of points inside.  0, or -1 when
  * out of memory. */
-static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
-                        const long hi[3], double *out, size_t cap, size_t *count)
+static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
+                        double *out, size_t cap, size_t *count)
 {
     const struct tlsph_body *body = &s->bodies[b];
     const double h = body->spacing;
@@ -219,8 +218,7 @@ int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, d
     }
     size_t count = 0;
     if (total > 0.0 && lattice_walk(s, b, lo, hi, NULL, 0, &count) != 0) {
-        tlsph_errors_add(err, p, "out of memory for the geometry of body '%s'",
-                         s->bodies[b].name);
+        tlsph_errors_add(err, p, "out of memory for the geometry of body '%s'", s->bodies[b].name);
         return -1;
     }
     if (count > (size_t)max_points) {

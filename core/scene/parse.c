@@ -215,9 +215,10 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
         return -1;
     }
     const int name_bad = tlsph_scene_check_name(name, "material name", P, err) != 0;
-    if (strlen(name) >= sizeof m->name)
-        return -1; /* reported by the check above */
-    memcpy(m->name, name, strlen(name) + 1); /* kept even when invalid, for body lookups */
+    if (strlen(name) >= sizeof m->name) /* reported by the check above */
+        return -1;
+    /* kept even when invalid, for body lookups */
+    memcpy(m->name, name, strlen(name) + 1);
     const struct tlsph_key_target to = {.base = m};
     int bad = name_bad | (tlsph_keys_read(mat, &tlsph_material_keys, P, &to, err) != 0);
     if (!bad) { /* derived constants of a valid material; nothing reads those of another */

@@ -33,9 +33,8 @@ static long measure_array(const json_t *out, const char *key, const json_t **arr
 /* Item i of an array of objects, with its name (a `noun` name) valid and unique
  * among items 0..i-1. */
 static const json_t *measure_item(const json_t *arr, size_t i, const char *key, const char *noun,
-                                  const struct tlsph_key_table *keys, char *name,
-                                  const char *names, size_t stride, char *P,
-                                  struct tlsph_errors *err)
+                                  const struct tlsph_key_table *keys, char *name, const char *names,
+                                  size_t stride, char *P, struct tlsph_errors *err)
 {
     char base[TLSPH_POINTER_MAX];
     tlsph_pointer_join(base, sizeof base, "/output", key);
@@ -142,8 +141,8 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_gauge *g = &s->gauges[i];
-        const json_t *o = measure_item(arr, (size_t)i, "gauges", "gauge name", &tlsph_gauge_keys, g->name,
-                                       s->gauges[0].name, sizeof *g, P, err);
+        const json_t *o = measure_item(arr, (size_t)i, "gauges", "gauge name", &tlsph_gauge_keys,
+                                       g->name, s->gauges[0].name, sizeof *g, P, err);
         if (!o || parse_gauge(o, s, P, g, err) != 0)
             bad = 1;
     }
@@ -154,8 +153,9 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_section *c = &s->sections[i];
-        const json_t *o = measure_item(arr, (size_t)i, "sections", "section name", &tlsph_section_keys, c->name,
-                                       s->sections[0].name, sizeof *c, P, err);
+        const json_t *o =
+            measure_item(arr, (size_t)i, "sections", "section name", &tlsph_section_keys, c->name,
+                         s->sections[0].name, sizeof *c, P, err);
         if (!o || parse_section(o, s->dimension, P, c, err) != 0)
             bad = 1;
     }

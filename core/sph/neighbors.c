@@ -30,7 +30,7 @@ struct grid {
     double size;
     int64_t base[3], top[3]; /* lowest cell - 1, highest cell (before the shift) */
     int64_t dims[3];
-    size_t first, count;     /* the body's entries in the sorted entry array */
+    size_t first, count; /* the body's entries in the sorted entry array */
 };
 
 static int cmp_entry(const void *a, const void *b)
@@ -79,8 +79,8 @@ static size_t count_bodies(const int32_t *body, size_t n)
 
 /* Lays out the grids of bodies 0..nb-1 (g[b].size set by the caller), then
  * fills e (n entries) and sorts it by body, cell and index. */
-static void grids_build(struct grid *g, size_t nb, const double *X, const int32_t *body,
-                        size_t n, struct cell_entry *e)
+static void grids_build(struct grid *g, size_t nb, const double *X, const int32_t *body, size_t n,
+                        struct cell_entry *e)
 {
     double lo[3] = {INFINITY, INFINITY, INFINITY};
     for (size_t i = 0; i < n; i++)
@@ -213,8 +213,8 @@ static void search_free(struct search *s)
 }
 
 /* 0, or -1 on allocation failure (nothing left allocated). */
-static int search_prepare(struct search *s, const double *X, const double *h,
-                          const int32_t *body, size_t n)
+static int search_prepare(struct search *s, const double *X, const double *h, const int32_t *body,
+                          size_t n)
 {
     const size_t nb = n ? count_bodies(body, n) : 1;
     s->e = malloc((n ? n : 1) * sizeof *s->e);

@@ -94,8 +94,9 @@ static void setup_files(void)
      * character the naming rule allows (core/util/names.h) */
     json_object_set_new(t, "end", json_real(end_time / 4));
     json_object_set_new(o, "frames", json_integer(2));
-    json_object_set_new(o, "gauges", json_pack("[{s:s, s:[s,s], s:f}]", "name", "Strip.gauge-1",
-                                               "between", "left", "right", "area", 0.01));
+    json_object_set_new(o, "gauges",
+                        json_pack("[{s:s, s:[s,s], s:f}]", "name", "Strip.gauge-1", "between",
+                                  "left", "right", "area", 0.01));
     json_object_set_new(o, "sections",
                         json_pack("[{s:s, s:[f,f,f], s:[f,f,f], s:f}]", "name", "_mid", "point",
                                   0.0205, 0.0, 0.0, "normal", 1.0, 0.0, 0.0, "thickness", 0.001));

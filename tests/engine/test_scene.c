@@ -428,17 +428,19 @@ START_TEST(test_lattice_walk_matches_contains)
     const double h = 0.001;
     char *text = malloc(65536), *p = text;
     ck_assert_ptr_nonnull(text);
-    p += sprintf(p, "{\"dimension\": 3, \"time\": {\"end\": 1e-4}, \"materials\": {\"m\": "
-                    "{\"density\": 1000, \"youngs_modulus\": 1e9, \"poisson_ratio\": 0.25}},"
-                    "\"bodies\": [{\"name\": \"b\", \"material\": \"m\", \"spacing\": %g,"
-                    "\"geometry\": {\"difference\": [{\"box\": {\"min\": [0,0,0], "
-                    "\"max\": [0.03,0.02,0.015]}}, {\"union\": [",
+    p += sprintf(p,
+                 "{\"dimension\": 3, \"time\": {\"end\": 1e-4}, \"materials\": {\"m\": "
+                 "{\"density\": 1000, \"youngs_modulus\": 1e9, \"poisson_ratio\": 0.25}},"
+                 "\"bodies\": [{\"name\": \"b\", \"material\": \"m\", \"spacing\": %g,"
+                 "\"geometry\": {\"difference\": [{\"box\": {\"min\": [0,0,0], "
+                 "\"max\": [0.03,0.02,0.015]}}, {\"union\": [",
                  h);
     unsigned seed = 7;
     for (int k = 0; k < 250; k++) {
         seed = seed * 1103515245u + 12345u;
         const double x = (double)(seed % 61) * 0.5 * h, y = (double)((seed >> 8) % 41) * 0.5 * h,
-                     z = (double)((seed >> 16) % 31) * 0.5 * h, r = (double)(1 + (seed >> 24) % 4) * h;
+                     z = (double)((seed >> 16) % 31) * 0.5 * h,
+                     r = (double)(1 + (seed >> 24) % 4) * h;
         p += sprintf(p, "%s{\"sphere\": {\"center\": [%.17g,%.17g,%.17g], \"radius\": %.17g}}",
                      k ? "," : "", x, y, z, r);
     }
@@ -446,8 +448,9 @@ START_TEST(test_lattice_walk_matches_contains)
                     "[0.015,0.01,0.0075], \"radius\": 0.006}}, {\"box\": {\"min\": "
                     "[0.0125,0.0075,0], \"max\": [0.0175,0.0125,0.015]}}]}");
     for (int k = 0; k < 40; k++)
-        p += sprintf(p, ", {\"cylinder\": {\"base\": [%.17g,0,0.0075], \"axis\": [0,1,0.5],"
-                        "\"radius\": 0.0005, \"length\": 0.02}}",
+        p += sprintf(p,
+                     ", {\"cylinder\": {\"base\": [%.17g,0,0.0075], \"axis\": [0,1,0.5],"
+                     "\"radius\": 0.0005, \"length\": 0.02}}",
                      0.0005 + 0.00075 * k);
     sprintf(p, "]}]}}]}");
     struct tlsph_scene s;

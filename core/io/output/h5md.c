@@ -214,8 +214,8 @@ static herr_t remember_h5_error(hid_t estack, void *data)
 
 /* Adds "output: <what> [<path>]: <HDF5's message>": the stack's, else the
  * first failure's while the file was set up. */
-static void add_h5_error(const struct tlsph_output *o, struct tlsph_errors *err,
-                         const char *what, const char *path)
+static void add_h5_error(const struct tlsph_output *o, struct tlsph_errors *err, const char *what,
+                         const char *path)
 {
     char h5err[256];
     tlsph_h5_stack_text(H5E_DEFAULT, h5err);
