@@ -24,8 +24,8 @@
 #define TLSPH_NAME_CHARS_MAX 63 /* characters of a name (without the NUL) */
 #define TLSPH_NAME_PATTERN   "^[A-Za-z_][A-Za-z0-9_.-]{0,62}$"
 /* The rule in words, for error messages. */
-#define TLSPH_NAME_RULE                                                                           \
-    "1 to 63 characters, each a letter A-Z a-z, a digit, '_', '-' or '.', "                       \
+#define TLSPH_NAME_RULE                                                     \
+    "1 to 63 characters, each a letter A-Z a-z, a digit, '_', '-' or '.', " \
     "the first a letter or '_'"
 
 /* 1 when name follows the rule, 0 otherwise (NULL included). */
