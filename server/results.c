@@ -8,9 +8,9 @@
  * closes every id it opened on every path.  HDF5's own error printing is
  * switched off; HDF5 failures become messages in err.
  *
- * Names from the outside are checked before they reach HDF5: series names
- * [A-Za-z0-9_./-] (no "..", no empty or "." segment, no leading or trailing
- * "/", at most 200 characters), field names [A-Za-z0-9_] (at most 64). */
+ * Names from the outside are checked before they reach HDF5: series names are
+ * "/"-separated segments that follow the engine's naming rule (util/names.h),
+ * at most 200 characters; field names [A-Za-z0-9_] (at most 64). */
 #include "results.h"
 
 #include <hdf5.h>
@@ -24,7 +24,7 @@
 #include "errmsg.h"
 #include "results_h5.h"
 #include "strbuf.h"
-
+#include "util/names.h"
 
 /* ------------------------------------------------------------ series */
 
@@ -208,6 +208,38 @@ static void names_free(char **v, size_t n)
     free(v);
 }
 
+/* The series of family group /observables/<family>: "<family>/<item>/<column>"
+ * for every item group and every column in it. */
+static void list_family(hid_t f, json_t *out, const char *family)
+{
+    char fpath[256];
+    snprintf(fpath, sizeof fpath, "/observables/%s", family);
+    char **items = NULL;
+    size_t nitems = 0;
+    if (group_names(f, fpath, &items, &nitems) < 0)
+        return;
+    for (size_t i = 0; i < nitems; i++) {
+        char ipath[512];
+        if (!tlsph_name_ok(items[i]))
+            continue;
+        snprintf(ipath, sizeof ipath, "%s/%s", fpath, items[i]);
+        if (h5r_object_type(f, ipath) != OT_GROUP)
+            continue;
+        char **cols = NULL;
+        size_t ncol = 0;
+        if (group_names(f, ipath, &cols, &ncol) < 0)
+            continue;
+        for (size_t c = 0; c < ncol; c++) {
+            char name[512];
+            snprintf(name, sizeof name, "%s/%s/%s", family, items[i], cols[c]);
+            if (tres_series_name_ok(name))
+                list_add(f, out, name);
+        }
+        names_free(cols, ncol);
+    }
+    names_free(items, nitems);
+}
+
 json_t *tres_series_list(const char *h5path, char *err, size_t errsize)
 {
     hid_t f = h5r_open_file(h5path, err, errsize);
@@ -227,38 +259,21 @@ json_t *tres_series_list(const char *h5path, char *err, size_t errsize)
         h5r_error(err, errsize, "cannot list", "/observables");
         goto fail;
     }
+    /* global series first, then the families (groups, gauges, sections): a
+     * top-level group without a value dataset holds one group per item */
+    for (size_t i = 0; i < ntop; i++)
+        if (tres_series_name_ok(top[i]))
+            list_add(f, out, top[i]);
     for (size_t i = 0; i < ntop; i++) {
-        if (strcmp(top[i], "groups") == 0 || !tres_series_name_ok(top[i]))
+        char path[256], value[300];
+        if (!tlsph_name_ok(top[i]))
             continue;
-        list_add(f, out, top[i]);
+        snprintf(path, sizeof path, "/observables/%s", top[i]);
+        snprintf(value, sizeof value, "%s/value", path);
+        if (h5r_object_type(f, path) == OT_GROUP && h5r_object_type(f, value) == OT_ABSENT)
+            list_family(f, out, top[i]);
     }
-    if (h5r_object_type(f, "/observables/groups") == OT_GROUP) {
-        char **bcs = NULL;
-        size_t nbc = 0;
-        if (group_names(f, "/observables/groups", &bcs, &nbc) == 0) {
-            for (size_t b = 0; b < nbc; b++) {
-                char gpath[512];
-                if (!tres_series_name_ok(bcs[b]) || strchr(bcs[b], '/'))
-                    continue;
-                snprintf(gpath, sizeof gpath, "/observables/groups/%s", bcs[b]);
-                if (h5r_object_type(f, gpath) != OT_GROUP)
-                    continue;
-                char **cols = NULL;
-                size_t ncol = 0;
-                if (group_names(f, gpath, &cols, &ncol) < 0)
-                    continue;
-                for (size_t c = 0; c < ncol; c++) {
-                    char name[512];
-                    snprintf(name, sizeof name, "groups/%s/%s", bcs[b], cols[c]);
-                    if (tres_series_name_ok(name))
-                        list_add(f, out, name);
-                }
-                names_free(cols, ncol);
-            }
-            names_free(bcs, nbc);
-        }
-        H5Eclear2(H5E_DEFAULT);
-    }
+    H5Eclear2(H5E_DEFAULT);
 done:
     names_free(top, ntop);
     H5Fclose(f);

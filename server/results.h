@@ -58,8 +58,11 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
 /* The one definition of a valid result name, checked before any HDF5 path is
  * built (1 ok, 0 rejected); the routes refuse other names up front with the
  * same words (TRES_NO_SERIES, TRES_NO_FIELD, printf formats of the name).
- * Series: [A-Za-z0-9_./-], at most 200 characters, no "..", no leading or
- * trailing "/", no empty or "." segment.  Field: [A-Za-z0-9_], at most 64. */
+ * Series: at most 200 characters, segments separated by "/", each segment a
+ * name by the engine's naming rule (util/names.h: what the engine accepts for
+ * the bodies, conditions, gauges and sections it writes series for), so every
+ * series the engine can write can be named here.  Field: [A-Za-z0-9_], at
+ * most 64. */
 #define TRES_NO_SERIES "no series named \"%.60s\""
 #define TRES_NO_FIELD "no field named \"%.60s\""
 int tres_series_name_ok(const char *name);

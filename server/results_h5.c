@@ -9,6 +9,7 @@
 
 #include "errmsg.h"
 #include "results.h"
+#include "util/names.h"
 
 #define SERIES_NAME_MAX 200
 #define FIELD_NAME_MAX 64
@@ -231,24 +232,19 @@ int h5r_read_rows(hid_t d, int rank, const hsize_t dims[3], hsize_t n, hid_t mty
 
 int tres_series_name_ok(const char *name)
 {
-    if (!name || !*name)
+    if (!name || strnlen(name, SERIES_NAME_MAX + 1) > SERIES_NAME_MAX)
         return 0;
-    size_t len = strlen(name);
-    if (len > SERIES_NAME_MAX || name[0] == '/' || name[len - 1] == '/' || strstr(name, ".."))
-        return 0;
-    for (size_t i = 0; i < len; i++) {
-        char c = name[i];
-        int ok = (c >= 'A' && c <= 'Z') || (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') ||
-                 c == '_' || c == '.' || c == '/' || c == '-';
-        if (!ok)
+    /* segments between '/', each a name by the engine's rule (util/names.h): no
+     * empty, "." or ".." segment can pass */
+    for (const char *seg = name;;) {
+        const char *slash = strchr(seg, '/');
+        const size_t len = slash ? (size_t)(slash - seg) : strlen(seg);
+        if (!tlsph_name_ok_n(seg, len))
             return 0;
-        /* no empty and no "." segments */
-        if (c == '/' && name[i + 1] == '/')
-            return 0;
-        if (c == '.' && (i == 0 || name[i - 1] == '/') && (name[i + 1] == '/' || name[i + 1] == '\0'))
-            return 0;
+        if (!slash)
+            return 1;
+        seg = slash + 1;
     }
-    return 1;
 }
 
 int tres_field_name_ok(const char *name)

@@ -13,6 +13,11 @@
 /* Selects each condition's particle group (once, at setup; core/bc/groups.c).
  * Returns 0 or -1 with err (a condition selecting no particle). */
 int tlsph_boundary_select(struct tlsph_model *m, struct tlsph_errors *err);
+/* After the selection: the contradictions the particles reveal (a wall cutting
+ * through a body at t = 0; one velocity component of a particle prescribed by
+ * two conditions that can disagree; core/bc/contradictions.c).  Returns 0 or
+ * -1 with every one in err. */
+int tlsph_boundary_check(struct tlsph_model *m, struct tlsph_errors *err);
 /* After each half kick: imposes the constraints with the prescribed values at
  * time t (s), accumulating impulses, and books their work at the prescribed
  * velocities of time t_mid (s, the middle of the current step). */

@@ -16,6 +16,13 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     *work = w;
 }
 
+static enum tlsph_bc_prescription prescribes(struct tlsph_bc *bc, int c, double *value)
+{
+    (void)bc, (void)c;
+    *value = 0.0;
+    return TLSPH_BC_CONSTANT;
+}
+
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_BC_KEYS,
@@ -32,5 +39,6 @@ const struct tlsph_bc_kind tlsph_bc_fixed = {
     .keys = &table,
     .parse = tlsph_selector_parse,
     .select = tlsph_selector_select,
+    .prescribes = prescribes,
     .constrain = constrain,
 };

@@ -33,6 +33,13 @@
 struct tlsph_model; /* core/run/model.h */
 struct tlsph_group;
 
+/* What a condition does to one velocity component of its group's particles. */
+enum tlsph_bc_prescription {
+    TLSPH_BC_FREE,     /* leaves it alone */
+    TLSPH_BC_CONSTANT, /* holds it at one value for the whole run */
+    TLSPH_BC_VARYING   /* makes it follow a function of time */
+};
+
 /* Longest "type" (a kind's name), with its NUL. */
 #define TLSPH_BC_TYPE_SIZE 32
 
@@ -44,8 +51,8 @@ struct tlsph_group;
 #define TLSPH_BC_KEYS                                                                          \
     {.name = "type", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER, \
      .size = TLSPH_BC_TYPE_SIZE, .description = "the kind of condition"},                      \
-    {.name = "name", .kind = TLSPH_KEY_STRING, .size = TLSPH_NAME_MAX,                         \
-     .offset = offsetof(struct tlsph_bc, name),                                                \
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_NAME, .size = TLSPH_NAME_MAX, \
+     .offset = offsetof(struct tlsph_bc, name), .noun = "boundary condition name",             \
      .description = "unique among the boundary conditions; names its output series; "          \
                     "absent = bc<index>"}
 /* clang-format on */
@@ -73,6 +80,17 @@ struct tlsph_bc_kind {
      * whichever particle reaches it); otherwise selecting no particle is a scene
      * error. */
     size_t (*select)(const struct tlsph_model *m, struct tlsph_bc *bc, int32_t *index);
+
+    /* Setup checks, after every group is selected (core/bc/contradictions.c):
+     * what the condition prescribes for velocity component c (0..2) of its
+     * group's particles (TLSPH_BC_CONSTANT: *value, m/s), so that no particle
+     * gets two prescriptions of one component that can differ (the later
+     * condition would silently win).  NULL: it prescribes nothing. */
+    enum tlsph_bc_prescription (*prescribes)(struct tlsph_bc *bc, int c, double *value);
+    /* Checks that need the particles at t = 0 (a wall: none behind it);
+     * reports at pointer and returns -1, or 0.  NULL: none. */
+    int (*check)(const struct tlsph_model *m, const struct tlsph_bc *bc, const char *pointer,
+                 struct tlsph_errors *err);
 
     /* The step's phases, in the order they come (core/run/integrate.c); NULL =
      * the kind does not act then.  Within a phase the conditions act in scene

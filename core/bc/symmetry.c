@@ -50,6 +50,18 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     }
 }
 
+/* v.n = 0: for a plane normal to an axis, that axis' component held at 0.  An
+ * oblique plane is taken as holding at 0 every component along which its
+ * normal has a share (what the check compares; the projection itself mixes
+ * them). */
+static enum tlsph_bc_prescription prescribes(struct tlsph_bc *bc, int c, double *value)
+{
+    if (fabs(bc->normal[c]) < 1e-12)
+        return TLSPH_BC_FREE;
+    *value = 0.0;
+    return TLSPH_BC_CONSTANT;
+}
+
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_BC_KEYS,
@@ -69,5 +81,6 @@ const struct tlsph_bc_kind tlsph_bc_symmetry = {
     .keys = &table,
     .parse = parse,
     .select = select_on_plane,
+    .prescribes = prescribes,
     .constrain = constrain,
 };

@@ -82,6 +82,17 @@ static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_g
     *work = w;
 }
 
+static enum tlsph_bc_prescription prescribes(struct tlsph_bc *bc, int c, double *value)
+{
+    if (!bc->velocity_set[c])
+        return TLSPH_BC_FREE;
+    if (!bc->velocity[c].constant)
+        return TLSPH_BC_VARYING;
+    const double t0 = 0.0;
+    *value = tlsph_expr_eval(&bc->velocity[c], &t0);
+    return TLSPH_BC_CONSTANT;
+}
+
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_BC_KEYS,
@@ -101,5 +112,6 @@ const struct tlsph_bc_kind tlsph_bc_velocity = {
     .keys = &table,
     .parse = parse,
     .select = tlsph_selector_select,
+    .prescribes = prescribes,
     .constrain = constrain,
 };

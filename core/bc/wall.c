@@ -111,6 +111,37 @@ static void stop_at_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
     m->energy.external_work += work;
 }
 
+/* At t = 0 no particle may lie behind the wall: the wall cannot push a body
+ * through itself (it would stop those particles' motion away from the plane
+ * and pull the body apart: non-finite values within a few steps). */
+static int check_sides(const struct tlsph_model *m, const struct tlsph_bc *bc, const char *pointer,
+                       struct tlsph_errors *err)
+{
+    size_t behind = 0, deepest = 0;
+    double depth = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double tol = WALL_CONTACT * m->scene.bodies[m->p.body[i]].spacing;
+        const double d = tlsph_plane_distance(bc, m->p.X + 3 * i);
+        if (d >= -tol)
+            continue;
+        if (behind++ == 0 || d < depth) {
+            depth = d;
+            deepest = i;
+        }
+    }
+    if (behind == 0)
+        return 0;
+    const double *X = m->p.X + 3 * deepest;
+    tlsph_errors_add(err, pointer,
+                     "wall '%s' cuts through body '%s' at t = 0: %zu particles lie behind its "
+                     "plane (the deepest %.3g m behind, at (%g, %g, %g) m); the normal points "
+                     "into the solid, so every body must start on that side (move the plane or "
+                     "the body, or reverse the normal)",
+                     bc->name, m->scene.bodies[m->p.body[deepest]].name, behind, -depth, X[0], X[1],
+                     X[2]);
+    return -1;
+}
+
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_BC_KEYS,
@@ -129,6 +160,7 @@ const struct tlsph_bc_kind tlsph_bc_wall = {
     .keys = &table,
     .parse = parse,
     /* no select: a wall has no particle group; it stops whichever particle reaches it */
+    .check = check_sides,
     .constrain = hold_on_wall,
     .before_drift = stop_at_wall,
 };

@@ -7,13 +7,17 @@
  * written), 3 numerically unstable (diagnostic in the log and in DIR/result.h5),
  * 4 I/O failure, 5 cancelled by SIGTERM/SIGINT (current frame finished, file closed).
  * With --progress-fd every outcome but 1 ends with a final event that carries
- * the errors or the diagnostic (docs/protocol.md); stderr is for people. */
+ * the errors or the diagnostic (docs/protocol.md); stderr is for people.
+ * SIGTERM/SIGINT during validation or setup (before the run starts) exit 5 at
+ * once, with the final event "cancelled" and nothing written. */
 #include <errno.h>
+#include <hdf5.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 #ifdef _OPENMP
 #include <omp.h>
 #endif
@@ -24,10 +28,57 @@
 
 static volatile sig_atomic_t cancel_requested;
 
+/* While the run goes on: the run loop polls the flag, finishes the frame and
+ * closes the file. */
 static void on_signal(int sig)
 {
     (void)sig;
     cancel_requested = 1;
+}
+
+/* Before the run starts, the scene parser and the model setup (lattice,
+ * neighbour search: long for big scenes) do not poll, and nothing has been
+ * written: the handler ends the process itself, with the final event
+ * formatted beforehand (write and _exit are async-signal-safe). */
+static struct {
+    int fd;        /* --progress-fd, -1 none */
+    char line[96]; /* {"event":"finished","status":"cancelled"} and a newline */
+    size_t len;
+} setup_cancel = {.fd = -1};
+
+static void on_signal_in_setup(int sig)
+{
+    (void)sig;
+    static const char msg[] = "tlsph: cancelled before the run started\n";
+    if (setup_cancel.fd >= 0 && setup_cancel.len > 0) {
+        const ssize_t w = write(setup_cancel.fd, setup_cancel.line, setup_cancel.len);
+        (void)w;
+    }
+    const ssize_t w = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)w;
+    _exit(TLSPH_EXIT_CANCELLED);
+}
+
+static void set_handlers(void (*handler)(int))
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = handler;
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGINT, &sa, NULL);
+}
+
+/* Formats the final event of a cancel before the run for on_signal_in_setup. */
+static void prepare_setup_cancel(int fd)
+{
+    json_t *o = tlsph_progress_final(TLSPH_EXIT_CANCELLED, NULL);
+    char *text = o ? json_dumps(o, JSON_COMPACT) : NULL;
+    const int len = text ? snprintf(setup_cancel.line, sizeof setup_cancel.line, "%s\n", text) : -1;
+    setup_cancel.fd = fd;
+    setup_cancel.len = len > 0 && (size_t)len < sizeof setup_cancel.line ? (size_t)len : 0;
+    free(text);
+    json_decref(o);
 }
 
 static void usage(FILE *f)
@@ -112,21 +163,25 @@ int main(int argc, char **argv)
     if (threads > 0)
         omp_set_num_threads((int)threads);
 #endif
+    /* No HDF5 clean-up at exit: the writer closes every file it opens, and
+     * HDF5 1.10's exit handler crashes (SIGSEGV in H5F__close_cb) on a file
+     * whose close failed -- a full disk or a file-size limit -- which would
+     * turn exit code 4 into a death by signal after the final event.  Must
+     * come before any other HDF5 call. */
+    H5dont_atexit();
 
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sigaction(SIGTERM, &sa, NULL);
-    sigaction(SIGINT, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
+    prepare_setup_cancel((int)progress_fd);
+    set_handlers(on_signal_in_setup);
 
     struct tlsph_errors err;
     tlsph_errors_init(&err);
     struct tlsph_scene scene;
     struct tlsph_model *m = NULL;
-    if (tlsph_scene_load_file(scene_path, &scene, &err) != 0 ||
-        tlsph_model_create(&scene, &m, &err) != 0) {
+    const int rejected = tlsph_scene_load_file(scene_path, &scene, &err) != 0 ||
+                         tlsph_model_create(&scene, &m, &err) != 0;
+    set_handlers(on_signal); /* from here on, a signal is one event among others */
+    if (rejected) {
         print_errors(&err);
         if (err.count == 0) /* the event promises at least one error */
             tlsph_errors_add(&err, "", "the scene was rejected");

@@ -323,7 +323,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
         tlsph_errors_add(err, "", "out of memory");
         goto fail;
     }
-    if (tlsph_boundary_select(m, err) != 0 || tlsph_measures_init(m, err) != 0)
+    if (tlsph_boundary_select(m, err) != 0 || tlsph_boundary_check(m, err) != 0 ||
+        tlsph_measures_init(m, err) != 0)
         goto fail;
     select_modules(m);
 

@@ -1,11 +1,9 @@
-/* Scene geometry: point membership, bounding boxes and the simple cubic lattice
- * that turns a body's geometry into particle positions.
+/* Scene geometry: point membership and bounding boxes (the lattice that turns
+ * a body's geometry into particle positions is lattice.c).
  *
  * Membership is closed (a point on a primitive's surface is inside), except for
  * the notch cutter of the notched bar, which removes points strictly inside its
- * circle, so the notch root (rho = r at the notch position) belongs to the bar.
- * The lattice is origin + (i + 1/2) h per axis; index ranges come from
- * floor/ceil of the bounds so that positions never accumulate rounding. */
+ * circle, so the notch root (rho = r at the notch position) belongs to the bar. */
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -158,116 +156,4 @@ void tlsph_geometry_bounds(const struct tlsph_geometry *g, double lo[3], double 
         }
         return;
     }
-}
-
-double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], long hi[3])
-{
-    const struct tlsph_body *body = &s->bodies[b];
-    const double h = body->spacing;
-    double glo[3], ghi[3];
-    tlsph_geometry_bounds(&body->geometry, glo, ghi);
-    double total = 1.0;
-    for (int k = 0; k < 3; k++) {
-        if (k == 2 && s->dimension == 2) {
-            lo[k] = hi[k] = 0; /* the single plane z = 0 */
-            continue;
-        }
-        /* origin + (i + 1/2) h in [glo, ghi]  <=>  i in [(glo-o)/h - 1/2, (ghi-o)/h - 1/2] */
-        const double fl = ceil((glo[k] - body->origin[k]) / h - 0.5);
-        const double fh = floor((ghi[k] - body->origin[k]) / h - 0.5);
-        if (!(fh >= fl) || !isfinite(fl) || !isfinite(fh)) {
-            lo[k] = 0;
-            hi[k] = -1;
-            total = 0.0;
-            continue;
-        }
-        const double n = fh - fl + 1.0;
-        total *= n;
-        /* Keep the indices representable; callers refuse such ranges by the count. */
-        if (fabs(fl) > 1e15 || fabs(fh) > 1e15 || n > 1e15) {
-            lo[k] = 0;
-            hi[k] = -1;
-            total = INFINITY;
-            continue;
-        }
-        lo[k] = (long)fl;
-        hi[k] = (long)fh;
-    }
-    return total;
-}
-
-/* Visits the lattice in x-fastest order; stores up to cap points in out (when
- * non-NULL) and returns the number of points inside. */
-static size_t lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
-                           const long hi[3], double *out, size_t cap)
-{
-    const struct tlsph_body *body = &s->bodies[b];
-    const double h = body->spacing;
-    size_t n = 0;
-    for (long k = lo[2]; k <= hi[2]; k++) {
-        const double z = s->dimension == 2 ? 0.0 : body->origin[2] + ((double)k + 0.5) * h;
-        for (long j = lo[1]; j <= hi[1]; j++) {
-            const double y = body->origin[1] + ((double)j + 0.5) * h;
-            for (long i = lo[0]; i <= hi[0]; i++) {
-                const double X[3] = {body->origin[0] + ((double)i + 0.5) * h, y, z};
-                if (!tlsph_geometry_contains(&body->geometry, X))
-                    continue;
-                if (out && n < cap)
-                    memcpy(out + 3 * n, X, sizeof X);
-                n++;
-            }
-        }
-    }
-    return n;
-}
-
-size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b)
-{
-    long lo[3], hi[3];
-    const double total = tlsph_lattice_range(s, b, lo, hi);
-    if (!(total > 0.0) || !isfinite(total))
-        return 0;
-    return lattice_walk(s, b, lo, hi, NULL, 0);
-}
-
-int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,
-                       size_t *n, struct tlsph_errors *err)
-{
-    char p[TLSPH_POINTER_MAX];
-    tlsph_pointer_index(p, sizeof p, "/bodies", b);
-    *out = NULL;
-    *n = 0;
-    long lo[3], hi[3];
-    const double total = tlsph_lattice_range(s, b, lo, hi);
-    /* Candidates are bounded like the parser's estimate (10x the particle limit). */
-    if (!isfinite(total) || total > 10.0 * (double)max_points) {
-        tlsph_errors_add(err, p,
-                         "body '%s': its bounding box holds about %.3g lattice points at spacing "
-                         "%g m, more than 10 x the limit of %ld particles",
-                         s->bodies[b].name, total, s->bodies[b].spacing, max_points);
-        return -1;
-    }
-    const size_t count = total > 0.0 ? lattice_walk(s, b, lo, hi, NULL, 0) : 0;
-    if (count > (size_t)max_points) {
-        tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
-                         s->bodies[b].name, count, max_points);
-        return -1;
-    }
-    if (count == 0)
-        return 0;
-    double *x = malloc(3 * count * sizeof *x);
-    if (!x) {
-        tlsph_errors_add(err, p, "out of memory for %zu particles of body '%s'", count,
-                         s->bodies[b].name);
-        return -1;
-    }
-    const size_t again = lattice_walk(s, b, lo, hi, x, count);
-    if (again != count) { /* cannot happen: the walk is deterministic */
-        free(x);
-        tlsph_errors_add(err, p, "internal error: lattice count changed");
-        return -1;
-    }
-    *out = x;
-    *n = count;
-    return 0;
 }

@@ -195,6 +195,11 @@ static int read_key(const json_t *obj, const struct tlsph_key *k, const char *po
     case TLSPH_KEY_STRING:
         if (at)
             r = jc_string(obj, k->name, required, pointer, at, k->size, err);
+        if (r == 0 && at && (k->flags & TLSPH_KEY_NAME)) {
+            char p[TLSPH_POINTER_MAX];
+            tlsph_pointer_join(p, sizeof p, pointer, k->name);
+            r = tlsph_scene_check_name(at, k->noun ? k->noun : k->name, p, err);
+        }
         break;
     case TLSPH_KEY_OBJECT: r = read_object(obj, k, pointer, to, err); break;
     case TLSPH_KEY_ARRAY:

@@ -57,7 +57,12 @@ enum {
     TLSPH_KEY_MAP = 16u, /* OBJECT whose members, under any name, are each a .table */
     /* NUMBER in Pa that must be below the material's Young's modulus (a flow stress at
      * or above E means unit slip). */
-    TLSPH_KEY_BELOW_E = 32u
+    TLSPH_KEY_BELOW_E = 32u,
+    /* A name that becomes part of an HDF5 path or a series name: a STRING (or, with
+     * TLSPH_KEY_MAP, each member's name) that must follow the naming rule
+     * (util/names.h).  The reader checks the STRING keys it reads; callers that read
+     * a name themselves check it with tlsph_scene_check_name. */
+    TLSPH_KEY_NAME = 64u
 };
 
 /* Where a key's value goes when it is stored nowhere (only validated). */
@@ -91,7 +96,9 @@ struct tlsph_key {
      * with the NUL. */
     size_t size;
     const struct tlsph_key_choice *choices; /* CHOICE: ends with {NULL, 0} */
-    const char *noun;                       /* CHOICE: "unknown <noun> 'x' (accepted: ...)" */
+    /* CHOICE: "unknown <noun> 'x' (accepted: ...)"; TLSPH_KEY_NAME: what the name
+     * names, for messages ("boundary condition name") */
+    const char *noun;
     /* Only with this earlier key of the same object: read when it is present, "has no
      * effect without" when it is not. */
     const char *with;
@@ -177,6 +184,10 @@ void tlsph_keys_defaults(const struct tlsph_key_table *t, void *base);
 void tlsph_keys_names(const struct tlsph_key_table *t, char *buf, size_t size);
 /* The row of t named name, or NULL. */
 const struct tlsph_key *tlsph_key_find(const struct tlsph_key_table *t, const char *name);
+/* The naming rule (util/names.h) for name, the scene's `what` ("body name"...) at
+ * pointer: 0 when it follows the rule, else -1 with an error (core/scene/names.c). */
+int tlsph_scene_check_name(const char *name, const char *what, const char *pointer,
+                           struct tlsph_errors *err);
 /* printf-style error at pointer/key: for the checks that follow a table. */
 void tlsph_key_error(struct tlsph_errors *err, const char *pointer, const char *key,
                      const char *fmt, ...) __attribute__((format(printf, 4, 5)));

@@ -5,14 +5,24 @@
 #ifndef TLSPH_SCENE_LIMITS_H
 #define TLSPH_SCENE_LIMITS_H
 
+#include "util/names.h" /* the naming rule and its length */
+
 /* ---------------------------------------------------------------- ceilings */
-#define TLSPH_NAME_MAX           64        /* bytes of a name, with its NUL: 63 characters */
+#define TLSPH_NAME_MAX           (TLSPH_NAME_CHARS_MAX + 1) /* bytes of a name, with its NUL */
 #define TLSPH_MAX_PARTICLES      50000000L /* absolute ceiling; the scene may set a lower one */
 #define TLSPH_MAX_PARAMS         40        /* entries of "parameters" */
 #define TLSPH_MAX_MATERIALS      1000      /* entries of "materials" */
 #define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
 #define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
 #define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
+/* Objects (primitives, unions, differences) in one body's geometry: bounds the
+ * lattice walk at (lattice points in the bounding box) x (objects) box tests */
+#define TLSPH_GEOMETRY_MAX_OBJECTS 1000
+/* Smallest spacing / (largest |coordinate| of the body's geometry and origin):
+ * positions are doubles (53 bits, ~16 digits), so at this ratio a position is
+ * exact to ~1e-9 spacing and a step's displacement (~1e-3 spacing) to ~1e-6 of
+ * itself; far below it particles coincide (1e16 m at 1 m spacing) */
+#define TLSPH_MIN_RELATIVE_SPACING 1e-7
 #define TLSPH_SCENE_FILE_MAX     (16L * 1024 * 1024) /* bytes of a scene file (16 MiB) */
 #define TLSPH_MAX_STEPS          1000000000000L      /* time.max_steps */
 #define TLSPH_MAX_EVERY          1000000000L /* stability.check_every, output.series_every (steps) */

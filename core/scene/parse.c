@@ -214,14 +214,13 @@ static int parse_material(const char *name, const json_t *mat, struct tlsph_mate
                          jc_type_name(mat));
         return -1;
     }
-    if (strlen(name) == 0 || strlen(name) >= sizeof m->name) {
-        tlsph_errors_add(err, P, "material name must have 1 to %zu characters",
-                         sizeof m->name - 1);
+    const int name_bad = tlsph_scene_check_name(name, "material name", P, err) != 0;
+    if (strlen(name) >= sizeof m->name) /* reported by the check above */
         return -1;
-    }
+    /* kept even when invalid, for body lookups */
     memcpy(m->name, name, strlen(name) + 1);
     const struct tlsph_key_target to = {.base = m};
-    int bad = tlsph_keys_read(mat, &tlsph_material_keys, P, &to, err) != 0;
+    int bad = name_bad | (tlsph_keys_read(mat, &tlsph_material_keys, P, &to, err) != 0);
     if (!bad) { /* derived constants of a valid material; nothing reads those of another */
         const double nu = m->poisson_ratio;
         m->shear_modulus = m->youngs_modulus / (2.0 * (1.0 + nu));

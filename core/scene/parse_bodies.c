@@ -65,12 +65,13 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     }
     b->material = -1;
     int bad = tlsph_keys_unknown(obj, &tlsph_body_keys, P, err) != 0;
-    if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0) {
+    tlsph_pointer_join(p, sizeof p, P, "name");
+    if (jc_string(obj, "name", 1, P, b->name, sizeof b->name, err) != 0 ||
+        tlsph_scene_check_name(b->name, "body name", p, err) != 0) {
         bad = 1;
     } else {
         for (size_t j = 0; j < index; j++)
             if (strcmp(s->bodies[j].name, b->name) == 0) {
-                tlsph_pointer_join(p, sizeof p, P, "name");
                 tlsph_errors_add(err, p, "duplicate body name '%s' (also used by /bodies/%zu)",
                                  b->name, j);
                 bad = 1;
@@ -97,6 +98,12 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
         bad = 1;
     } else if (tlsph_parse_geometry(g, s->dimension, 0, p, &b->geometry, err) != 0) {
         bad = 1;
+    } else if (tlsph_geometry_count(&b->geometry) > TLSPH_GEOMETRY_MAX_OBJECTS) {
+        tlsph_errors_add(err, p,
+                         "body '%s': the geometry has %zu objects (primitives, unions and "
+                         "differences); at most %d are allowed",
+                         b->name, tlsph_geometry_count(&b->geometry), TLSPH_GEOMETRY_MAX_OBJECTS);
+        bad = 1;
     } else {
         geometry_ok = 1;
     }
@@ -109,6 +116,8 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     }
     if (s->dimension == 2)
         b->origin[2] = 0.0;
+    if (geometry_ok && r >= 0)
+        bad |= tlsph_check_body_precision(b, s->dimension, P, err) != 0;
     bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
     return bad ? -1 : 0;
 }
@@ -147,6 +156,22 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
     int bad = 0;
     size_t total = 0;
     const long max = s->max_particles;
+    /* The walk tests every lattice point of each body's bounding box: all
+     * bodies together may hold at most 10 x the particle limit of them, so
+     * that validation stays bounded however many bodies there are. */
+    double candidates = 0.0;
+    for (size_t i = 0; i < s->nbodies; i++) {
+        long lo[3], hi[3];
+        candidates += tlsph_lattice_range(s, i, lo, hi);
+    }
+    if (s->nbodies > 1 && isfinite(candidates) && candidates > 10.0 * (double)max) {
+        tlsph_errors_add(err, "/bodies",
+                         "the bounding boxes of the bodies' geometries hold about %.3g lattice "
+                         "points in all, more than 10 x the limit of %ld particles "
+                         "(/limits/max_particles); increase the spacings",
+                         candidates, max);
+        return -1;
+    }
     for (size_t i = 0; i < s->nbodies; i++) {
         const struct tlsph_body *b = &s->bodies[i];
         char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
@@ -164,7 +189,13 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
             bad = 1;
             continue;
         }
-        const size_t count = tlsph_lattice_count(s, i);
+        size_t count;
+        if (tlsph_lattice_count(s, i, &count) != 0) {
+            tlsph_errors_add(err, P, "out of memory while counting the particles of body '%s'",
+                             b->name);
+            bad = 1;
+            continue;
+        }
         if (count == 0) {
             tlsph_pointer_join(p, sizeof p, P, "geometry");
             tlsph_errors_add(err, p,

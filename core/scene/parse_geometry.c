@@ -289,8 +289,11 @@ static int parse_list(const json_t *v, int dim, int depth, int min_items, const 
         return -1;
     }
     const size_t n = json_array_size(v);
-    if (n > 10000) {
-        tlsph_errors_add(err, P, "'%s' has %zu items; at most 10000 are allowed", kind, n);
+    if (n >= TLSPH_GEOMETRY_MAX_OBJECTS) {
+        tlsph_errors_add(err, P,
+                         "'%s' has %zu items; a body's geometry holds at most %d objects "
+                         "(primitives, unions and differences)",
+                         kind, n, TLSPH_GEOMETRY_MAX_OBJECTS);
         return -1;
     }
     g->children = calloc(n, sizeof *g->children);

@@ -43,6 +43,12 @@ void tlsph_geometry_free(struct tlsph_geometry *g);
 int tlsph_parse_direction(const json_t *obj, const char *key, int dimension, const char *pointer,
                           double out[3], struct tlsph_errors *err);
 
+/* precision.c: body b's spacing against its largest coordinate (geometry and
+ * origin; TLSPH_MIN_RELATIVE_SPACING); 0, or -1 with an error under pointer
+ * ("/bodies/<i>"). */
+int tlsph_check_body_precision(const struct tlsph_body *b, int dimension, const char *pointer,
+                               struct tlsph_errors *err);
+
 /* parse_bodies.c: fills s->bodies (s->materials and s->params already parsed). */
 int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 /* Counts each body's lattice points against s->max_particles. */
@@ -51,12 +57,15 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
-/* geometry.c: lattice index range of body b over its geometry bounds
+/* lattice.c: lattice index range of body b over its geometry bounds
  * (i in [lo[d], hi[d]], empty when hi < lo) and the number of candidate
  * points (product of the ranges, as a double so that it cannot overflow). */
 double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], long hi[3]);
-/* Number of lattice points of body b inside its geometry (no allocation). */
-size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b);
+/* *count = the number of lattice points of body b inside its geometry; 0, or
+ * -1 when out of memory. */
+int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count);
+/* Objects (primitives, unions and differences) in geometry g, g included. */
+size_t tlsph_geometry_count(const struct tlsph_geometry *g);
 
 /* parse_damage.c: a material's "damage" block (after its strength and thermal
  * blocks). */

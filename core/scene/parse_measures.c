@@ -30,11 +30,11 @@ static long measure_array(const json_t *out, const char *key, const json_t **arr
     return (long)n;
 }
 
-/* Item i of an array of objects, with its name unique among items 0..i-1. */
-static const json_t *measure_item(const json_t *arr, size_t i, const char *key,
-                                  const struct tlsph_key_table *keys, char *name,
-                                  const char *names, size_t stride, char *P,
-                                  struct tlsph_errors *err)
+/* Item i of an array of objects, with its name (a `noun` name) valid and unique
+ * among items 0..i-1. */
+static const json_t *measure_item(const json_t *arr, size_t i, const char *key, const char *noun,
+                                  const struct tlsph_key_table *keys, char *name, const char *names,
+                                  size_t stride, char *P, struct tlsph_errors *err)
 {
     char base[TLSPH_POINTER_MAX];
     tlsph_pointer_join(base, sizeof base, "/output", key);
@@ -45,12 +45,13 @@ static const json_t *measure_item(const json_t *arr, size_t i, const char *key,
         return NULL;
     }
     int bad = tlsph_keys_unknown(o, keys, P, err) != 0;
-    if (jc_string(o, "name", 1, P, name, TLSPH_NAME_MAX, err) != 0)
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_join(p, sizeof p, P, "name");
+    if (jc_string(o, "name", 1, P, name, TLSPH_NAME_MAX, err) != 0 ||
+        tlsph_scene_check_name(name, noun, p, err) != 0)
         return NULL;
     for (size_t j = 0; j < i; j++)
         if (strcmp(names + j * stride, name) == 0) {
-            char p[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(p, sizeof p, P, "name");
             tlsph_errors_add(err, p, "duplicate name '%s' (also used by %s/%zu)", name, base, j);
             return NULL;
         }
@@ -140,8 +141,8 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_gauge *g = &s->gauges[i];
-        const json_t *o = measure_item(arr, (size_t)i, "gauges", &tlsph_gauge_keys, g->name,
-                                       s->gauges[0].name, sizeof *g, P, err);
+        const json_t *o = measure_item(arr, (size_t)i, "gauges", "gauge name", &tlsph_gauge_keys,
+                                       g->name, s->gauges[0].name, sizeof *g, P, err);
         if (!o || parse_gauge(o, s, P, g, err) != 0)
             bad = 1;
     }
@@ -152,8 +153,9 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     bad |= n < 0;
     for (long i = 0; i < n; i++) {
         struct tlsph_section *c = &s->sections[i];
-        const json_t *o = measure_item(arr, (size_t)i, "sections", &tlsph_section_keys, c->name,
-                                       s->sections[0].name, sizeof *c, P, err);
+        const json_t *o =
+            measure_item(arr, (size_t)i, "sections", "section name", &tlsph_section_keys, c->name,
+                         s->sections[0].name, sizeof *c, P, err);
         if (!o || parse_section(o, s->dimension, P, c, err) != 0)
             bad = 1;
     }

@@ -145,7 +145,7 @@ static const struct tlsph_key_table limits_table = TLSPH_KEY_TABLE("/limits", NU
 /* ------------------------------------------------------------------ output */
 
 static const struct tlsph_key gauge_keys[] = {
-    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER,
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
      .size = TLSPH_NAME_MAX, .description = "unique among the gauges; names the output series"},
     {.name = "between", .kind = TLSPH_KEY_ARRAY, .flags = REQUIRED | CALLER,
      .description = "two different names of fixed or velocity boundary conditions"},
@@ -161,7 +161,7 @@ const struct tlsph_key_table tlsph_gauge_keys =
     TLSPH_KEY_TABLE("/output/gauges/*", NULL, gauge_keys);
 
 static const struct tlsph_key section_keys[] = {
-    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER,
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
      .size = TLSPH_NAME_MAX, .description = "unique among the sections; names the output series"},
     TLSPH_KEY_POINT("point", "a point of the plane"),
     TLSPH_KEY_DIRECTION("normal", "normal of the plane, any non-zero length"),
@@ -238,7 +238,7 @@ const struct tlsph_key_table tlsph_material_keys =
 static const struct tlsph_key_choice lattices[] = {{"simple_cubic", 0}, {0}};
 
 static const struct tlsph_key body_keys[] = {
-    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER,
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
      .size = TLSPH_NAME_MAX, .description = "unique body name"},
     {.name = "material", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER,
      .size = TLSPH_NAME_MAX, .description = "a key of /materials"},
@@ -280,7 +280,8 @@ static const struct tlsph_key scene_keys[] = {
      .description = "particle limit"},
     {.name = "output", .kind = TLSPH_KEY_OBJECT, .flags = CALLER, .table = &output_table,
      .description = "frames, time-series sampling, gauges and sections"},
-    {.name = "materials", .kind = TLSPH_KEY_OBJECT, .flags = REQUIRED | CALLER | TLSPH_KEY_MAP,
+    {.name = "materials", .kind = TLSPH_KEY_OBJECT,
+     .flags = REQUIRED | CALLER | TLSPH_KEY_MAP | TLSPH_KEY_NAME,
      .table = &tlsph_material_keys, .description = "material name -> material"},
     {.name = "bodies", .kind = TLSPH_KEY_ARRAY, .flags = REQUIRED | CALLER,
      .table = &tlsph_body_keys, .description = "bodies of particles"},

@@ -22,6 +22,7 @@
 static char tmpdir[256];
 static char h5[512];     /* the finished elastic-strip run (2-D, 400 particles) */
 static char scene_long[512];
+static char h5_named[512]; /* the strip with a gauge and a section (series families) */
 static double end_time;
 
 static const char *env_or(const char *name, const char *def)
@@ -88,7 +89,31 @@ static void setup_files(void)
         fprintf(stderr, "cannot write %s\n", scene_long);
         exit(1);
     }
+
+    /* the short strip with a gauge and a section whose names use every kind of
+     * character the naming rule allows (core/util/names.h) */
+    json_object_set_new(t, "end", json_real(end_time / 4));
+    json_object_set_new(o, "frames", json_integer(2));
+    json_object_set_new(o, "gauges",
+                        json_pack("[{s:s, s:[s,s], s:f}]", "name", "Strip.gauge-1", "between",
+                                  "left", "right", "area", 0.01));
+    json_object_set_new(o, "sections",
+                        json_pack("[{s:s, s:[f,f,f], s:[f,f,f], s:f}]", "name", "_mid", "point",
+                                  0.0205, 0.0, 0.0, "normal", 1.0, 0.0, 0.0, "thickness", 0.001));
+    char scene_named[600];
+    snprintf(scene_named, sizeof scene_named, "%s/named.json", tmpdir);
+    if (json_dump_file(scene, scene_named, 0) != 0) {
+        fprintf(stderr, "cannot write %s\n", scene_named);
+        exit(1);
+    }
     json_decref(scene);
+    snprintf(cmd, sizeof cmd, "'%s/tlsph-run' '%s' -o '%s/named' --quiet", bld, scene_named,
+             tmpdir);
+    if (system(cmd) != 0) {
+        fprintf(stderr, "failed: %s\n", cmd);
+        exit(1);
+    }
+    snprintf(h5_named, sizeof h5_named, "%s/named/result.h5", tmpdir);
 }
 
 static void cleanup_files(void)
@@ -142,6 +167,45 @@ START_TEST(test_series_list)
         ck_assert(strcmp(name, "groups") != 0);
     }
     ck_assert(have_ke && have_rf && have_left);
+    json_decref(l);
+    ck_assert_int_eq(obj_count(), 0);
+}
+END_TEST
+
+/* Every family's series is listed and can be read and reduced (what a study
+ * output does) under the name the list gives, whatever characters the naming
+ * rule lets its item's name hold.  The daemon listed only the "groups" family
+ * before issue 13 (item 4): gauges and sections could not be found. */
+START_TEST(test_series_families)
+{
+    char err[256] = "";
+    json_t *l = tres_series_list(h5_named, err, sizeof err);
+    ck_assert_msg(l != NULL, "%s", err);
+    const char *want[] = {"groups/right/reaction_force", "gauges/Strip.gauge-1/engineering_stress",
+                          "gauges/Strip.gauge-1/engineering_strain", "sections/_mid/normal_stress",
+                          NULL};
+    for (int w = 0; want[w]; w++) {
+        int listed = 0;
+        for (size_t i = 0; i < json_array_size(l); i++)
+            listed |= strcmp(json_string_value(json_object_get(json_array_get(l, i), "name")),
+                             want[w]) == 0;
+        ck_assert_msg(listed, "%s is not listed", want[w]);
+        int nf = 0;
+        json_t *one = tres_series(h5_named, want[w], &nf, err, sizeof err);
+        ck_assert_msg(one != NULL, "%s: %s", want[w], err);
+        ck_assert_int_gt(json_array_size(json_object_get(one, "step")), 1);
+        json_decref(one);
+        double fin, mx, mn;
+        ck_assert_int_eq(tres_series_reduce(h5_named, want[w], 0, &fin, &mx, &mn, err, sizeof err),
+                         TRES_OK);
+        ck_assert(mn <= fin && fin <= mx);
+    }
+    for (size_t i = 0; i < json_array_size(l); i++) {
+        const char *name = json_string_value(json_object_get(json_array_get(l, i), "name"));
+        ck_assert_msg(tres_series_name_ok(name), "listed name %s fails the rule", name);
+        ck_assert_msg(strcmp(name, "gauges") != 0 && strcmp(name, "sections") != 0,
+                      "a family listed as a series: %s", name);
+    }
     json_decref(l);
     ck_assert_int_eq(obj_count(), 0);
 }
@@ -275,7 +339,12 @@ START_TEST(test_series_not_found)
     ck_assert(tres_series_name_ok("groups/right-1/reaction_force"));
     ck_assert(tres_series_name_ok("a.b"));
     ck_assert(!tres_series_name_ok(".."));
-    ck_assert(!tres_series_name_ok("a..b"));
+    /* each segment follows the engine's naming rule (util/names.h) */
+    ck_assert(tres_series_name_ok("a..b"));
+    ck_assert(tres_series_name_ok("gauges/Strip.gauge-1/engineering_stress"));
+    ck_assert(!tres_series_name_ok("groups/right end/reaction_force"));
+    ck_assert(!tres_series_name_ok("groups/1st/reaction_force"));
+    ck_assert(!tres_series_name_ok("groups/-x/reaction_force"));
     ck_assert(!tres_series_name_ok(NULL));
     ck_assert(tres_field_name_ok("det_F"));
     ck_assert(!tres_field_name_ok("stress/value"));
@@ -639,6 +708,7 @@ static Suite *results_suite(void)
     tcase_add_unchecked_fixture(tc, setup_files, cleanup_files);
     tcase_set_timeout(tc, 120);
     tcase_add_test(tc, test_series_list);
+    tcase_add_test(tc, test_series_families);
     tcase_add_test(tc, test_series_json);
     tcase_add_test(tc, test_series_csv);
     tcase_add_test(tc, test_series_not_found);

@@ -8,7 +8,11 @@
  *   (surface area / h^2) x O(1) cancelling fluctuations; measured errors are below
  *   1 %, we allow 3 %.
  * - Boolean geometry (union without double counting, difference), the notched bar
- *   (root radius kept, points just outside it removed).
+ *   (root radius kept, points just outside it removed).  The lattice walk, which
+ *   tests each point only against the objects whose box meets its row, gives
+ *   exactly the points, in order, of tlsph_geometry_contains over every lattice
+ *   point of the bounding box (nested unions and differences of 300 objects,
+ *   many surfaces passing through lattice points).
  * - Expressions: initial velocity of x, velocity BC of t, selector conditions.
  * - Errors: exact JSON pointers for representative bad inputs, all errors
  *   collected, scene zeroed on failure, file errors. */
@@ -22,6 +26,7 @@
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
+#include "scene/parse_internal.h" /* tlsph_lattice_range */
 #include "scene/scene.h"
 #include "support/check_main.h"
 
@@ -415,6 +420,73 @@ START_TEST(test_u_notch)
 }
 END_TEST
 
+START_TEST(test_lattice_walk_matches_contains)
+{
+    /* difference(box, union(spheres), union(difference(sphere, box), cylinders)):
+     * centres and radii on the lattice's half-spacing grid put points exactly
+     * on surfaces, where a bounding box that is not conservative would show */
+    const double h = 0.001;
+    char *text = malloc(65536), *p = text;
+    ck_assert_ptr_nonnull(text);
+    p += sprintf(p,
+                 "{\"dimension\": 3, \"time\": {\"end\": 1e-4}, \"materials\": {\"m\": "
+                 "{\"density\": 1000, \"youngs_modulus\": 1e9, \"poisson_ratio\": 0.25}},"
+                 "\"bodies\": [{\"name\": \"b\", \"material\": \"m\", \"spacing\": %g,"
+                 "\"geometry\": {\"difference\": [{\"box\": {\"min\": [0,0,0], "
+                 "\"max\": [0.03,0.02,0.015]}}, {\"union\": [",
+                 h);
+    unsigned seed = 7;
+    for (int k = 0; k < 250; k++) {
+        seed = seed * 1103515245u + 12345u;
+        const double x = (double)(seed % 61) * 0.5 * h, y = (double)((seed >> 8) % 41) * 0.5 * h,
+                     z = (double)((seed >> 16) % 31) * 0.5 * h,
+                     r = (double)(1 + (seed >> 24) % 4) * h;
+        p += sprintf(p, "%s{\"sphere\": {\"center\": [%.17g,%.17g,%.17g], \"radius\": %.17g}}",
+                     k ? "," : "", x, y, z, r);
+    }
+    p += sprintf(p, "]}, {\"union\": [{\"difference\": [{\"sphere\": {\"center\": "
+                    "[0.015,0.01,0.0075], \"radius\": 0.006}}, {\"box\": {\"min\": "
+                    "[0.0125,0.0075,0], \"max\": [0.0175,0.0125,0.015]}}]}");
+    for (int k = 0; k < 40; k++)
+        p += sprintf(p,
+                     ", {\"cylinder\": {\"base\": [%.17g,0,0.0075], \"axis\": [0,1,0.5],"
+                     "\"radius\": 0.0005, \"length\": 0.02}}",
+                     0.0005 + 0.00075 * k);
+    sprintf(p, "]}]}}]}");
+    struct tlsph_scene s;
+    struct tlsph_errors e;
+    const int rc = parse(text, &s, &e);
+    if (rc != 0)
+        dump(&e);
+    ck_assert_int_eq(rc, 0);
+    free(text);
+    double *x = NULL;
+    size_t n = 0;
+    ck_assert_int_eq(tlsph_body_lattice(&s, 0, s.max_particles, &x, &n, &e), 0);
+    const struct tlsph_body *b = &s.bodies[0];
+    long lo[3], hi[3];
+    ck_assert(tlsph_lattice_range(&s, 0, lo, hi) > 0);
+    size_t m = 0;
+    for (long k = lo[2]; k <= hi[2]; k++)
+        for (long j = lo[1]; j <= hi[1]; j++)
+            for (long i = lo[0]; i <= hi[0]; i++) {
+                const double X[3] = {b->origin[0] + ((double)i + 0.5) * h,
+                                     b->origin[1] + ((double)j + 0.5) * h,
+                                     b->origin[2] + ((double)k + 0.5) * h};
+                if (!tlsph_geometry_contains(&b->geometry, X))
+                    continue;
+                ck_assert_msg(m < n, "the walk found fewer than %zu points", m + 1);
+                ck_assert_msg(memcmp(x + 3 * m, X, sizeof X) == 0, "point %zu differs", m);
+                m++;
+            }
+    ck_assert_uint_eq(m, n);
+    ck_assert(n > 500 && n < 8500); /* neither empty nor the whole box (9000 points) */
+    free(x);
+    tlsph_scene_free(&s);
+    tlsph_errors_free(&e);
+}
+END_TEST
+
 START_TEST(test_lattice_limit)
 {
     const char *text = BASE_HEAD
@@ -642,6 +714,7 @@ static Suite *scene_suite(void)
     tcase_add_test(tc, test_boolean);
     tcase_add_test(tc, test_notched_bar);
     tcase_add_test(tc, test_u_notch);
+    tcase_add_test(tc, test_lattice_walk_matches_contains);
     tcase_add_test(tc, test_lattice_limit);
     tcase_add_test(tc, test_error_pointers);
     tcase_add_test(tc, test_all_errors_collected);

@@ -114,6 +114,7 @@ static json_t *key_json(const struct tlsph_key *k)
     json_object_set_new(o, "refused", json_boolean(k->flags & TLSPH_KEY_REFUSED));
     json_object_set_new(o, "map", json_boolean(k->flags & TLSPH_KEY_MAP));
     json_object_set_new(o, "below_youngs_modulus", json_boolean(k->flags & TLSPH_KEY_BELOW_E));
+    json_object_set_new(o, "name_rule", json_boolean(k->flags & TLSPH_KEY_NAME));
     json_object_set_new(o, "default", default_json(k));
     json_object_set_new(o, "unit", k->unit ? json_string(k->unit) : json_null());
     json_object_set_new(o, "with", k->with ? json_string(k->with) : json_null());
@@ -149,7 +150,7 @@ static int print_json(void)
         json_array_append_new(arr, json_pack("{s:s, s:s?, s:b, s:o}", "path", t->path, "model",
                                              t->model, "one_of", t->one_of, "keys", keys));
     }
-    json_t *doc = json_pack("{s:o}", "tables", arr);
+    json_t *doc = json_pack("{s:o, s:s}", "tables", arr, "name_pattern", TLSPH_NAME_PATTERN);
     const int rc = doc ? json_dumpf(doc, stdout, JSON_INDENT(1)) : -1;
     json_decref(doc);
     putchar('\n');
@@ -204,6 +205,10 @@ static void check_key(const struct tlsph_key_table *t, size_t i)
     }
     if (k->kind == TLSPH_KEY_STRING)
         ck_assert_msg(k->size > 1, "%s: string size", where);
+    if (k->flags & TLSPH_KEY_NAME) /* a name string, or an object of named members */
+        ck_assert_msg((k->kind == TLSPH_KEY_STRING && k->size == TLSPH_NAME_MAX) ||
+                          (k->kind == TLSPH_KEY_OBJECT && (k->flags & TLSPH_KEY_MAP)),
+                      "%s: TLSPH_KEY_NAME on a key that holds no name", where);
     if (k->kind == TLSPH_KEY_EXPRESSION)
         ck_assert_msg(k->flags & TLSPH_KEY_CALLER, "%s: an expression is the caller's", where);
     if (k->table) {

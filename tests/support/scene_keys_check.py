@@ -155,10 +155,26 @@ SCHEMA_TYPES = {"number": "number", "integer": "integer", "boolean": "boolean",
                 "string": "string", "array": "array", "expression": "string"}
 
 
+NAME_PATTERN = None  # the naming rule (core/util/names.h), from the tables' JSON
+
+
+def check_name_rule(schema, w, key, prop):
+    """A name (or an object whose member names are names) must carry the
+    naming rule's pattern in the schema."""
+    if key.get("map"):
+        prop = deref(schema, prop.get("propertyNames", {}))
+    if key.get("name_rule") and prop.get("pattern") != NAME_PATTERN:
+        problem("%s: schema pattern %s, the engine's naming rule is %s" %
+                (w, prop.get("pattern"), NAME_PATTERN))
+    if not key.get("name_rule") and prop.get("pattern") == NAME_PATTERN:
+        problem("%s: schema has the naming rule's pattern, the engine does not check it" % w)
+
+
 def check_key_schema(schema, w, key, prop, required, dependent):
     prop = deref(schema, prop)
     kind = key["kind"]
     name = key["name"]
+    check_name_rule(schema, w, key, prop)
     unconditional = key["required"] and not key["with"]
     if unconditional != (name in required):
         problem("%s: required in the %s only" % (w, "engine" if unconditional else "schema"))
@@ -476,7 +492,10 @@ def main(argv):
     if len(argv) != 4:
         print(__doc__)
         return 2
-    tables = json.load(open(argv[1]))["tables"]
+    global NAME_PATTERN
+    keys = json.load(open(argv[1]))
+    tables = keys["tables"]
+    NAME_PATTERN = keys["name_pattern"]
     schema = json.load(open(argv[2]))
     doc = open(argv[3], encoding="utf-8").read()
     check_schema(schema, tables)

@@ -22,6 +22,7 @@ SEMANTIC_ONLY = {
     # need the lattice
     "empty_geometry",         # no lattice point inside the geometry
     "absurd_particle_count",  # estimate > 10 x max_particles
+    "bodies_candidates_in_all",  # the bodies' estimates together > 10 x max_particles
     "too_many_particles",     # actual count > max_particles
     # expression language (only the character set is in the schema)
     "expression_syntax",
@@ -35,6 +36,13 @@ SEMANTIC_ONLY = {
     "wall_normal_zero",
     "notch_root_too_large",
     "box_max_below_min",
+    # contradictions the particles reveal (core/bc/contradictions.c) and the
+    # precision of positions far from the origin (core/scene/precision.c)
+    "contradiction_fixed_velocity",
+    "contradiction_two_velocities",
+    "contradiction_wall_cuts_body",
+    "precision_far_from_origin",
+    "precision_far_origin",
     # depend on "dimension"
     "cylinder_in_2d",
     "z_velocity_in_2d",

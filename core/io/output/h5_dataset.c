@@ -20,18 +20,44 @@ struct tlsph_h5_type tlsph_h5_type(enum tlsph_field_type t)
     return (struct tlsph_h5_type){H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, 8};
 }
 
+struct h5_message {
+    char *text;   /* the outermost message, 256 bytes */
+    char sys[96]; /* the system's error text a file driver reported, if any */
+};
+
 static herr_t first_error(unsigned n, const H5E_error2_t *e, void *data)
 {
-    char *buf = data;
-    if (n == 0 && e->desc)
-        snprintf(buf, 256, "%s (in %s)", e->desc, e->func_name ? e->func_name : "?");
+    struct h5_message *m = data;
+    if (!e->desc)
+        return 0;
+    if (n == 0)
+        snprintf(m->text, 256, "%s (in %s)", e->desc, e->func_name ? e->func_name : "?");
+    /* the driver's "file write failed: ..., errno = 28, error message = 'No
+     * space left on device', ..." says what the outermost message does not */
+    const char *s = strstr(e->desc, "error message = '");
+    if (s && !m->sys[0]) {
+        s += strlen("error message = '");
+        const char *end = strchr(s, '\'');
+        const int len = end ? (int)(end - s) : (int)strlen(s);
+        snprintf(m->sys, sizeof m->sys, "%.*s", len < 95 ? len : 95, s);
+    }
     return 0;
+}
+
+void tlsph_h5_stack_text(hid_t estack, char buf[256])
+{
+    struct h5_message m = {.text = buf};
+    buf[0] = '\0';
+    H5Ewalk2(estack, H5E_WALK_DOWNWARD, first_error, &m);
+    if (buf[0] && m.sys[0]) {
+        const size_t used = strlen(buf);
+        snprintf(buf + used, 256 - used, ": %s", m.sys);
+    }
 }
 
 void tlsph_h5_error_text(char buf[256])
 {
-    buf[0] = '\0';
-    H5Ewalk2(H5E_DEFAULT, H5E_WALK_DOWNWARD, first_error, buf);
+    tlsph_h5_stack_text(H5E_DEFAULT, buf);
     if (!buf[0])
         snprintf(buf, 256, "unknown HDF5 error");
 }

@@ -19,8 +19,11 @@ struct tlsph_h5_type {
 };
 struct tlsph_h5_type tlsph_h5_type(enum tlsph_field_type t);
 
-/* The innermost message of HDF5's error stack (at most 255 characters). */
+/* The innermost message of HDF5's error stack (at most 255 characters);
+ * "unknown HDF5 error" when the stack is empty. */
 void tlsph_h5_error_text(char buf[256]);
+/* The same for error stack estack; buf stays "" when it is empty. */
+void tlsph_h5_stack_text(hid_t estack, char buf[256]);
 
 /* A chunked dataset name in loc of file type ftype, rank 1..3, extent dims and
  * maximum extent maxdims (NULL: fixed at dims); compress adds shuffle and

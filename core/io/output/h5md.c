@@ -45,6 +45,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include "io/fields.h"
 #include "io/output/h5_dataset.h"
@@ -208,13 +209,50 @@ static int write_sidecar(const struct tlsph_output *o)
                             o->npresent);
 }
 
-/* Adds "output: <what> [<path>]: <HDF5's message>". */
-static void add_h5_error(struct tlsph_errors *err, const char *what, const char *path)
+/* HDF5 calls this when an API call fails (H5Eset_auto2, set while the file is
+ * set up): keeps the first failure's message, before clean-up calls reset the
+ * stack.  Prints nothing. */
+static herr_t remember_h5_error(hid_t estack, void *data)
+{
+    struct tlsph_output *o = data;
+    if (!o->first_h5_error[0])
+        tlsph_h5_stack_text(estack, o->first_h5_error);
+    return 0;
+}
+
+/* Adds "output: <what> [<path>]: <HDF5's message>": the stack's, else the
+ * first failure's while the file was set up. */
+static void add_h5_error(const struct tlsph_output *o, struct tlsph_errors *err, const char *what,
+                         const char *path)
 {
     char h5err[256];
-    tlsph_h5_error_text(h5err);
+    tlsph_h5_stack_text(H5E_DEFAULT, h5err);
+    if (!h5err[0] && o->first_h5_error[0])
+        snprintf(h5err, sizeof h5err, "%s", o->first_h5_error);
+    if (!h5err[0])
+        tlsph_h5_error_text(h5err);
     tlsph_errors_add(err, "", "output: %s%s%s: %s", what, path ? " " : "", path ? path : "",
                      h5err);
+}
+
+/* A result file that could not be set up is removed, with its sidecar: it
+ * would hold neither frames nor an outcome (no /diagnostics status), and
+ * readers would take it for a run's result.  Frees o. */
+static void discard_output(struct tlsph_output *o, int created, struct tlsph_errors *err)
+{
+    char *h5 = o->h5_path, *xmf = o->xmf_path;
+    o->h5_path = o->xmf_path = NULL;
+    free_output(o); /* closes the file first */
+    if (created) {
+        if (h5 && unlink(h5) != 0 && errno != ENOENT)
+            tlsph_errors_add(err, "", "output: cannot remove the unfinished %s: %s", h5,
+                             strerror(errno));
+        if (xmf && unlink(xmf) != 0 && errno != ENOENT)
+            tlsph_errors_add(err, "", "output: cannot remove the unfinished %s: %s", xmf,
+                             strerror(errno));
+    }
+    free(h5);
+    free(xmf);
 }
 
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
@@ -234,8 +272,11 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     /* HDF5 prints its error stack to stderr by default; library code must not
      * print.  The setting is process-wide (HDF5 keeps one default stack), which
      * suits this engine: every HDF5 call is checked and reported through err
-     * or a return value, with the message taken from the stack (add_h5_error). */
-    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
+     * or a return value, with the message taken from the stack (add_h5_error).
+     * While the file is set up, failures are remembered instead of printed
+     * (remember_h5_error); afterwards nothing is called. */
+    H5Eset_auto2(H5E_DEFAULT, remember_h5_error, o);
+    int created = 0;
 
     if (o->n == 0) {
         tlsph_errors_add(err, "", "output: the model has no particles");
@@ -289,19 +330,20 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     if ((fapl = H5Pcreate(H5P_FILE_ACCESS)) < 0 ||
         H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST) < 0 ||
         H5Pset_fclose_degree(fapl, H5F_CLOSE_STRONG) < 0) {
-        add_h5_error(err, "HDF5 setup failed", NULL);
+        add_h5_error(o, err, "HDF5 setup failed", NULL);
         goto fail;
     }
     if ((o->file = H5Fcreate(o->h5_path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl)) < 0) {
-        add_h5_error(err, "cannot create", o->h5_path);
+        add_h5_error(o, err, "cannot create", o->h5_path);
         goto fail;
     }
+    created = 1;
     if (tlsph_output_layout(o, m) < 0) {
-        add_h5_error(err, "cannot lay out", o->h5_path);
+        add_h5_error(o, err, "cannot lay out", o->h5_path);
         goto fail;
     }
     if (H5Fstart_swmr_write(o->file) < 0 || reopen_datasets(o) < 0) {
-        add_h5_error(err, "cannot start SWMR writing of", o->h5_path);
+        add_h5_error(o, err, "cannot start SWMR writing of", o->h5_path);
         goto fail;
     }
     H5Pclose(fapl);
@@ -311,11 +353,13 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
         tlsph_errors_add(err, "", "output: cannot write %s: %s", o->xmf_path, strerror(errno));
         goto fail;
     }
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL);
     return o;
 fail:
     if (fapl >= 0)
         H5Pclose(fapl);
-    free_output(o);
+    H5Eset_auto2(H5E_DEFAULT, NULL, NULL); /* o is about to go */
+    discard_output(o, created, err);
     return NULL;
 }
 

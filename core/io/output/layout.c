@@ -40,17 +40,6 @@ static hsize_t particles_per_chunk(size_t n, int ncomp, size_t elsize)
     return (hsize_t)((n + nchunks - 1) / nchunks);
 }
 
-/* HDF5 link names cannot contain '/', and "." names the group itself. */
-static void link_name(char *out, size_t size, const char *name)
-{
-    snprintf(out, size, "%s", name[0] ? name : "_");
-    for (char *p = out; *p; p++)
-        if (*p == '/')
-            *p = '_';
-    if (strcmp(out, ".") == 0)
-        snprintf(out, size, "_");
-}
-
 /* Gives group g (at group_path) the family's step and time: links to those of
  * the family's first group, or, in that first group, new datasets of
  * chunk_rows rows per chunk. */
@@ -316,10 +305,11 @@ static int create_columns(struct tlsph_output *o, const struct tlsph_model *m, h
 static int create_item(struct tlsph_output *o, const struct tlsph_model *m, hid_t fam,
                        const struct tlsph_series_family *f, const char *item, size_t *offset)
 {
-    char name[TLSPH_NAME_MAX + 8], path[TLSPH_NAME_MAX + 64];
-    link_name(name, sizeof name, item);
-    snprintf(path, sizeof path, "/observables/%s/%s", f->name, name);
-    hid_t g = make_group(fam, name);
+    /* item is a name by the naming rule (util/names.h, checked at validation):
+     * a link name of its own, different from every other item's */
+    char path[TLSPH_NAME_MAX + 64];
+    snprintf(path, sizeof path, "/observables/%s/%s", f->name, item);
+    hid_t g = make_group(fam, item);
     if (g < 0)
         return -1;
     int rc = create_columns(o, m, g, path, f->columns, f->ncolumns, offset);

@@ -33,7 +33,9 @@ struct tlsph_cost {
     double bytes_per_particle;
 };
 
-/* Creates dir/result.h5 (truncating) and dir/result.xmf. Returns NULL and adds an error. */
+/* Creates dir/result.h5 (truncating) and dir/result.xmf. Returns NULL and adds an
+ * error; then neither file is left in dir (a file that could not be set up holds
+ * no outcome). */
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
                                        struct tlsph_errors *err);
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf

@@ -38,6 +38,9 @@ struct tlsph_output {
     hid_t file;
     size_t n;
     char *h5_path, *xmf_path;
+    /* the first HDF5 failure while the file is set up (tlsph_output_open): the
+     * error stack of a failing call is gone once its clean-up calls ran */
+    char first_h5_error[256];
 
     /* every present field, for the XDMF sidecar */
     const struct tlsph_field **present;
