@@ -196,14 +196,11 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
     return total;
 }
 
-/* Visits the lattice in x-fastest order; stores up to cap points in out (when
- * non-NULL) and returns the number of points inside. */
-static size_t lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
-                           const long hi[3], double *out, size_t cap)
+int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
+                        int (*visit)(const double X[3], void *ctx), void *ctx)
 {
     const struct tlsph_body *body = &s->bodies[b];
     const double h = body->spacing;
-    size_t n = 0;
     for (long k = lo[2]; k <= hi[2]; k++) {
         const double z = s->dimension == 2 ? 0.0 : body->origin[2] + ((double)k + 0.5) * h;
         for (long j = lo[1]; j <= hi[1]; j++) {
@@ -212,13 +209,37 @@ static size_t lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[
                 const double X[3] = {body->origin[0] + ((double)i + 0.5) * h, y, z};
                 if (!tlsph_geometry_contains(&body->geometry, X))
                     continue;
-                if (out && n < cap)
-                    memcpy(out + 3 * n, X, sizeof X);
-                n++;
+                const int r = visit(X, ctx);
+                if (r)
+                    return r;
             }
         }
     }
-    return n;
+    return 0;
+}
+
+struct walk {
+    double *out; /* NULL: count only */
+    size_t cap, n;
+};
+
+static int store_point(const double X[3], void *ctx)
+{
+    struct walk *w = ctx;
+    if (w->out && w->n < w->cap)
+        memcpy(w->out + 3 * w->n, X, 3 * sizeof *X);
+    w->n++;
+    return 0;
+}
+
+/* Stores up to cap points in out (when non-NULL) and returns the number of
+ * points inside. */
+static size_t lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
+                           const long hi[3], double *out, size_t cap)
+{
+    struct walk w = {.out = out, .cap = cap};
+    tlsph_lattice_visit(s, b, lo, hi, store_point, &w);
+    return w.n;
 }
 
 size_t tlsph_lattice_count(const struct tlsph_scene *s, size_t b)
