@@ -7,13 +7,7 @@
 #    time gets its frame (this run wrote 21 frames before).
 # Reference: the frame times k end / frames; tolerance 1e-12 relative (the
 # engine's own frame-time test).
-set -u
-here=$(cd "$(dirname "$0")" && pwd)
-top_srcdir=${top_srcdir:-$here/../..}
-top_builddir=${top_builddir:-$top_srcdir}
-PY=${SYSTEM_PYTHON:-/usr/bin/python3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../support/script_env.sh"
 
 sed -e 's/"end": 2e-4/"end": 2e-6/' -e 's/"frames": 10/"frames": 50/' \
     "$top_srcdir/tests/scenes/good/strip_2d.json" >"$tmp/short.json"

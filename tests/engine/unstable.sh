@@ -9,13 +9,7 @@
 #  - tests/scenes/good/unstable_energy.json: a Mie-Grueneisen (s = 3) block at 1.3x
 #    the CFL limit blows up on the energy balance, a global sum: the diagnostic
 #    must still name particles (those whose energy changed most).
-set -u
-here=$(cd "$(dirname "$0")" && pwd)
-top_srcdir=${top_srcdir:-$here/../..}
-top_builddir=${top_builddir:-$top_srcdir}
-PY=${SYSTEM_PYTHON:-/usr/bin/python3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../support/script_env.sh"
 
 # run NAME QUANTITY: runs tests/scenes/good/NAME.json and checks the outcome.
 run() {
