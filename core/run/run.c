@@ -91,16 +91,17 @@ static void emit_finished(const struct tlsph_model *m, int fd, enum tlsph_exit c
     json_decref(o);
 }
 
-/* What writing a frame or a sample came to. */
-enum written { WRITTEN, REFUSED, IO_FAILED };
+/* What writing a frame or a sample came to; STOPPED: the run stops on the
+ * diagnostic in d. */
+enum written { WRITTEN, STOPPED, IO_FAILED };
 
-/* The writer refused a value that is not finite: the run stops on a diagnostic. */
+/* The writer refused a value that is not finite: the run stops. */
 static enum written refused(struct tlsph_model *m, const struct tlsph_output *out,
                             struct tlsph_diagnostic *d)
 {
     const struct tlsph_output_refusal *r = tlsph_output_refusal(out);
     tlsph_refusal_diagnostic(m, r->dataset, r->value, r->ids, r->nids, d);
-    return REFUSED;
+    return STOPPED;
 }
 
 static enum written write_frame(struct tlsph_output *out, struct tlsph_model *m, long *frames,
@@ -165,11 +166,11 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
     int have_diag = 0;
     double last_progress = t0;
     /* The initial state meets the contract too before it is written. */
-    enum written w = tlsph_model_check(m, d) != 0 ? REFUSED : write_both(out, m, &frames, d);
+    enum written w = tlsph_model_check(m, d) != 0 ? STOPPED : write_both(out, m, &frames, d);
     for (;;) {
         if (w == IO_FAILED)
             goto io_error;
-        if (w == REFUSED) {
+        if (w == STOPPED) {
             have_diag = 1;
             break;
         }
