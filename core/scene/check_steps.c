@@ -110,8 +110,8 @@ int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *f
                      "density, youngs_modulus, poisson_ratio, eos) + its initial speed %g m/s); "
                      "shorten the end time, raise cfl or the spacing, or set /time/max_steps to "
                      "end the run sooner",
-                     end, steps, dt, TLSPH_MAX_STEPS, s->cfl, body->spacing, body->name,
-                     limiting, c_limiting, mat->name, mp, fastest[limiting].speed);
+                     end, steps, dt, TLSPH_MAX_STEPS, s->cfl, body->spacing, body->name, limiting,
+                     c_limiting, mat->name, mp, fastest[limiting].speed);
     return -1;
 }
 

@@ -38,10 +38,10 @@ struct component_failure {
 };
 
 struct velocity_walk {
-    struct tlsph_expr *ex[3];  /* the components that depend on x, y, z; NULL otherwise */
-    double constant[3];        /* the others' values (0 when absent) */
+    struct tlsph_expr *ex[3]; /* the components that depend on x, y, z; NULL otherwise */
+    double constant[3];       /* the others' values (0 when absent) */
     struct component_failure bad[3];
-    int pending;               /* components still finite everywhere */
+    int pending; /* components still finite everywhere */
     struct tlsph_initial_speed *fastest;
 };
 
@@ -80,8 +80,8 @@ static void report(struct tlsph_errors *err, const char *body_pointer, int c,
         tlsph_errors_add(err, q,
                          "initial %s velocity '%s' of body '%s' is %s at its particle x = %g, "
                          "y = %g, z = %g m; it must be a finite number of m/s at every particle",
-                         axis[c], tlsph_expr_text(ex), body, nonfinite(f->value), f->X[0],
-                         f->X[1], f->X[2]);
+                         axis[c], tlsph_expr_text(ex), body, nonfinite(f->value), f->X[0], f->X[1],
+                         f->X[2]);
 }
 
 int tlsph_check_initial_velocities(struct tlsph_scene *s, struct tlsph_initial_speed *fastest,
@@ -131,8 +131,8 @@ int tlsph_check_initial_velocities(struct tlsph_scene *s, struct tlsph_initial_s
     return bad ? -1 : 0;
 }
 
-int tlsph_check_expr_of_time(struct tlsph_expr *ex, const struct tlsph_scene *s,
-                             const char *what, const char *pointer, struct tlsph_errors *err)
+int tlsph_check_expr_of_time(struct tlsph_expr *ex, const struct tlsph_scene *s, const char *what,
+                             const char *pointer, struct tlsph_errors *err)
 {
     const double end = s->end_time;
     /* An invalid end time is reported with /time; t = 0 is still checked. */

@@ -30,8 +30,9 @@
 /* a steel cube of 4 x 4 x 4 particles at rest, 1 ms */
 #define CUBE(TIME)                                                                                 \
     "{\"dimension\":3,\"time\":" TIME ","                                                          \
-    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,\"poisson_ratio\":0.3}},"  \
-    "\"bodies\":[{\"name\":\"cube\",\"material\":\"steel\",\"spacing\":0.001,"                    \
+    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,\"poisson_ratio\":0.3}}" \
+    ","                                                                                            \
+    "\"bodies\":[{\"name\":\"cube\",\"material\":\"steel\",\"spacing\":0.001,"                     \
     "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0.004]}}}]}"
 
 START_TEST(time_that_stops)
@@ -50,10 +51,10 @@ START_TEST(time_that_stops)
     /* a step that advances, but the run would take 2e8 steps */
     m->dt_cfl = 1e-3 / (2.0 * (double)TLSPH_MAX_STEPS) / m->scene.cfl;
     ck_assert_int_eq(tlsph_time_check(m, &d), -1);
-    ck_assert_msg(fabs(d.limit - 1e-3 / (double)TLSPH_MAX_STEPS) <= 1e-15 * d.limit,
-                  "limit %g", d.limit); /* the step that would just do: round-off */
-    ck_assert_msg(strstr(d.message, "time_step") && strstr(d.message, "(limiting the step)"),
-                  "%s", d.message);
+    ck_assert_msg(fabs(d.limit - 1e-3 / (double)TLSPH_MAX_STEPS) <= 1e-15 * d.limit, "limit %g",
+                  d.limit); /* the step that would just do: round-off */
+    ck_assert_msg(strstr(d.message, "time_step") && strstr(d.message, "(limiting the step)"), "%s",
+                  d.message);
 
     m->dt_cfl = dt_cfl;
     ck_assert_int_eq(tlsph_time_check(m, &d), 0);
@@ -175,5 +176,5 @@ START_TEST(writer_refuses_non_finite)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("stability", 120, time_that_stops, frame_schedule,
-                 energy_balance_names_particles, writer_refuses_non_finite)
+TLSPH_CHECK_MAIN("stability", 120, time_that_stops, frame_schedule, energy_balance_names_particles,
+                 writer_refuses_non_finite)

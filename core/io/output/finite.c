@@ -15,15 +15,10 @@
 static int finite_at(const void *buf, size_t k, enum tlsph_field_type t, double *value)
 {
     switch (t) {
-    case TLSPH_FLOAT64:
-        *value = ((const double *)buf)[k];
-        return isfinite(*value);
-    case TLSPH_FLOAT32:
-        *value = ((const float *)buf)[k];
-        return isfinite(*value);
+    case TLSPH_FLOAT64: *value = ((const double *)buf)[k]; return isfinite(*value);
+    case TLSPH_FLOAT32: *value = ((const float *)buf)[k]; return isfinite(*value);
     case TLSPH_INT64:
-    case TLSPH_INT32:
-        break;
+    case TLSPH_INT32: break;
     }
     return 1;
 }
