@@ -169,7 +169,7 @@ void tlsph_model_step(struct tlsph_model *m);
 int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
 /* Before a step: simulated time must advance (the next step positive and
  * t + dt > t) and, without time.max_steps, the steps taken plus those the rest
- * of the run needs at the next step must stay within TLSPH_MAX_STEPS
+ * of the run needs at the stable step (tlsph_stable_dt) must stay within TLSPH_MAX_STEPS
  * (scene/limits.h).  Returns 0, or -1 with d (quantity "time_step", the
  * particles that limit the step). */
 int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d);

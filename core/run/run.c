@@ -139,6 +139,11 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
               struct tlsph_diagnostic *d, struct tlsph_errors *err)
 {
     const double t0 = tlsph_monotonic_seconds();
+    const struct tlsph_scene *s = &m->scene;
+    const double frame_dt = s->end_time / (double)s->frames;
+    m->frame_interval = frame_dt;
+    m->next_frame_time = frame_dt;
+    m->dt = tlsph_next_dt(m); /* the first step, now with the frame schedule */
     struct tlsph_output *out = tlsph_output_open(o->output_dir, m, err);
     if (!out) {
         struct tlsph_cost none;
@@ -148,11 +153,6 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
         emit_finished(m, o->progress_fd, TLSPH_EXIT_IO, &none, NULL, err);
         return TLSPH_EXIT_IO;
     }
-    const struct tlsph_scene *s = &m->scene;
-    const double frame_dt = s->end_time / (double)s->frames;
-    m->frame_interval = frame_dt;
-    m->next_frame_time = frame_dt;
-    m->dt = tlsph_next_dt(m); /* the first step, now with the frame schedule */
     emit_started(m, o->progress_fd);
     if (o->log)
         fprintf(o->log,

@@ -203,13 +203,17 @@ int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
 {
     const double dt = tlsph_next_dt(m);
     const struct tlsph_scene *s = &m->scene;
+    /* The projection counts at the step the physics allows: a step cut short to
+     * meet a frame time or the end is no sign that time stalls. */
+    const double stable = tlsph_stable_dt(m);
     /* the smallest step that advances t, and that ends the run within the limit */
     double limit = m->t > 0.0 ? nextafter(m->t, INFINITY) - m->t : 0.0;
     const double left = s->end_time - m->t, steps_left = (double)TLSPH_MAX_STEPS - (double)m->step;
     if (s->max_steps == 0)
         limit = fmax(limit, steps_left > 0.0 ? left / steps_left : INFINITY);
-    if (dt > 0.0 && isfinite(dt) && m->t + dt != m->t &&
-        (s->max_steps > 0 || (double)m->step + left / dt <= (double)TLSPH_MAX_STEPS))
+    const int advances = dt > 0.0 && isfinite(dt) && m->t + dt != m->t;
+    if (advances &&
+        (s->max_steps > 0 || (double)m->step + left / stable <= (double)TLSPH_MAX_STEPS))
         return 0;
     memset(d, 0, sizeof *d);
     if (s->fixed_dt == 0.0) {
@@ -219,7 +223,8 @@ int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
                 rank(&r, -particle_step(m, i), i);
         add_ranked(d, m, &r);
     }
-    return fail(m, d, "time_step", dt, limit, NULL, d->nids ? "(limiting the step)" : NULL);
+    return fail(m, d, "time_step", advances ? stable : dt, limit, NULL,
+                d->nids ? "(limiting the step)" : NULL);
 }
 
 void tlsph_refusal_diagnostic(struct tlsph_model *m, const char *dataset, double value,

@@ -96,6 +96,10 @@ START_TEST(frame_schedule)
     m->t = 1.0 * step;
     m->next_frame_time = 1.1 * step;
     ck_assert(tlsph_next_dt(m) == 1.1 * step - 1.0 * step);
+    /* and a step cut short is no stalled time: the projection counts stable steps */
+    m->next_frame_time = (1.0 + 1e-11) * step;
+    struct tlsph_diagnostic d;
+    ck_assert_int_eq(tlsph_time_check(m, &d), 0);
     tlsph_model_free(m);
 }
 END_TEST
