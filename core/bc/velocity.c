@@ -45,6 +45,10 @@ static int parse_velocity(const json_t *obj, struct tlsph_scene *s, struct tlsph
             tlsph_expr_free(&bc->velocity[2]);
             continue;
         }
+        if (tlsph_check_expr_of_time(&bc->velocity[k], s, "prescribed velocity", q, err) != 0) {
+            bad = 1;
+            continue;
+        }
         bc->velocity_set[k] = 1;
         given++;
     }

@@ -190,7 +190,9 @@ int main(int argc, char **argv)
         return TLSPH_EXIT_INVALID;
     }
     if (validate_only) {
-        printf("{\"valid\":true,\"particles\":%zu,\"pairs\":%zu}\n", m->p.n, m->pairs.npairs);
+        printf("{\"valid\":true,\"particles\":%zu,\"pairs\":%zu,\"first_step\":%.6g,"
+               "\"estimated_steps\":%.0f}\n",
+               m->p.n, m->pairs.npairs, m->scene.estimated_dt, m->scene.estimated_steps);
         tlsph_model_free(m);
         tlsph_errors_free(&err);
         return TLSPH_EXIT_SUCCESS;

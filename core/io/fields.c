@@ -114,9 +114,15 @@ static void ex_eps_p_rate(const struct tlsph_model *m, void *out)
     memcpy(out, m->p.eps_p_rate, m->p.n * sizeof(double));
 }
 
+/* A particle whose material has no thermal block has no temperature (NaN in
+ * m->p.T); the file holds 0 there, since no dataset holds a non-finite value. */
 static void ex_T(const struct tlsph_model *m, void *out)
 {
-    memcpy(out, m->p.T, m->p.n * sizeof(double));
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const struct tlsph_body *b = &m->scene.bodies[m->p.body[i]];
+        o[i] = m->scene.materials[b->material].thermal.enabled ? m->p.T[i] : 0.0;
+    }
 }
 
 static int has_damage(const struct tlsph_model *m)
@@ -150,7 +156,7 @@ static void ex_triaxiality(const struct tlsph_model *m, void *out)
     for (size_t i = 0; i < m->p.n; i++) {
         const double *s = m->p.sigma + 6 * i;
         const double q = von_mises(s);
-        o[i] = q > 0.0 ? (s[0] + s[3] + s[5]) / (3.0 * q) : NAN;
+        o[i] = q > 0.0 ? (s[0] + s[3] + s[5]) / (3.0 * q) : 0.0; /* finite: see the row */
     }
 }
 
@@ -184,7 +190,7 @@ const struct tlsph_field tlsph_fields[] = {
     {"plastic_strain_rate", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1/s", NULL,
      "equivalent plastic strain rate of the last step", has_plasticity, ex_eps_p_rate},
     {"temperature", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "K", NULL,
-     "temperature (adiabatic heating by plastic work); NaN where the material has no "
+     "temperature (adiabatic heating by plastic work); 0 where the material has no "
      "thermal block",
      has_temperature, ex_T},
     {"damage", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
@@ -198,8 +204,8 @@ const struct tlsph_field tlsph_fields[] = {
      "GTN void volume fraction f (damage D = q1 f*); 0 in bodies of other materials",
      has_voids, ex_void_fraction},
     {"triaxiality", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
-     "stress triaxiality sigma_m / sigma_eq of the Cauchy stress; NaN where sigma_eq = 0 "
-     "(e.g. failed particles)",
+     "stress triaxiality sigma_m / sigma_eq of the Cauchy stress; 0 where sigma_eq = 0 "
+     "(unstressed or failed particles)",
      has_damage, ex_triaxiality},
 };
 const size_t tlsph_nfields = sizeof tlsph_fields / sizeof *tlsph_fields;

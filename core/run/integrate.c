@@ -26,9 +26,22 @@ void tlsph_evaluate(struct tlsph_model *m, double dt)
     m->energy.external_work += dt * body_power;
 }
 
+double tlsph_stable_dt(const struct tlsph_model *m)
+{
+    return m->scene.fixed_dt > 0.0 ? m->scene.fixed_dt : m->scene.cfl * m->dt_cfl;
+}
+
 double tlsph_next_dt(const struct tlsph_model *m)
 {
-    double dt = m->scene.fixed_dt > 0.0 ? m->scene.fixed_dt : m->scene.cfl * m->dt_cfl;
+    double dt = tlsph_stable_dt(m);
+    /* A step that would pass the frame time after next ends at the next one, so
+     * that every frame time gets a frame (docs/output.md).  Only a step longer
+     * than the frame interval can pass two, so a run whose steps are shorter
+     * is never touched; validation refuses a fixed step longer than the
+     * interval. */
+    if (m->frame_interval > 0.0 && m->next_frame_time > m->t &&
+        m->t + dt >= m->next_frame_time + m->frame_interval)
+        dt = m->next_frame_time - m->t;
     const double left = m->scene.end_time - m->t;
     if (left > 0.0 && dt > left)
         dt = left;

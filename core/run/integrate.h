@@ -19,8 +19,12 @@ void tlsph_start(struct tlsph_model *m);
  * positions; dt is the step that led here (0 at setup). Updates energy terms
  * (the phase contract is in integrate.c, above tlsph_model_step). */
 void tlsph_evaluate(struct tlsph_model *m, double dt);
-/* Time step for the next step: fixed, or cfl times the stable estimate, never
- * past the end time. */
+/* The step the physics allows: the fixed step, or cfl times the stable
+ * estimate of the last force evaluation (s). */
+double tlsph_stable_dt(const struct tlsph_model *m);
+/* Time step for the next step: tlsph_stable_dt, ending at the next frame time
+ * when it would pass two (the frame schedule, model.h), never past the end
+ * time. */
 double tlsph_next_dt(const struct tlsph_model *m);
 /* Kinetic energy (J). */
 double tlsph_kinetic_energy(const struct tlsph_model *m);

@@ -126,6 +126,11 @@ struct tlsph_model {
     /* run state */
     long step;
     double t, dt;
+    /* The frame schedule, kept by the run loop (run.c): a step that would pass
+     * more than one frame time ends at the next one instead (tlsph_next_dt).
+     * frame_interval 0 = no schedule (a model stepped without tlsph_run). */
+    double frame_interval;        /* end / frames, s */
+    double next_frame_time;       /* the first frame time not yet written, s */
     double dt_cfl;                /* stable step estimate of the last force evaluation (s), before the CFL factor */
     double max_wave_speed;        /* largest P-wave speed of the last evaluation, m/s */
     size_t inverted;              /* particles with det F <= 0 or non-finite in the last evaluation */
@@ -162,6 +167,18 @@ void tlsph_model_free(struct tlsph_model *m);
 void tlsph_model_step(struct tlsph_model *m);
 /* Stability contract; returns 0 when healthy, -1 and fills d otherwise. */
 int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
+/* Before a step: simulated time must advance (the next step positive and
+ * t + dt > t) and, without time.max_steps, the steps taken plus those the rest
+ * of the run needs at the stable step (tlsph_stable_dt) must stay within TLSPH_MAX_STEPS
+ * (scene/limits.h).  Returns 0, or -1 with d (quantity "time_step", the
+ * particles that limit the step). */
+int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
+/* The output writer refused a value that is not finite (dataset, value, ids:
+ * struct tlsph_output_refusal, io/output/output.h): the stability contract's
+ * diagnostic when it finds something, else one for the refused value
+ * (quantity "non_finite_output"). */
+void tlsph_refusal_diagnostic(struct tlsph_model *m, const char *dataset, double value,
+                              const int64_t *ids, size_t nids, struct tlsph_diagnostic *d);
 /* Total linear momentum, kg m/s. */
 void tlsph_model_momentum(const struct tlsph_model *m, double out[3]);
 /* kinetic + internal + hourglass + viscous - external work - initial energy, J:

@@ -7,6 +7,7 @@
 
 #include "bc/boundary.h"
 #include "io/output/output.h"
+#include "run/integrate.h"
 #include "run/progress.h"
 #include "util/clock.h"
 
@@ -90,18 +91,59 @@ static void emit_finished(const struct tlsph_model *m, int fd, enum tlsph_exit c
     json_decref(o);
 }
 
-static int write_frame(struct tlsph_output *out, struct tlsph_model *m, long *frames)
+/* What writing a frame or a sample came to; STOPPED: the run stops on the
+ * diagnostic in d. */
+enum written { WRITTEN, STOPPED, IO_FAILED };
+
+/* The writer refused a value that is not finite: the run stops. */
+static enum written refused(struct tlsph_model *m, const struct tlsph_output *out,
+                            struct tlsph_diagnostic *d)
 {
-    if (tlsph_output_frame(out, m) != 0)
-        return -1;
+    const struct tlsph_output_refusal *r = tlsph_output_refusal(out);
+    tlsph_refusal_diagnostic(m, r->dataset, r->value, r->ids, r->nids, d);
+    return STOPPED;
+}
+
+static enum written write_frame(struct tlsph_output *out, struct tlsph_model *m, long *frames,
+                                struct tlsph_diagnostic *d)
+{
+    const int rc = tlsph_output_frame(out, m);
+    if (rc == TLSPH_OUTPUT_REFUSED)
+        return refused(m, out, d);
+    if (rc != 0)
+        return IO_FAILED;
     (*frames)++;
-    return 0;
+    return WRITTEN;
+}
+
+static enum written write_series(struct tlsph_output *out, struct tlsph_model *m,
+                                 struct tlsph_diagnostic *d)
+{
+    tlsph_boundary_displacements(m);
+    const int rc = tlsph_output_series(out, m);
+    if (rc == TLSPH_OUTPUT_REFUSED)
+        return refused(m, out, d);
+    return rc != 0 ? IO_FAILED : WRITTEN;
+}
+
+/* A frame with its series sample (a frame time, the start and the end). */
+static enum written write_both(struct tlsph_output *out, struct tlsph_model *m, long *frames,
+                               struct tlsph_diagnostic *d)
+{
+    tlsph_boundary_displacements(m);
+    const enum written w = write_frame(out, m, frames, d);
+    return w != WRITTEN ? w : write_series(out, m, d);
 }
 
 int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
               struct tlsph_diagnostic *d, struct tlsph_errors *err)
 {
     const double t0 = tlsph_monotonic_seconds();
+    const struct tlsph_scene *s = &m->scene;
+    const double frame_dt = s->end_time / (double)s->frames;
+    m->frame_interval = frame_dt;
+    m->next_frame_time = frame_dt;
+    m->dt = tlsph_next_dt(m); /* the first step, now with the frame schedule */
     struct tlsph_output *out = tlsph_output_open(o->output_dir, m, err);
     if (!out) {
         struct tlsph_cost none;
@@ -119,18 +161,19 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 m->p.n, m->pairs.npairs, m->p.n ? (double)m->pairs.npairs / (double)m->p.n : 0.0,
                 m->deficient_supports, m->isolated, m->dt);
 
-    const struct tlsph_scene *s = &m->scene;
-    const double frame_dt = s->end_time / (double)s->frames;
     long frames = 0, next_frame = 1;
     enum tlsph_exit code = TLSPH_EXIT_SUCCESS;
     int have_diag = 0;
     double last_progress = t0;
-
-    tlsph_boundary_displacements(m);
-    if (write_frame(out, m, &frames) != 0 || tlsph_output_series(out, m) != 0)
-        goto io_error;
-
+    /* The initial state meets the contract too before it is written. */
+    enum written w = tlsph_model_check(m, d) != 0 ? STOPPED : write_both(out, m, &frames, d);
     for (;;) {
+        if (w == IO_FAILED)
+            goto io_error;
+        if (w == STOPPED) {
+            have_diag = 1;
+            break;
+        }
         const int at_end = m->t >= s->end_time * (1.0 - 1e-12) ||
                            (s->max_steps > 0 && m->step >= s->max_steps);
         const int cancelled = o->cancel && *o->cancel;
@@ -139,11 +182,15 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 have_diag = 1;
                 break;
             }
-            tlsph_boundary_displacements(m);
-            if (write_frame(out, m, &frames) != 0 || tlsph_output_series(out, m) != 0)
-                goto io_error;
+            w = write_both(out, m, &frames, d);
+            if (w != WRITTEN)
+                continue;
             if (cancelled && !at_end)
                 code = TLSPH_EXIT_CANCELLED;
+            break;
+        }
+        if (tlsph_time_check(m, d) != 0) {
+            have_diag = 1;
             break;
         }
         tlsph_model_step(m);
@@ -155,16 +202,14 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 break;
             }
         }
-        if (m->step % s->series_every == 0) {
-            tlsph_boundary_displacements(m);
-            if (tlsph_output_series(out, m) != 0)
-                goto io_error;
-        }
+        if (m->step % s->series_every == 0 && (w = write_series(out, m, d)) != WRITTEN)
+            continue;
         if (frame_due) {
-            if (write_frame(out, m, &frames) != 0)
-                goto io_error;
+            if ((w = write_frame(out, m, &frames, d)) != WRITTEN)
+                continue;
             while ((double)next_frame * frame_dt <= m->t * (1.0 + 1e-12))
                 next_frame++;
+            m->next_frame_time = (double)next_frame * frame_dt;
         }
         const double wall = tlsph_monotonic_seconds();
         if (frame_due || wall - last_progress > 0.5) {

@@ -157,35 +157,57 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
     return total;
 }
 
-/* Visits the lattice in x-fastest order; stores up to cap points in out (when
- * non-NULL) and sets *count to the number of points inside.  0, or -1 when
- * out of memory. */
-static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
-                        double *out, size_t cap, size_t *count)
+int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
+                        int (*visit)(const double X[3], void *ctx), void *ctx)
 {
     const struct tlsph_body *body = &s->bodies[b];
     const double h = body->spacing;
     struct walker w;
     if (walker_init(&w, &body->geometry, s->dimension) != 0)
         return -1;
-    size_t n = 0;
-    for (long k = lo[2]; k <= hi[2]; k++) {
+    int r = 0;
+    for (long k = lo[2]; k <= hi[2] && !r; k++) {
         const double z = s->dimension == 2 ? 0.0 : body->origin[2] + ((double)k + 0.5) * h;
-        for (long j = lo[1]; j <= hi[1]; j++) {
+        for (long j = lo[1]; j <= hi[1] && !r; j++) {
             const double y = body->origin[1] + ((double)j + 0.5) * h;
             walker_row(&w, y, z);
             for (long i = lo[0]; i <= hi[0]; i++) {
                 const double X[3] = {body->origin[0] + ((double)i + 0.5) * h, y, z};
                 if (!walker_contains(&w, 0, X))
                     continue;
-                if (out && n < cap)
-                    memcpy(out + 3 * n, X, sizeof X);
-                n++;
+                r = visit(X, ctx);
+                if (r)
+                    break;
             }
         }
     }
     walker_free(&w);
-    *count = n;
+    return r;
+}
+
+struct store {
+    double *out; /* NULL: count only */
+    size_t cap, n;
+};
+
+static int store_point(const double X[3], void *ctx)
+{
+    struct store *st = ctx;
+    if (st->out && st->n < st->cap)
+        memcpy(st->out + 3 * st->n, X, 3 * sizeof *X);
+    st->n++;
+    return 0;
+}
+
+/* Stores up to cap points in out (when non-NULL) and sets *count to the number
+ * of points inside.  0, or -1 when out of memory. */
+static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
+                        double *out, size_t cap, size_t *count)
+{
+    struct store st = {.out = out, .cap = cap};
+    if (tlsph_lattice_visit(s, b, lo, hi, store_point, &st) != 0)
+        return -1;
+    *count = st.n;
     return 0;
 }
 

@@ -24,9 +24,28 @@
  * itself; far below it particles coincide (1e16 m at 1 m spacing) */
 #define TLSPH_MIN_RELATIVE_SPACING 1e-7
 #define TLSPH_SCENE_FILE_MAX     (16L * 1024 * 1024) /* bytes of a scene file (16 MiB) */
-#define TLSPH_MAX_STEPS          1000000000000L      /* time.max_steps */
+/* Time steps of one run: the ceiling of time.max_steps, of the step count
+ * validation estimates for a scene without max_steps (core/scene/check_steps.c),
+ * and of the count a run projects while it goes (core/run/stability.c).  1e8
+ * steps take days of wall time even for a thousand particles; a scene that needs
+ * more has a step far below what its physics needs (cfl, spacing, a fixed step)
+ * or an end time far beyond it. */
+#define TLSPH_MAX_STEPS          100000000L
 #define TLSPH_MAX_EVERY          1000000000L /* stability.check_every, output.series_every (steps) */
 #define TLSPH_MAX_FRAMES         100000L     /* output.frames */
+
+/* ---------------------------------------------------------------- physical ranges
+ * Bounds that keep a scene's numbers inside what a solid can be and what a double
+ * can hold through the step estimate (wave speed sqrt(E / rho) and the like). */
+#define TLSPH_MIN_DENSITY        0.01   /* kg/m^3: below any solid (aerogels ~1) */
+#define TLSPH_MAX_DENSITY        1e5    /* kg/m^3: above any solid (osmium 22 590) */
+#define TLSPH_MIN_MODULUS        1.0    /* Pa: Young's modulus, below any gel */
+#define TLSPH_MAX_MODULUS        1e13   /* Pa: Young's modulus, ten times diamond's */
+#define TLSPH_MIN_CFL            1e-3   /* time.cfl: below it the step only adds round-off */
+#define TLSPH_MIN_FIXED_STEP     1e-15  /* s: time.step, a femtosecond */
+/* Samples of an expression of t over [0, end]: t = k end / N, k = 0..N
+ * (core/scene/check_values.c). */
+#define TLSPH_TIME_SAMPLES       1000
 
 /* ---------------------------------------------------------------- defaults */
 #define TLSPH_DEFAULT_NAME "scene"

@@ -338,6 +338,10 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     /* Particle counts only when every body is well-formed and the limit is known. */
     if (!bodies_bad && !limits_bad)
         bad |= tlsph_check_particle_counts(s, err) != 0;
+    /* What the run meets first: finite initial velocities and a bounded step
+     * count (check_values.c, check_steps.c); they read everything above. */
+    if (!bad && err->count == errors_before && !err->out_of_memory)
+        bad |= tlsph_check_run_start(s, err) != 0;
     if (!bad && err->count == errors_before && !err->out_of_memory) {
         s->json_text = json_dumps(root, JSON_COMPACT);
         if (!s->json_text) {

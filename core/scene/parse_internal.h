@@ -66,6 +66,41 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
 int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count);
 /* Objects (primitives, unions and differences) in geometry g, g included. */
 size_t tlsph_geometry_count(const struct tlsph_geometry *g);
+/* Calls visit at each lattice point X (m) of body b inside its geometry, within
+ * the index range lo..hi of tlsph_lattice_range, x fastest (the order of
+ * tlsph_body_lattice); stops at the first non-zero return and returns it (visitors return
+ * positive values); -1 when out of memory. */
+int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
+                        int (*visit)(const double X[3], void *ctx), void *ctx);
+
+/* check_values.c: the scene's expressions are finite where the engine evaluates
+ * them.  The fastest initial speed of a body and where it is. */
+struct tlsph_initial_speed {
+    double speed; /* m/s */
+    double X[3];  /* m */
+};
+/* Evaluates each body's initial velocity at every lattice point of the body (a
+ * constant once), reporting a non-finite value at its pointer, and fills
+ * fastest[b] for each body.  After the particle counts. */
+int tlsph_check_initial_velocities(struct tlsph_scene *s, struct tlsph_initial_speed *fastest,
+                                   struct tlsph_errors *err);
+/* Evaluates ex, an expression of t, at t = k end / N, k = 0..N (N =
+ * TLSPH_TIME_SAMPLES; t = 0 only when s->end_time is not valid), reporting the
+ * first non-finite value at pointer as "<what> '<expression>' is ...". */
+int tlsph_check_expr_of_time(struct tlsph_expr *ex, const struct tlsph_scene *s,
+                             const char *what, const char *pointer, struct tlsph_errors *err);
+
+/* check_steps.c: the first time step and the step count (see the file). */
+/* P-wave speed of m at its reference state (J = 1, e = 0), m/s. */
+double tlsph_reference_wave_speed(const struct tlsph_material *m);
+/* The initial speeds against the speed limit, a fixed step against the frame
+ * interval, and the estimated step count against TLSPH_MAX_STEPS; sets
+ * s->estimated_dt and s->estimated_steps. */
+int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *fastest,
+                      struct tlsph_errors *err);
+/* tlsph_check_initial_velocities, then tlsph_check_steps: the last checks of a
+ * scene, run when everything else is valid. */
+int tlsph_check_run_start(struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* parse_damage.c: a material's "damage" block (after its strength and thermal
  * blocks). */

@@ -168,9 +168,12 @@ struct tlsph_scene {
 
     /* time */
     double end_time;              /* s */
-    double cfl;                   /* safety factor on the CFL step, (0, 10] */
+    double cfl;                   /* safety factor on the CFL step, [TLSPH_MIN_CFL, 10] */
     double fixed_dt;              /* s; 0 = use the CFL step */
     long max_steps;               /* 0 = unlimited */
+    /* derived at validation (core/scene/check_steps.c) */
+    double estimated_dt;          /* the first time step, s */
+    double estimated_steps;       /* steps to reach end_time at that step (or max_steps), 1 */
 
     /* discretisation */
     enum tlsph_kernel_type kernel;

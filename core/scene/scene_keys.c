@@ -32,10 +32,12 @@ _Static_assert(sizeof(enum tlsph_failed_motion) == sizeof(int), "motion stored a
 static const struct tlsph_key time_keys[] = {
     {.name = "end", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 0.0, JC_OPEN, JC_NONE},
      .unit = "s", .offset = AT(end_time), .description = "end time"},
-    {.name = "cfl", .kind = NUMBER, .flags = DEFAULT, .range = {0.0, 10.0, JC_OPEN, JC_CLOSED},
+    {.name = "cfl", .kind = NUMBER, .flags = DEFAULT,
+     .range = {TLSPH_MIN_CFL, 10.0, JC_CLOSED, JC_CLOSED},
      .unit = "1", .def = TLSPH_DEFAULT_CFL, .offset = AT(cfl),
      .description = "safety factor on the CFL time step"},
-    {.name = "step", .kind = NUMBER, .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "s",
+    {.name = "step", .kind = NUMBER, .range = {TLSPH_MIN_FIXED_STEP, 0.0, JC_CLOSED, JC_NONE},
+     .unit = "s",
      .offset = AT(fixed_dt), .description = "fixed time step; absent = the CFL step"},
     {.name = "max_steps", .kind = INTEGER, .flags = DEFAULT,
      .range = {0.0, (double)TLSPH_MAX_STEPS, JC_CLOSED, JC_CLOSED}, .unit = "1", .def = 0.0,
@@ -211,10 +213,12 @@ static const struct tlsph_key_table thermal_table =
     TLSPH_KEY_TABLE("/materials/*/thermal", NULL, thermal_keys);
 
 static const struct tlsph_key material_keys[] = {
-    {.name = "density", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 1e5, JC_OPEN, JC_CLOSED},
+    {.name = "density", .kind = NUMBER, .flags = REQUIRED,
+     .range = {TLSPH_MIN_DENSITY, TLSPH_MAX_DENSITY, JC_CLOSED, JC_CLOSED},
      .unit = "kg/m^3", .offset = MAT(density), .description = "reference density rho0"},
     {.name = "youngs_modulus", .kind = NUMBER, .flags = REQUIRED,
-     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "Pa", .offset = MAT(youngs_modulus),
+     .range = {TLSPH_MIN_MODULUS, TLSPH_MAX_MODULUS, JC_CLOSED, JC_CLOSED}, .unit = "Pa",
+     .offset = MAT(youngs_modulus),
      .description = "Young's modulus E"},
     {.name = "poisson_ratio", .kind = NUMBER, .flags = REQUIRED,
      .range = {-1.0, 0.5, JC_OPEN, JC_OPEN}, .unit = "1",

@@ -10,6 +10,7 @@ void tlsph_expr_free(struct tlsph_expr *ex)
         evaluator_destroy(ex->evaluator);
     for (int i = 0; i < ex->nvars; i++)
         free(ex->names[i]);
+    free(ex->text);
     memset(ex, 0, sizeof *ex);
 }
 
@@ -38,8 +39,9 @@ int tlsph_expr_compile(struct tlsph_expr *ex, const char *text, const char *cons
         return -1;
     }
     ex->evaluator = evaluator_create(copy);
-    free(copy);
+    ex->text = copy; /* libmatheval keeps no pointer to it */
     if (!ex->evaluator) {
+        tlsph_expr_free(ex);
         tlsph_errors_add(err, pointer, "cannot parse expression '%s'", text);
         return -1;
     }
@@ -102,4 +104,9 @@ double tlsph_expr_eval(struct tlsph_expr *ex, const double *args)
     for (int i = 0; i < ex->nfree; i++)
         ex->values[i] = args[i];
     return evaluator_evaluate(ex->evaluator, ex->nvars, ex->names, ex->values);
+}
+
+const char *tlsph_expr_text(const struct tlsph_expr *ex)
+{
+    return ex->evaluator && ex->text ? ex->text : "";
 }

@@ -26,6 +26,7 @@ struct tlsph_expr {
     double values[TLSPH_EXPR_MAX_VARS];   /* free variables first, then parameters */
     int nfree;                            /* number of free variables (x,y,z,t...) */
     int constant;                         /* uses no free variable */
+    char *text;                           /* the text compiled (owned), for messages */
 };
 
 /* Compiles text; free_vars lists the allowed free variables (e.g. {"x","y","z"}).
@@ -37,6 +38,9 @@ int tlsph_expr_compile(struct tlsph_expr *ex, const char *text, const char *cons
  * (libmatheval evaluators share state); call from one thread. */
 double tlsph_expr_eval(struct tlsph_expr *ex, const double *args);
 void tlsph_expr_free(struct tlsph_expr *ex);
+/* The text ex was compiled from (for messages); owned by ex, valid until
+ * tlsph_expr_free.  "" when ex holds no expression. */
+const char *tlsph_expr_text(const struct tlsph_expr *ex);
 
 /* core/util/expr_syntax.c: checks text against libmatheval's grammar before
  * libmatheval sees it (0, or -1 with a message locating the problem);

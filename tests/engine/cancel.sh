@@ -3,13 +3,7 @@
 # and exits 5 ("cancelled").  The file must open with a plain (non-SWMR)
 # reader, say status "cancelled", hold at least one more frame than at start,
 # and end with a "finished" progress line whose status is "cancelled".
-set -u
-here=$(cd "$(dirname "$0")" && pwd)
-top_srcdir=${top_srcdir:-$here/../..}
-top_builddir=${top_builddir:-$top_srcdir}
-PY=${SYSTEM_PYTHON:-/usr/bin/python3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../support/script_env.sh"
 # a scene long enough (~1 min) that it is certainly still running when signalled
 sed -e 's/"end": 2e-5/"end": 2e-3/' "$top_srcdir/tests/scenes/good/output_small.json" >"$tmp/long.json"
 grep -q '"end": 2e-3' "$tmp/long.json" || { echo "FAIL: could not derive the long scene"; exit 1; }

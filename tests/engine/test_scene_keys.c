@@ -459,6 +459,7 @@ START_TEST(test_parser_defaults)
     ck_assert_int_eq(tlsph_scene_parse(text, strlen(text), &s, &e), 0);
     memcpy(&parsed, &s, sizeof s); /* padding included: both start zeroed */
     parsed.end_time = 0.0;         /* the one value the text sets */
+    parsed.estimated_dt = parsed.estimated_steps = 0.0; /* derived by validation */
     parsed.params = NULL;
     parsed.materials = NULL;
     parsed.bodies = NULL;

@@ -64,6 +64,19 @@ SEMANTIC_ONLY = {
     "measures_section_empty",
     "measures_section_normal_zero",
     "measures_section_duplicate_name",
+    # the step count and the frame interval: estimated from the materials'
+    # wave speeds, the spacings and the initial speeds (core/scene/check_steps.c)
+    "step_count_cfl",
+    "step_count_fixed",
+    "step_longer_than_frame",
+    # expressions evaluated over their domain (core/scene/check_values.c)
+    "initial_velocity_division_by_zero",
+    "initial_velocity_nan",
+    "initial_velocity_log_zero",
+    "initial_velocity_overflow",
+    "initial_velocity_above_speed_limit",
+    "velocity_bc_singular",
+    "velocity_bc_log_zero",
 }
 
 

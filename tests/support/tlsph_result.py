@@ -130,3 +130,27 @@ class Result:
     def spacing(self, body=0):
         """Lattice spacing of a body (m), from the stored scene."""
         return self.scene["bodies"][body]["spacing"]
+
+    # -------------------------------------------------------------- checks
+    def non_finite_datasets(self):
+        """Paths of the numeric datasets holding a value that is not finite
+        (NaN or +-Inf): none, in any result file (docs/output.md)."""
+        bad = []
+
+        def visit(path, obj):
+            if (isinstance(obj, h5py.Dataset) and obj.dtype.kind == "f"
+                    and not np.all(np.isfinite(obj[()]))):
+                bad.append(path)
+        self.file.visititems(visit)
+        return bad
+
+    def numeric_datasets(self):
+        """How many numeric datasets the file holds (what non_finite_datasets
+        looked at)."""
+        n = [0]
+
+        def visit(path, obj):
+            if isinstance(obj, h5py.Dataset) and obj.dtype.kind in "fiu":
+                n[0] += 1
+        self.file.visititems(visit)
+        return n[0]

@@ -414,7 +414,9 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
         slot = o->nrows - 1;
     else if (o->nrows == 0 && o->nsamples > 0 && o->last_step_written == m->step)
         return 0;
-    double *row = o->rows + slot * o->width;
+    /* Computed in the first free row (nrows < TLSPH_SERIES_CHUNK: a full buffer
+     * is written at once), so a refused sample leaves the buffer as it was. */
+    double *row = o->rows + o->nrows * o->width;
     size_t off = tlsph_global_series_width(m);
     tlsph_global_series_values(m, row);
     for (size_t fi = 0; fi < TLSPH_NFAMILIES; fi++) {
@@ -426,6 +428,10 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
                 off += w;
             }
     }
+    if (tlsph_output_check_series_row(o, row) != 0)
+        return TLSPH_OUTPUT_REFUSED;
+    if (slot != o->nrows)
+        memcpy(o->rows + slot * o->width, row, o->width * sizeof *row);
     o->row_step[slot] = m->step;
     o->row_time[slot] = m->t;
     o->nrows = slot + 1;
@@ -436,6 +442,14 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
 
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
 {
+    /* Every field is checked before any is written, so a refused frame leaves
+     * the file as it was (the values are extracted twice: cheap next to the
+     * write). */
+    for (size_t i = 0; i < o->nframe_fields; i++) {
+        tlsph_output_extract(o, o->frames[i].f, m);
+        if (tlsph_output_check_frame_field(o, o->frames[i].f, m) != 0)
+            return TLSPH_OUTPUT_REFUSED;
+    }
     for (size_t i = 0; i < o->nframe_fields; i++) {
         const struct tlsph_field *f = o->frames[i].f;
         tlsph_output_extract(o, f, m);
@@ -494,6 +508,11 @@ int tlsph_output_close(struct tlsph_output *o, const struct tlsph_model *m,
     o->file = H5I_INVALID_HID;
     free_output(o);
     return rc;
+}
+
+const struct tlsph_output_refusal *tlsph_output_refusal(const struct tlsph_output *o)
+{
+    return &o->refusal;
 }
 
 void tlsph_output_abort(struct tlsph_output *o)

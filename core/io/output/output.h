@@ -33,6 +33,22 @@ struct tlsph_cost {
     double bytes_per_particle;
 };
 
+/* No dataset of the file ever holds a value that is not finite (float32
+ * datasets: nor one beyond float32's range, which would be stored as Inf).
+ * tlsph_output_frame and tlsph_output_series check every value before they
+ * write any and refuse the whole frame or sample instead, returning
+ * TLSPH_OUTPUT_REFUSED; the file is left as it was, and tlsph_output_refusal
+ * says what was refused.  The run then stops with a diagnostic
+ * (core/run/run.c). */
+#define TLSPH_OUTPUT_REFUSED 1
+
+struct tlsph_output_refusal {
+    char dataset[128];  /* its path in the file, e.g. "/particles/solid/stress/value" */
+    double value;       /* the first such value, as it would be stored */
+    size_t nids;
+    int64_t ids[16];    /* frame fields: the first particles holding one (ids, not indices) */
+};
+
 /* Creates dir/result.h5 (truncating) and dir/result.xmf. Returns NULL and adds an
  * error; then neither file is left in dir (a file that could not be set up holds
  * no outcome). */
@@ -40,12 +56,16 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
                                        struct tlsph_errors *err);
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf
  * (via a temporary file and rename) when the last rewrite is more than 2 s old;
- * tlsph_output_close always rewrites it.  Returns 0 or -1. */
+ * tlsph_output_close always rewrites it.  Returns 0, TLSPH_OUTPUT_REFUSED (nothing
+ * written) or -1 (I/O error). */
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m);
 /* Appends one sample of every time-series column.  Rows are buffered and written
  * (and flushed) when 1024 are pending, at every frame, after ~1 s of wall time and
- * at close; a second sample at the same step replaces the first. */
+ * at close; a second sample at the same step replaces the first.  Returns 0,
+ * TLSPH_OUTPUT_REFUSED (the sample is dropped) or -1 (I/O error). */
 int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m);
+/* What the last TLSPH_OUTPUT_REFUSED refused. */
+const struct tlsph_output_refusal *tlsph_output_refusal(const struct tlsph_output *o);
 /* Records cost and outcome, closes everything. status: "successful", "unstable",
  * "cancelled", "io_error". d may be NULL. Returns 0 or -1 (the handle is freed either way). */
 int tlsph_output_close(struct tlsph_output *o, const struct tlsph_model *m,

@@ -66,6 +66,8 @@ struct tlsph_output {
     int64_t last_step_written;
     double last_series_write;
     double last_xmf_write;    /* wall clock of the last sidecar rewrite, s */
+
+    struct tlsph_output_refusal refusal; /* the last value refused (finite.c) */
 };
 
 /* layout.c: creates everything in o->file (open, nothing created yet): /h5md,
@@ -78,5 +80,13 @@ int tlsph_output_layout(struct tlsph_output *o, const struct tlsph_model *m);
  * file type. */
 void tlsph_output_extract(struct tlsph_output *o, const struct tlsph_field *f,
                           const struct tlsph_model *m);
+
+/* finite.c: the guard that keeps every dataset finite (output.h).  Each returns
+ * 0 when every value may be stored, else fills o->refusal and returns
+ * TLSPH_OUTPUT_REFUSED.  frame_field: f's values in o->scratch, as extracted;
+ * series_row: one buffered row of o->width doubles. */
+int tlsph_output_check_frame_field(struct tlsph_output *o, const struct tlsph_field *f,
+                                   const struct tlsph_model *m);
+int tlsph_output_check_series_row(struct tlsph_output *o, const double *row);
 
 #endif
