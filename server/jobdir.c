@@ -206,3 +206,20 @@ int jobdir_remove(const char *jobs_dir, const char *id)
         rc = -1;
     return rc;
 }
+
+int jobdir_each(const char *jobs_dir, int (*fn)(void *ctx, const char *id), void *ctx)
+{
+    DIR *d = opendir(jobs_dir);
+    if (!d)
+        return errno == ENOENT ? 0 : -1;
+    int rc = 0;
+    struct dirent *e;
+    while (rc == 0 && (e = readdir(d)) != NULL) {
+        struct stat st;
+        if (job_id_valid(e->d_name) && fstatat(dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+            S_ISDIR(st.st_mode))
+            rc = fn(ctx, e->d_name);
+    }
+    closedir(d);
+    return rc;
+}
