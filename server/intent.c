@@ -1,49 +1,21 @@
 /* Intent files, see intent.h. */
-#ifndef _GNU_SOURCE
-#define _GNU_SOURCE /* mkostemps */
-#endif
 #include "intent.h"
 
 #include <dirent.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "durable.h"
 #include "errmsg.h"
 #include "jobdir.h"
 #include "jobid.h"
 #include "strbuf.h"
 
 #define INTENT_PREFIX ".intent-"
-
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-static int fsync_dir(const char *path)
-{
-    int fd = open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0)
-        return -1;
-    int rc = fsync(fd);
-    close(fd);
-    return rc;
-}
 
 int intent_begin(struct intent *in, const char *jobs_dir, const char *const *ids, size_t n,
                  char *err, size_t errsize)
@@ -69,23 +41,14 @@ int intent_begin(struct intent *in, const char *jobs_dir, const char *const *ids
     struct strbuf b = {0};
     for (size_t i = 0; i < n; i++)
         strbuf_printf(&b, "%s\n", ids[i]);
-    int fd = b.oom ? -1 : mkostemps(tmp, 4, O_CLOEXEC);
-    int rc = fd < 0 || write_all(fd, b.p ? b.p : "", b.len) < 0 || fsync(fd) < 0 ? -1 : 0;
-    int e = errno;
-    if (fd >= 0 && close(fd) < 0 && rc == 0)
-        rc = -1, e = errno;
-    if (rc == 0 && rename(tmp, in->path) < 0)
-        rc = -1, e = errno;
-    if (rc == 0 && fsync_dir(jobs_dir) < 0)
-        rc = -1, e = errno;
+    int rc = -1;
+    if (b.oom)
+        errmsg_set(err, errsize, "intent file: out of memory");
+    else
+        rc = durable_write(jobs_dir, tmp, in->path, b.p ? b.p : "", b.len, err, errsize);
     strbuf_free(&b);
-    if (rc < 0) {
-        errmsg_set(err, errsize, "intent file %s: %s", in->path, strerror(e));
-        if (fd >= 0)
-            unlink(tmp);
-        unlink(in->path);
+    if (rc < 0)
         in->path[0] = '\0';
-    }
     return rc;
 }
 

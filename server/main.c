@@ -13,7 +13,6 @@
  * requeues running jobs), close the queue, exit 0. */
 #include <arpa/inet.h>
 #include <errno.h>
-#include <fcntl.h>
 #include <netinet/in.h>
 #include <signal.h>
 #include <stdio.h>
@@ -47,23 +46,6 @@ static int mkdir_p(const char *path)
     if (mkdir(buf, 0700) != 0 && errno != EEXIST)
         return -1;
     return 0;
-}
-
-/* The whole file (malloc'ed, *len bytes), or NULL. */
-static char *read_file(const char *path, size_t *len)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return NULL;
-    struct strbuf b = {0};
-    int rc = strbuf_read_fd(&b, fd);
-    close(fd);
-    *len = b.len;
-    if (rc != 0) {
-        strbuf_free(&b);
-        return NULL;
-    }
-    return strbuf_take(&b);
 }
 
 /* The listening socket, bound here so that a failure names the address and
@@ -189,7 +171,7 @@ int main(int argc, char **argv)
     struct tapp app = {.cfg = &cfg, .q = q, .sup = sup};
     char oapath[1200];
     snprintf(oapath, sizeof oapath, "%s/openapi.json", cfg.schemas_dir);
-    app.openapi = read_file(oapath, &app.openapi_len);
+    app.openapi = strbuf_read_file(oapath, &app.openapi_len);
     if (!app.openapi)
         tlog("warning: %s not found; /openapi.json will answer 404", oapath);
 

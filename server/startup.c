@@ -2,7 +2,6 @@
 #include "startup.h"
 
 #include <errno.h>
-#include <fcntl.h>
 #include <limits.h>
 #include <stdbool.h>
 #include <stdio.h>
@@ -46,22 +45,6 @@ static int move_aside(const char *db_path, char *moved, size_t size, char *err, 
     return 0;
 }
 
-/* The whole file, malloc'ed, or NULL. */
-static char *slurp(const char *path)
-{
-    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
-    if (fd < 0)
-        return NULL;
-    struct strbuf b = {0};
-    int rc = strbuf_read_fd(&b, fd);
-    close(fd);
-    if (rc != 0) {
-        strbuf_free(&b);
-        return NULL;
-    }
-    return strbuf_take(&b);
-}
-
 static double mtime_of(const char *path)
 {
     struct stat st;
@@ -90,7 +73,7 @@ static int rebuild_row(const struct tcfg *cfg, struct tq *q, const char *id, cha
     j.threads = cfg->threads_per_job;
     j.wall_limit = cfg->wall_limit;
     j.created = mtime_of(scene) > 0 ? mtime_of(scene) : mtime_of(dir);
-    j.input = slurp(scene);
+    j.input = strbuf_read_file(scene, NULL);
     const bool has_scene = j.input != NULL;
     char status[64] = "", why[256] = "";
     const bool has_result = access(result, F_OK) == 0;

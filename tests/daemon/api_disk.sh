@@ -21,12 +21,7 @@ if ! mount -t tmpfs -o size=24m,mode=0700 tlsphd-test-disk "$DISK" 2>"$TMP/mount
     exit 77
 fi
 disk_cleanup() {
-    for p in $DAEMON_PIDS; do kill -TERM "$p" 2>/dev/null; done
-    for p in $DAEMON_PIDS; do
-        for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
-        kill -KILL "$p" 2>/dev/null
-    done
-    DAEMON_PIDS=""
+    stop_daemons
     umount "$DISK" 2>/dev/null || umount -l "$DISK"
     cleanup
 }

@@ -21,12 +21,17 @@ done
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/tlsphd-test.XXXXXX")
 DAEMON_PIDS=""
 
-cleanup() {
+# stop_daemons: SIGTERM to every daemon started here, SIGKILL after 5 s
+stop_daemons() {
     for p in $DAEMON_PIDS; do kill -TERM "$p" 2>/dev/null; done
     for p in $DAEMON_PIDS; do
         for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
         kill -KILL "$p" 2>/dev/null
     done
+    DAEMON_PIDS=""
+}
+cleanup() {
+    stop_daemons
     if [ "${KEEP:-0}" = 1 ]; then echo "# kept $TMP"; else rm -rf "$TMP"; fi
 }
 trap cleanup EXIT

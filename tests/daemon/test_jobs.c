@@ -68,6 +68,16 @@ static bool has_error(const struct tlsph_errors *e, const char *pointer, const c
     return false;
 }
 
+/* Submits strip_2d as a run: JOBS_OK, with the id in sub->id. */
+static void submit_good_run(struct jobs_submitted *sub)
+{
+    jobs_submitted_init(sub);
+    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, sub), JOBS_OK);
+    json_decref(inputs);
+    ck_assert(job_id_valid(sub->id));
+}
+
 static long count_jobs(void)
 {
     long acc = -1;
@@ -111,11 +121,7 @@ END_TEST
 START_TEST(test_run_queued_then_removed)
 {
     struct jobs_submitted sub;
-    jobs_submitted_init(&sub);
-    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
-    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OK);
-    json_decref(inputs);
-    ck_assert(job_id_valid(sub.id));
+    submit_good_run(&sub);
 
     struct tq_job j;
     ck_assert_int_eq(tq_get(g_q, sub.id, &j), TQ_OK);
@@ -231,11 +237,8 @@ START_TEST(test_output_quota)
     ck_assert_int_eq(count_jobs(), 0);
 
     /* 11 records: 332 000 B fit */
-    jobs_submitted_init(&sub);
-    inputs = json_pack("{s:o}", "scene", good_scene());
-    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OK);
+    submit_good_run(&sub);
     ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 116));
-    json_decref(inputs);
     jobs_submitted_free(&sub);
 
     /* a study: the child above the quota is named */
@@ -295,10 +298,7 @@ static int has_row_cb(void *ctx, const char *id)
 START_TEST(test_intent_replay)
 {
     struct jobs_submitted sub;
-    jobs_submitted_init(&sub);
-    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
-    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OK);
-    json_decref(inputs);
+    submit_good_run(&sub);
     char ids[3][JOB_ID_LEN + 1], path[PATH_MAX], err[256];
     snprintf(ids[0], sizeof ids[0], "%s", sub.id); /* has a row */
     for (int i = 1; i < 3; i++) {

@@ -501,23 +501,27 @@ END_TEST
  * Values that round to the same double are refused too. */
 START_TEST(test_range_refused)
 {
+    static const struct {
+        const char *parameters, *needle;
+    } refused[] = {
+        {"{\"pointer\": \"/time/end\", \"range\": {\"start\": -1e308, \"stop\": 1e308, \"num\": 2}},"
+         "{\"pointer\": \"/time/cfl\", \"range\": {\"start\": 0.1, \"stop\": 0.9, \"num\": 1000}}",
+         "not a finite number"},
+        /* 1 + 2^-52 is the next double after 1: three values cannot be distinct */
+        {"{\"pointer\": \"/time/end\", \"range\": {\"start\": 1, \"stop\": 1.0000000000000002, "
+         "\"num\": 3}}",
+         "below double precision"},
+    };
     struct tlsph_errors e;
-    expect_fail("{\"base\": " BASE ", \"sweep\": {\"parameters\": ["
-                "{\"pointer\": \"/time/end\", \"range\": {\"start\": -1e308, \"stop\": 1e308, "
-                "\"num\": 2}},"
-                "{\"pointer\": \"/time/cfl\", \"range\": {\"start\": 0.1, \"stop\": 0.9, "
-                "\"num\": 1000}}]}}",
-                10000, &e);
-    ck_assert(has_error(&e, "/sweep/parameters/0/range", "not a finite number"));
-    ck_assert_int_eq(e.count, 1);
-    tlsph_errors_free(&e);
-    /* 1 + 2^-52 is the next double after 1: three values cannot be distinct */
-    expect_fail("{\"base\": " BASE ", \"sweep\": {\"parameters\": ["
-                "{\"pointer\": \"/time/end\", \"range\": {\"start\": 1, "
-                "\"stop\": 1.0000000000000002, \"num\": 3}}]}}",
-                100, &e);
-    ck_assert(has_error(&e, "/sweep/parameters/0/range", "below double precision"));
-    tlsph_errors_free(&e);
+    for (size_t i = 0; i < sizeof refused / sizeof *refused; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "{\"base\": %s, \"sweep\": {\"parameters\": [%s]}}", BASE,
+                 refused[i].parameters);
+        expect_fail(text, 10000, &e);
+        ck_assert(has_error(&e, "/sweep/parameters/0/range", refused[i].needle));
+        ck_assert_int_eq(e.count, 1);
+        tlsph_errors_free(&e);
+    }
     /* the widest finite span that still has a finite step is accepted */
     json_t *study = load("{\"base\": " BASE ", \"sweep\": {\"parameters\": ["
                          "{\"pointer\": \"/time/end\", \"range\": {\"start\": -8e307, "
