@@ -129,18 +129,16 @@ check "  statusInfo valid" valid job
 
 # ---------------------------------------------------------- start-up messages
 PORT=${D_URL##*:}
-"$TLSPHD" --listen "127.0.0.1:$PORT" --data-dir "$TMP/other" --engine "$ENGINE" >"$TMP/taken.log" 2>&1
-rc=$?
-check "a taken port: exit 1 (got $rc)" [ "$rc" = 1 ]
-check "  the log names the address and why" grep -q "cannot listen on 127.0.0.1:$PORT: Address already in use" "$TMP/taken.log"
-check "  no 'port 0'" bash -c "! grep -q 'port 0' '$TMP/taken.log'"
+start_refused P "$TMP/other" --listen "127.0.0.1:$PORT"
+check "a taken port: exit 1 (got $P_RC)" [ "$P_RC" = 1 ]
+check "  the log names the address and why" grep -q "cannot listen on 127.0.0.1:$PORT: Address already in use" "$P_LOG"
+check "  no 'port 0'" bash -c "! grep -q 'port 0' '$P_LOG'"
 TOKEN=$(head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n')
 printf '%s\n' "$TOKEN" >"$TMP/tokens"
 chmod 644 "$TMP/tokens"
-"$TLSPHD" --listen "127.0.0.1:$(free_port)" --data-dir "$TMP/other" --engine "$ENGINE" --token-file "$TMP/tokens" >"$TMP/tok.log" 2>&1
-rc=$?
-check "a token file others can read (0644): refused, exit 2 (got $rc)" [ "$rc" = 2 ]
-check "  the log says why and what to do" grep -q "readable by other users (mode 0644).*chmod 600" "$TMP/tok.log"
+start_refused T "$TMP/other" --token-file "$TMP/tokens"
+check "a token file others can read (0644): refused, exit 2 (got $T_RC)" [ "$T_RC" = 2 ]
+check "  the log says why and what to do" grep -q "readable by other users (mode 0644).*chmod 600" "$T_LOG"
 chmod 600 "$TMP/tokens"
 start_daemon A "$TMP/data-auth" --token-file "$TMP/tokens" || exit 1
 check "  mode 0600: accepted" [ "$(curl -s -o /dev/null -w '%{http_code}' -H "Authorization: Bearer $TOKEN" "$A_URL/jobs")" = 200 ]

@@ -28,21 +28,6 @@ print(json.dumps({'inputs': {'base': s, 'sweep': {'parameters': [
     {'pointer': '/time/end', 'range': {'start': 1e-4, 'stop': 2e-4, 'num': int(sys.argv[1])}}]}}}))" "$1" "${2:-1}"
 }
 ndirs() { find "$1/jobs" -mindepth 1 -maxdepth 1 -type d | wc -l; }
-# start_refused VAR DATA [args]: starts tlsphd, waits until it exits or
-# answers; sets VAR_RC (the exit status, "running" if it serves) and VAR_LOG
-start_refused() {
-    local var=$1 data=$2; shift 2
-    local log="$TMP/$var.log" port; port=$(free_port)
-    "$TLSPHD" --listen "127.0.0.1:$port" --data-dir "$data" --engine "$ENGINE" \
-        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 "$@" >"$log" 2>&1 &
-    local pid=$! rc=running
-    DAEMON_PIDS="$DAEMON_PIDS $pid"
-    exited_or_up() { ! kill -0 "$pid" 2>/dev/null || curl -sf "http://127.0.0.1:$port/healthz" >/dev/null; }
-    wait_until exited_or_up
-    if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; rc=$?; fi
-    eval "${var}_RC=$rc; ${var}_LOG=$log"
-}
-
 # ------------------------------------------------ a data directory to break
 DATA=$TMP/data
 start_daemon D "$DATA" --max-jobs 1 || exit 1

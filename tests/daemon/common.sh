@@ -68,6 +68,22 @@ start_daemon() {
     echo "FAIL: daemon did not start"; cat "$log"; return 1
 }
 
+# start_refused VAR DATA [args]: starts tlsphd where it should refuse to
+# start; waits until it exits or answers (a hang detector, not a deadline);
+# sets VAR_RC (the exit status, "running" when it serves after all) and VAR_LOG.
+start_refused() {
+    local var=$1 data=$2; shift 2
+    local log="$TMP/$var.log" port; port=$(free_port)
+    "$TLSPHD" --listen "127.0.0.1:$port" --data-dir "$data" --engine "$ENGINE" \
+        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 "$@" >"$log" 2>&1 &
+    local pid=$! rc=running
+    DAEMON_PIDS="$DAEMON_PIDS $pid"
+    exited_or_up() { ! kill -0 "$pid" 2>/dev/null || curl -sf "http://127.0.0.1:$port/healthz" >/dev/null; }
+    wait_until exited_or_up
+    if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; rc=$?; fi
+    eval "${var}_RC=$rc; ${var}_LOG=$log"
+}
+
 # req METHOD URL [curl args...]: sets STATUS, BODY (file), HDRS (file).
 BODY=$TMP/body
 HDRS=$TMP/hdrs
