@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <strings.h>
+#include <sys/stat.h>
 
 #include <gnutls/crypto.h>
 #include <gnutls/gnutls.h>
@@ -80,9 +81,26 @@ int tauth_add_token(struct tauth *a, const char *token, size_t len)
 
 int tauth_load_file(struct tauth *a, const char *path, char *err, size_t errsize)
 {
-    FILE *f = fopen(path, "r");
+    FILE *f = fopen(path, "re");
     if (!f) {
         snprintf(err, errsize, "token file %s: %s", path, strerror(errno));
+        return -1;
+    }
+    /* Refused, not warned about: tokens that every local user can read (or
+     * anyone but the owner can change) protect nothing, like an ssh key. */
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        snprintf(err, errsize, "token file %s is not a regular file", path);
+        fclose(f);
+        return -1;
+    }
+    if (st.st_mode & (S_IROTH | S_IWOTH | S_IWGRP)) {
+        snprintf(err, errsize,
+                 "token file %s is %s by other users (mode %04o); refusing it: "
+                 "chmod 600 (or 640 for a service group) and start again",
+                 path, st.st_mode & S_IROTH ? "readable" : "writable",
+                 (unsigned)(st.st_mode & 07777));
+        fclose(f);
         return -1;
     }
     char *line = NULL;

@@ -24,6 +24,8 @@ int tauth_add_hex(struct tauth *a, const char *hex);
 /* Hashes and adds a plaintext token (>= 16 chars). 0 or -1. */
 int tauth_add_token(struct tauth *a, const char *token, size_t len);
 /* Reads plaintext tokens (one per line, '#' comments, blank lines ignored).
+ * A file that other users may read, or anyone but its owner may write, is
+ * refused (group-readable is fine, for a service group).
  * Returns the number of tokens added or -1 with err. */
 int tauth_load_file(struct tauth *a, const char *path, char *err, size_t errsize);
 /* 1 when authentication is configured (at least one token). */

@@ -27,11 +27,16 @@ void tcfg_usage(FILE *f)
             "              [--max-children N] [--body-limit BYTES] [--connection-limit N]\n"
             "              [--per-ip-limit N] [--connection-timeout S] [--memory-limit-mb N]\n"
             "              [--kill-grace S] [--max-attempts N] [--token-file FILE]\n"
+            "              [--min-free-mb N] [--max-output-mb N] [--disk-reserve-mb N]\n"
+            "              [--recover]\n"
             "defaults: --listen 127.0.0.1:8080, --data-dir $XDG_STATE_HOME/tlsphd or ./tlsphd-data,\n"
             "          --max-jobs 1, --threads-per-job <cores>, --wall-limit 3600,\n"
-            "          --max-particles %ld.  Config file: 'key = value' lines with the\n"
+            "          --max-particles %ld, --min-free-mb 256, --max-output-mb 16384,\n"
+            "          --disk-reserve-mb 8.  Config file: 'key = value' lines with the\n"
             "          same names (underscores), plus 'token_sha256 = HEX' (repeatable).\n"
-            "Tokens are required when listening on a non-loopback address.\n",
+            "Tokens are required when listening on a non-loopback address.\n"
+            "--recover: start on a data directory that fails the start-up checks (a\n"
+            "corrupt database is moved aside; job directories without rows get rows).\n",
             TLSPH_DEFAULT_MAX_PARTICLES);
 }
 
@@ -162,6 +167,9 @@ static const struct key keys[] = {
     {"memory_limit_mb", "--memory-limit-mb", K_LONG, 0, 1L << 30, MEMBER(memory_limit_mb)},
     {"kill_grace", "--kill-grace", K_DOUBLE, 0, 3600, MEMBER(kill_grace)},
     {"max_attempts", "--max-attempts", K_INT, 1, 100, MEMBER(max_attempts)},
+    {"min_free_mb", "--min-free-mb", K_LONG, 0, 1L << 40, MEMBER(min_free_mb)},
+    {"max_output_mb", "--max-output-mb", K_LONG, 0, 1L << 40, MEMBER(max_output_mb)},
+    {"disk_reserve_mb", "--disk-reserve-mb", K_LONG, 0, 1L << 20, MEMBER(disk_reserve_mb)},
     {"token_sha256", NULL, K_TOKEN_HEX, 0, 0, 0, 0},
     {"token_file", "--token-file", K_TOKEN_FILE, 0, 0, 0, 0},
 };
@@ -350,8 +358,11 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
     c->memory_limit_mb = 0;
     c->kill_grace = 5;
     c->max_attempts = 3;
+    c->min_free_mb = 256;
+    c->max_output_mb = 16384;
+    c->disk_reserve_mb = 8;
 
-    /* pass 1: --help and --config */
+    /* pass 1: --help, --config and --recover (a mode of this start, not a setting) */
     const char *config = NULL;
     for (int i = 1; i < argc; i++) {
         if (!strcmp(argv[i], "--help") || !strcmp(argv[i], "-h"))
@@ -362,6 +373,8 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
                 return TCFG_ERROR;
             }
             config = argv[++i];
+        } else if (!strcmp(argv[i], "--recover")) {
+            c->recover = 1;
         }
     }
     if (config && load_file(c, config, err, errsize) != 0)
@@ -372,6 +385,8 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
             i++;
             continue;
         }
+        if (!strcmp(argv[i], "--recover"))
+            continue;
         const struct key *k = key_of_flag(argv[i]);
         if (!k) {
             snprintf(err, errsize, "unknown argument '%s'", argv[i]);

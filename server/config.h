@@ -22,10 +22,19 @@
  *   memory_limit_mb = N       --memory-limit-mb 0 (RLIMIT_AS per engine; 0 = none)
  *   kill_grace = S            --kill-grace    5
  *   max_attempts = N          --max-attempts  3
+ *   min_free_mb = N           --min-free-mb   256 (free-space floor of the data directory;
+ *                                             0 = none; storage.h)
+ *   max_output_mb = N         --max-output-mb 16384 (quota on a job's estimated result
+ *                                             file; 0 = none; output_size.h)
+ *   disk_reserve_mb = N       --disk-reserve-mb 8 (the reserve file; 0 = none; storage.h)
  *   token_sha256 = HEX        (repeatable)    SHA-256 of an accepted bearer token
  *   token_file = FILE         --token-file    plaintext tokens, one per line (hashed at load)
  *
- * Layout under data_dir: tlsphd.sqlite (+ -wal, -shm) and jobs/<id>/. */
+ * And, on the command line only, --recover: start on a data directory that
+ * does not pass the start-up checks by rebuilding it (startup.h).
+ *
+ * Layout under data_dir: tlsphd.sqlite (+ -wal, -shm), tlsphd.reserve and
+ * jobs/<id>/. */
 #ifndef TLSPHD_CONFIG_H
 #define TLSPHD_CONFIG_H
 
@@ -57,6 +66,10 @@ struct tcfg {
     long memory_limit_mb;
     double kill_grace;
     int max_attempts;
+    long min_free_mb;        /* free-space floor, MiB (0 = none) */
+    long max_output_mb;      /* per-job quota on the estimated result file, MiB (0 = none) */
+    long disk_reserve_mb;    /* the reserve file, MiB (0 = none) */
+    int recover;             /* --recover was given */
     struct tauth auth;       /* token hashes (empty = no authentication) */
 };
 

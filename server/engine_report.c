@@ -106,7 +106,8 @@ static bool take_line(struct engine_report *r, const char *line, size_t len)
         take_number(o, "eta_seconds", &r->eta);
         moved = true;
     } else if (!strcmp(ev, TLSPH_EVENT_FINISHED)) {
-        take_final(r, o);
+        take_final(r, o); /* its step and time are the run's last: the job shows them */
+        moved = true;
     }
     json_decref(o);
     return moved;
@@ -139,12 +140,12 @@ bool engine_report_feed(struct engine_report *r, const char *buf, size_t n)
     return moved;
 }
 
-void engine_report_eof(struct engine_report *r)
+bool engine_report_eof(struct engine_report *r)
 {
-    if (!r->overflow && r->line.len > 0)
-        take_line(r, r->line.p, r->line.len);
+    const bool moved = !r->overflow && r->line.len > 0 && take_line(r, r->line.p, r->line.len);
     strbuf_reset(&r->line);
     r->overflow = false;
+    return moved;
 }
 
 static const char *signal_name(int sig)

@@ -51,11 +51,12 @@ struct engine_outcome {
 
 void engine_report_init(struct engine_report *r, double end_time);
 void engine_report_free(struct engine_report *r);
-/* Feeds n bytes read from the pipe.  True when a progress or started event
- * updated the progress members. */
+/* Feeds n bytes read from the pipe.  True when a progress, started or
+ * finished event updated the progress members. */
 bool engine_report_feed(struct engine_report *r, const char *buf, size_t n);
-/* The pipe is closed: an unterminated last line still counts. */
-void engine_report_eof(struct engine_report *r);
+/* The pipe is closed: an unterminated last line still counts.  True when it
+ * updated the progress members (as engine_report_feed). */
+bool engine_report_eof(struct engine_report *r);
 
 /* The final state from the report, the wait status (-1: lost, reaped
  * elsewhere), why the daemon stopped the engine, and the wall-clock limit that

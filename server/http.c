@@ -14,6 +14,7 @@
 #include <microhttpd.h>
 
 #include "errmsg.h"
+#include "numtext.h"
 #include "util/clock.h"
 
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
@@ -93,7 +94,7 @@ void http_reply_text(struct hreq *r, unsigned status, const char *ctype, const c
 
 void http_reply_json(struct hreq *r, unsigned status, json_t *body)
 {
-    char *s = body ? json_dumps(body, JSON_COMPACT | JSON_ENSURE_ASCII) : NULL;
+    char *s = body ? numtext_json_dumps(body, JSON_COMPACT | JSON_ENSURE_ASCII) : NULL;
     json_decref(body);
     if (!s) {
         http_reply_text(r, 500, PROBLEM_CONTENT_TYPE,
@@ -476,7 +477,7 @@ struct http *http_start(const struct http_config *cfg)
     if (cfg->addr->sa_family == AF_INET6)
         flags |= MHD_USE_IPv6;
     h->d = MHD_start_daemon(
-        flags, 0, NULL, NULL, access_cb, h, MHD_OPTION_SOCK_ADDR, cfg->addr,
+        flags, 0, NULL, NULL, access_cb, h, MHD_OPTION_LISTEN_SOCKET, (MHD_socket)cfg->listen_fd,
         MHD_OPTION_CONNECTION_LIMIT, (unsigned)cfg->connection_limit,
         MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)cfg->per_ip_limit,
         MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)cfg->connection_timeout,
@@ -484,7 +485,7 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
-        tlog("cannot start the HTTP server (address in use?)");
+        tlog("cannot start the HTTP server (libmicrohttpd refused the listening socket)");
         goto fail;
     }
     return h;

@@ -61,8 +61,10 @@ struct hreq {
 };
 
 struct http_config {
-    const struct sockaddr *addr;
+    const struct sockaddr *addr; /* the address listen_fd is bound to */
     socklen_t addrlen;
+    int listen_fd;         /* a bound, listening socket (the caller binds it, so that a
+                            * failure can name the address); MHD closes it at stop */
     int connection_limit, per_ip_limit, connection_timeout;
     size_t body_limit;
     size_t max_waiters;

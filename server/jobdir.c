@@ -1,6 +1,6 @@
 /* A job's directory, see jobdir.h. */
 #ifndef _GNU_SOURCE
-#define _GNU_SOURCE /* mkostemps */
+#define _GNU_SOURCE /* dirfd, fstatat */
 #endif
 #include "jobdir.h"
 
@@ -15,6 +15,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "durable.h"
 #include "errmsg.h"
 #include "jobid.h"
 
@@ -48,33 +49,6 @@ int jobdir_path(char *buf, size_t size, const char *jobs_dir, const char *id,
     return path_of(buf, size, jobs_dir, id, file < JOBDIR_FILES ? files[file].name : NULL);
 }
 
-static int write_all(int fd, const char *p, size_t n)
-{
-    while (n > 0) {
-        ssize_t w = write(fd, p, n);
-        if (w < 0) {
-            if (errno == EINTR)
-                continue;
-            return -1;
-        }
-        p += w;
-        n -= (size_t)w;
-    }
-    return 0;
-}
-
-static int fsync_dir(const char *path)
-{
-    int fd = open(path, O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-    if (fd < 0)
-        return -1;
-    int rc = fsync(fd);
-    int e = errno;
-    close(fd);
-    errno = e;
-    return rc;
-}
-
 int jobdir_create(const char *jobs_dir, const char *id, const char *scene_json, char *err,
                   size_t errsize)
 {
@@ -106,32 +80,7 @@ int jobdir_create(const char *jobs_dir, const char *id, const char *scene_json, 
         errmsg_set(err, errsize, "%s is not a directory", dir);
         return -1;
     }
-    int fd = mkostemps(tmp, 4, O_CLOEXEC);
-    if (fd < 0) {
-        errmsg_set(err, errsize, "cannot create %s: %s", tmp, strerror(errno));
-        return -1;
-    }
-    if (write_all(fd, scene_json, strlen(scene_json)) < 0 || fsync(fd) < 0) {
-        errmsg_set(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        close(fd);
-        unlink(tmp);
-        return -1;
-    }
-    if (close(fd) < 0) {
-        errmsg_set(err, errsize, "cannot write %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (rename(tmp, dst) < 0) {
-        errmsg_set(err, errsize, "cannot rename %s: %s", tmp, strerror(errno));
-        unlink(tmp);
-        return -1;
-    }
-    if (fsync_dir(dir) < 0) {
-        errmsg_set(err, errsize, "cannot sync %s: %s", dir, strerror(errno));
-        return -1;
-    }
-    return 0;
+    return durable_write(dir, tmp, dst, scene_json, strlen(scene_json), err, errsize);
 }
 
 static int unlink_quietly(int dfd, const char *name)
@@ -204,5 +153,22 @@ int jobdir_remove(const char *jobs_dir, const char *id)
     close(dfd);
     if (rmdir(dir) < 0 && errno != ENOENT)
         rc = -1;
+    return rc;
+}
+
+int jobdir_each(const char *jobs_dir, int (*fn)(void *ctx, const char *id), void *ctx)
+{
+    DIR *d = opendir(jobs_dir);
+    if (!d)
+        return errno == ENOENT ? 0 : -1;
+    int rc = 0;
+    struct dirent *e;
+    while (rc == 0 && (e = readdir(d)) != NULL) {
+        struct stat st;
+        if (job_id_valid(e->d_name) && fstatat(dirfd(d), e->d_name, &st, AT_SYMLINK_NOFOLLOW) == 0 &&
+            S_ISDIR(st.st_mode))
+            rc = fn(ctx, e->d_name);
+    }
+    closedir(d);
     return rc;
 }

@@ -34,5 +34,10 @@ int jobdir_create(const char *jobs_dir, const char *id, const char *scene_json, 
 int jobdir_clear_outputs(const char *jobs_dir, const char *id);
 /* Removes the job's files and its directory; a missing directory is fine. */
 int jobdir_remove(const char *jobs_dir, const char *id);
+/* Calls fn(ctx, id) for every directory under jobs_dir named by a job id
+ * (job_id_valid; other names are not job directories); stops at the first
+ * non-zero answer and returns it.  0, or -1 with errno when jobs_dir cannot
+ * be read (a missing jobs_dir has no job). */
+int jobdir_each(const char *jobs_dir, int (*fn)(void *ctx, const char *id), void *ctx);
 
 #endif

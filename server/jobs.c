@@ -7,8 +7,12 @@
 #include <string.h>
 
 #include "errmsg.h"
+#include "intent.h"
 #include "jobdir.h"
+#include "numtext.h"
+#include "output_size.h"
 #include "scene/scene.h"
+#include "storage.h"
 #include "study.h"
 #include "supervisor.h"
 
@@ -60,15 +64,83 @@ static bool apply_particle_limit(const struct jobs_env *env, json_t *scene,
     return true;
 }
 
-/* The engine's validation of a scene (the same parser tlsph-run runs). */
-static bool scene_valid(const char *text, struct tlsph_errors *err)
+/* The engine's validation of a scene (the same parser tlsph-run runs), and
+ * the estimate of its result file. */
+static bool scene_valid(const char *text, struct tlsph_errors *err, struct output_size *size)
 {
     struct tlsph_scene sc;
     memset(&sc, 0, sizeof sc);
     if (tlsph_scene_parse(text, strlen(text), &sc, err) != 0)
         return false;
+    const int rc = output_size_estimate(&sc, size, err);
     tlsph_scene_free(&sc);
-    return true;
+    return rc == 0;
+}
+
+/* A job's estimate against the per-job quota: false with an error at
+ * pointer (who names the child of a study, "" for a run). */
+static bool within_quota(const struct jobs_env *env, const struct output_size *size,
+                         const char *pointer, const char *who, struct jobs_submitted *out)
+{
+    const double quota = (double)env->cfg->max_output_mb * 1024.0 * 1024.0;
+    if (env->cfg->max_output_mb <= 0 || size->bytes <= quota)
+        return true;
+    char est[32], lim[32];
+    output_size_text(est, sizeof est, size->bytes);
+    output_size_text(lim, sizeof lim, quota);
+    tlsph_errors_add(&out->errors, pointer,
+                     "%sthe result file is estimated at %s (%zu particles x (%.0f B + %ld "
+                     "frames x %.0f B), an upper bound: docs/api.md), above this server's "
+                     "quota of %s per job (max_output_mb); write fewer frames or use fewer "
+                     "particles",
+                     who, est, size->particles, size->reference_bytes, size->records,
+                     size->frame_bytes, lim);
+    if (!out->detail[0])
+        errmsg_set(out->detail, sizeof out->detail,
+                   "%sthe estimated result file of %s is above the quota of %s per job",
+                   who, est, lim);
+    return false;
+}
+
+/* The free space of the data directory against the floor plus the
+ * estimate of everything submitted (out->output_bytes): JOBS_OK or
+ * JOBS_NO_SPACE with the detail. */
+static enum jobs_rc check_space(const struct jobs_env *env, struct jobs_submitted *out)
+{
+    const int64_t free_bytes = storage_free_bytes(env->cfg);
+    if (free_bytes < 0)
+        return JOBS_OK; /* unknown: the writes themselves will tell */
+    const double floor_bytes = (double)storage_floor_bytes(env->cfg);
+    if ((double)free_bytes >= floor_bytes + out->output_bytes)
+        return JOBS_OK;
+    char est[32], fr[32], fl[32];
+    output_size_text(est, sizeof est, out->output_bytes);
+    output_size_text(fr, sizeof fr, (double)free_bytes);
+    output_size_text(fl, sizeof fl, floor_bytes);
+    if ((double)free_bytes < floor_bytes)
+        errmsg_set(out->detail, sizeof out->detail,
+                   "the data directory has %s free, below the floor of %s (min_free_mb): no new "
+                   "job is taken until space is freed",
+                   fr, fl);
+    else
+        errmsg_set(out->detail, sizeof out->detail,
+                   "the result files are estimated at %s, but the data directory has %s free "
+                   "above the floor of %s (min_free_mb)",
+                   est, fr, fl);
+    return JOBS_NO_SPACE;
+}
+
+/* Why creating directories or rows failed: a full disk, or something else. */
+static enum jobs_rc write_failure(const struct jobs_env *env, bool queue_full,
+                                  enum jobs_rc otherwise, struct jobs_submitted *out)
+{
+    const int64_t free_bytes = storage_free_bytes(env->cfg);
+    if (!queue_full && (free_bytes < 0 || (uint64_t)free_bytes >= storage_floor_bytes(env->cfg)))
+        return otherwise;
+    errmsg_set(out->detail, sizeof out->detail,
+               "the data directory's disk is full or below its free-space floor: %s",
+               out->why[0] ? out->why : "no space");
+    return JOBS_NO_SPACE;
 }
 
 static void new_row(const struct jobs_env *env, struct tq_job *j, const char *process, char *input)
@@ -121,17 +193,26 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
     }
     if (!apply_particle_limit(env, scene, err, "/scene/limits/max_particles"))
         return JOBS_INVALID;
-    char *text = json_dumps(scene, JSON_COMPACT);
+    char *text = numtext_json_dumps(scene, JSON_COMPACT);
     if (!text)
         return JOBS_NO_MEMORY;
     struct tlsph_errors scene_err;
     tlsph_errors_init(&scene_err);
+    struct intent intent = {""};
     enum jobs_rc rc = JOBS_OK;
-    if (!scene_valid(text, &scene_err)) {
+    struct output_size size;
+    if (!scene_valid(text, &scene_err, &size)) {
         add_prefixed(err, "/scene", &scene_err);
         rc = JOBS_INVALID;
         goto done;
     }
+    out->output_bytes = size.bytes;
+    if (!within_quota(env, &size, "/scene/output/frames", "", out)) {
+        rc = JOBS_OVER_QUOTA;
+        goto done;
+    }
+    if ((rc = check_space(env, out)) != JOBS_OK)
+        goto done;
     struct tq_job j;
     new_row(env, &j, "run", text);
     if (job_id_new(j.id) != 0) {
@@ -139,19 +220,22 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
         rc = JOBS_NO_DIRECTORY;
         goto done;
     }
-    if (jobdir_create(env->cfg->jobs_dir, j.id, text, out->why, sizeof out->why) != 0) {
-        rc = JOBS_NO_DIRECTORY;
+    const char *ids[] = {j.id};
+    if (intent_begin(&intent, env->cfg->jobs_dir, ids, 1, out->why, sizeof out->why) != 0 ||
+        jobdir_create(env->cfg->jobs_dir, j.id, text, out->why, sizeof out->why) != 0) {
+        rc = write_failure(env, false, JOBS_NO_DIRECTORY, out);
         goto done;
     }
     if (tq_insert(env->q, &j) != TQ_OK) {
         errmsg_set(out->why, sizeof out->why, "tq_insert: %s", tq_last_error(env->q));
         jobdir_remove(env->cfg->jobs_dir, j.id);
-        rc = JOBS_NOT_QUEUED;
+        rc = write_failure(env, tq_disk_full(env->q), JOBS_NOT_QUEUED, out);
         goto done;
     }
     tsup_wake(env->sup);
     memcpy(out->id, j.id, JOB_ID_LEN + 1);
 done:
+    intent_end(&intent);
     tlsph_errors_free(&scene_err);
     free(text);
     return rc;
@@ -167,21 +251,24 @@ static bool pointer_under(const char *p, const char *s)
 }
 
 /* Validates child i; its errors go to err, pointed at the base scene, or at
- * the sweep parameter whose values caused them (naming the child). */
+ * the sweep parameter whose values caused them (naming the child).  size
+ * gets the estimate of its result file (valid when no error was added). */
 static void check_child(const struct jobs_env *env, const json_t *params,
-                        const struct tstudy_child *kid, size_t i, struct tlsph_errors *err)
+                        const struct tstudy_child *kid, size_t i, struct tlsph_errors *err,
+                        struct output_size *size)
 {
     struct tlsph_errors errs;
     tlsph_errors_init(&errs);
+    memset(size, 0, sizeof *size);
     json_t *mp = tstudy_pointer_get(kid->scene, "/limits/max_particles");
     if (json_is_number(mp) && json_number_value(mp) > (double)env->cfg->max_particles) {
         tlsph_errors_add(&errs, "/limits/max_particles",
                          "exceeds this server's limit of %ld particles per job",
                          env->cfg->max_particles);
     } else {
-        char *text = json_dumps(kid->scene, JSON_COMPACT);
+        char *text = numtext_json_dumps(kid->scene, JSON_COMPACT);
         if (text)
-            scene_valid(text, &errs);
+            scene_valid(text, &errs, size);
         free(text);
     }
     for (size_t k = 0; k < errs.count && err->count < JOBS_MAX_REPORTED_ERRORS; k++) {
@@ -194,7 +281,7 @@ static void check_child(const struct jobs_env *env, const json_t *params,
         json_array_foreach(params, pi, pp) {
             const char *sp = json_string_value(json_object_get(pp, "pointer"));
             if (sp && pointer_under(ep, sp)) {
-                char *vals = json_dumps(kid->params, JSON_COMPACT);
+                char *vals = numtext_json_dumps(kid->params, JSON_COMPACT);
                 snprintf(pointer, sizeof pointer, "/sweep/parameters/%zu", pi);
                 snprintf(detail, sizeof detail, "child %zu %s: %s", i, vals ? vals : "",
                          errs.items[k].message);
@@ -208,79 +295,112 @@ static void check_child(const struct jobs_env *env, const json_t *params,
     tlsph_errors_free(&errs);
 }
 
-/* Expands and validates the study; JOBS_OK with the children, or JOBS_INVALID. */
+/* Expands and validates the study; JOBS_OK with the children, or
+ * JOBS_INVALID; then the quota of each child (JOBS_OVER_QUOTA) and the space
+ * for all (JOBS_NO_SPACE). */
 static enum jobs_rc expand_study(const struct jobs_env *env, json_t *inputs,
-                                 struct tstudy_child **kids, size_t *nk, struct tlsph_errors *err)
+                                 struct tstudy_child **kids, size_t *nk, struct jobs_submitted *out)
 {
+    struct tlsph_errors *err = &out->errors;
     json_t *base = json_object_get(inputs, "base");
     if (json_is_object(base) &&
         !apply_particle_limit(env, base, err, "/base/limits/max_particles"))
         return JOBS_INVALID;
     struct tlsph_errors errs;
     tlsph_errors_init(&errs);
-    int rc = tstudy_expand(inputs, (size_t)env->cfg->max_children, kids, nk, &errs);
-    if (rc != 0)
+    const int expanded = tstudy_expand(inputs, (size_t)env->cfg->max_children, kids, nk, &errs);
+    if (expanded != 0)
         add_prefixed(err, "", &errs);
     tlsph_errors_free(&errs);
-    if (rc != 0)
+    if (expanded != 0)
         return JOBS_INVALID;
     if (*nk == 0) {
         tlsph_errors_add(err, "/sweep", "the sweep yields no child");
         return JOBS_INVALID;
     }
     const json_t *params = json_object_get(json_object_get(inputs, "sweep"), "parameters");
+    struct output_size *sizes = calloc(*nk, sizeof *sizes);
+    if (!sizes)
+        return JOBS_NO_MEMORY;
     for (size_t i = 0; i < *nk && err->count < JOBS_MAX_REPORTED_ERRORS; i++)
-        check_child(env, params, &(*kids)[i], i, err);
-    return err->count > 0 ? JOBS_INVALID : JOBS_OK;
+        check_child(env, params, &(*kids)[i], i, err, &sizes[i]);
+    enum jobs_rc rc = err->count > 0 ? JOBS_INVALID : JOBS_OK;
+    for (size_t i = 0; rc != JOBS_INVALID && i < *nk; i++) {
+        if (env->cfg->max_output_mb <= 0) {
+            out->output_bytes += sizes[i].bytes;
+            continue;
+        }
+        char who[1100];
+        char *vals = numtext_json_dumps((*kids)[i].params, JSON_COMPACT);
+        snprintf(who, sizeof who, "child %zu %s: ", i, vals ? vals : "");
+        free(vals);
+        out->output_bytes += sizes[i].bytes;
+        if (err->count < JOBS_MAX_REPORTED_ERRORS &&
+            !within_quota(env, &sizes[i], "/base/output/frames", who, out))
+            rc = JOBS_OVER_QUOTA;
+    }
+    free(sizes);
+    return rc == JOBS_OK ? check_space(env, out) : rc;
 }
 
-/* Directories first, then the rows in one transaction; on failure the
- * directories made so far are removed. */
+/* Ids and rows first, then the intent file, the directories, and the rows in
+ * one transaction; on failure the directories made so far are removed. */
 static enum jobs_rc queue_study(const struct jobs_env *env, json_t *inputs,
                                 const struct tstudy_child *kids, size_t nk,
                                 struct jobs_submitted *out)
 {
-    char *study_text = json_dumps(inputs, JSON_COMPACT);
+    char *study_text = numtext_json_dumps(inputs, JSON_COMPACT);
     struct tq_job study;
     new_row(env, &study, "study", study_text);
     struct tq_job *rows = calloc(nk, sizeof *rows);
+    const char **ids = calloc(nk + 1, sizeof *ids);
+    struct intent intent = {""};
     enum jobs_rc rc = JOBS_OK;
-    size_t i = 0;
-    if (!study_text || !rows || job_id_new(study.id) != 0) {
+    size_t made = 0;
+    if (!study_text || !rows || !ids || job_id_new(study.id) != 0) {
         rc = JOBS_NO_MEMORY;
         goto done;
     }
-    for (i = 0; i < nk; i++) {
-        new_row(env, &rows[i], "run", json_dumps(kids[i].scene, JSON_COMPACT));
-        rows[i].params = json_dumps(kids[i].params, JSON_COMPACT);
+    ids[0] = study.id;
+    for (size_t i = 0; i < nk; i++) {
+        new_row(env, &rows[i], "run", numtext_json_dumps(kids[i].scene, JSON_COMPACT));
+        rows[i].params = numtext_json_dumps(kids[i].params, JSON_COMPACT);
         rows[i].seq = (long)i;
         strcpy(rows[i].study_id, study.id);
-        if (!rows[i].input || !rows[i].params || job_id_new(rows[i].id) != 0 ||
-            jobdir_create(env->cfg->jobs_dir, rows[i].id, rows[i].input, out->why,
-                          sizeof out->why) != 0)
-            break;
+        if (!rows[i].input || !rows[i].params || job_id_new(rows[i].id) != 0) {
+            rc = JOBS_NO_MEMORY;
+            goto done;
+        }
+        ids[i + 1] = rows[i].id;
     }
-    const bool queued = i == nk && tq_insert_study(env->q, &study, rows, nk) == TQ_OK;
+    if (intent_begin(&intent, env->cfg->jobs_dir, ids, nk + 1, out->why, sizeof out->why) != 0) {
+        rc = write_failure(env, false, JOBS_NOT_QUEUED, out);
+        goto done;
+    }
+    while (made < nk && jobdir_create(env->cfg->jobs_dir, rows[made].id, rows[made].input,
+                                      out->why, sizeof out->why) == 0)
+        made++;
+    const bool queued = made == nk && tq_insert_study(env->q, &study, rows, nk) == TQ_OK;
     if (!queued) {
-        if (i == nk)
+        const bool full = made == nk && tq_disk_full(env->q);
+        if (made == nk)
             errmsg_set(out->why, sizeof out->why, "tq_insert_study: %s", tq_last_error(env->q));
-        else if (!out->why[0])
-            errmsg_set(out->why, sizeof out->why, "child %zu: out of memory or no random id", i);
-        for (size_t k = 0; k < nk && k <= i; k++)
-            if (rows[k].id[0])
-                jobdir_remove(env->cfg->jobs_dir, rows[k].id);
-        rc = JOBS_NOT_QUEUED;
+        for (size_t k = 0; k < nk && k <= made; k++)
+            jobdir_remove(env->cfg->jobs_dir, rows[k].id);
+        rc = write_failure(env, full, JOBS_NOT_QUEUED, out);
         goto done;
     }
     tsup_wake(env->sup);
     memcpy(out->id, study.id, JOB_ID_LEN + 1);
 done:
+    intent_end(&intent);
     if (rows)
         for (size_t k = 0; k < nk; k++) {
             free(rows[k].input);
             free(rows[k].params);
         }
     free(rows);
+    free(ids);
     free(study_text);
     return rc;
 }
@@ -290,7 +410,7 @@ enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
 {
     struct tstudy_child *kids = NULL;
     size_t nk = 0;
-    enum jobs_rc rc = expand_study(env, inputs, &kids, &nk, &out->errors);
+    enum jobs_rc rc = expand_study(env, inputs, &kids, &nk, out);
     if (rc == JOBS_OK)
         rc = queue_study(env, inputs, kids, nk, out);
     tstudy_children_free(kids, nk);
@@ -299,22 +419,59 @@ enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
 
 /* ------------------------------------------------------------------ cancel, remove */
 
+/* After a write the full disk refused: frees the reserve (storage.h) so that
+ * it can be tried once more, and says whether that is worth it.  Cancelling
+ * and removing are what a user does to get out of a full disk. */
+static bool room_made(const struct jobs_env *env)
+{
+    return tq_disk_full(env->q) && storage_release_reserve(env->cfg);
+}
+
 enum jobs_rc jobs_cancel(const struct jobs_env *env, const char *id)
 {
-    if (tq_request_cancel(env->q, id) == TQ_ERROR)
-        return JOBS_BUSY;
+    enum tq_rc rc = tq_request_cancel(env->q, id);
+    if (rc == TQ_ERROR && room_made(env))
+        rc = tq_request_cancel(env->q, id);
+    if (rc == TQ_ERROR)
+        return tq_disk_full(env->q) ? JOBS_NO_SPACE : JOBS_BUSY;
     tsup_wake(env->sup);
     return JOBS_OK;
+}
+
+/* The intent of removing job and its children (intent.h), so that a crash
+ * between the rows and the directories leaves no directory behind.  Best
+ * effort: a removal is what frees a full disk, so it goes on without one. */
+static void intend_removal(const struct jobs_env *env, const struct tq_job *job,
+                           const struct tq_job *kids, size_t nk, struct intent *intent)
+{
+    const char **ids = calloc(nk + 1, sizeof *ids);
+    size_t n = 0;
+    char why[256];
+    if (ids && job_id_valid(job->id))
+        ids[n++] = job->id;
+    for (size_t i = 0; ids && i < nk; i++)
+        if (job_id_valid(kids[i].id))
+            ids[n++] = kids[i].id;
+    if (ids)
+        intent_begin(intent, env->cfg->jobs_dir, ids, n, why, sizeof why);
+    free(ids);
 }
 
 enum jobs_rc jobs_remove(const struct jobs_env *env, const struct tq_job *job)
 {
     struct tq_job *kids = NULL;
     size_t nk = 0;
+    if (job->study_id[0])
+        return JOBS_STUDY_CHILD;
     if (!strcmp(job->process, "study") && jobs_study_children(env, job->id, &kids, &nk) != 0)
         return JOBS_BUSY;
+    struct intent intent = {""};
+    intend_removal(env, job, kids, nk, &intent);
     enum jobs_rc rc;
-    switch (tq_delete(env->q, job->id)) {
+    enum tq_rc deleted = tq_delete(env->q, job->id);
+    if (deleted == TQ_ERROR && room_made(env))
+        deleted = tq_delete(env->q, job->id);
+    switch (deleted) {
     case TQ_OK:
         for (size_t i = 0; i < nk; i++)
             if (job_id_valid(kids[i].id))
@@ -329,9 +486,10 @@ enum jobs_rc jobs_remove(const struct jobs_env *env, const struct tq_job *job)
         rc = JOBS_NOT_FINAL;
         break;
     default:
-        rc = JOBS_BUSY;
+        rc = tq_disk_full(env->q) ? JOBS_NO_SPACE : JOBS_BUSY;
         break;
     }
+    intent_end(&intent);
     tq_jobs_free(kids, nk);
     return rc;
 }

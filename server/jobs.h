@@ -5,10 +5,14 @@
  *
  * Submitting validates everything first and collects every problem (the
  * engine's scene validator, the daemon's particle limit, the study's sweep,
- * every child scene), then issues ids, creates each job's directory before
- * its row (the supervisor never claims a job without its scene), inserts the
- * rows in one transaction, removes the directories again if the insert
- * fails, and wakes the supervisor.
+ * every child scene), estimates each job's result file (output_size.h)
+ * against the per-job quota and the free space above the floor (storage.h),
+ * then issues ids, writes them to an intent file (intent.h: a crash from here
+ * on leaves nothing behind at the next start), creates each job's directory
+ * before its row (the supervisor never claims a job without its scene),
+ * inserts the rows in one transaction, removes the directories again if the
+ * insert fails, removes the intent file and wakes the supervisor.  Removing
+ * is crash-safe the same way.
  *
  * Threads: each call uses the caller's queue handle (env->q). */
 #ifndef TLSPHD_JOBS_H
@@ -39,7 +43,10 @@ enum jobs_rc {
     JOBS_NOT_QUEUED,   /* the queue did not take the rows (tq_last_error says why) */
     JOBS_NO_SUCH_JOB,
     JOBS_NOT_FINAL,    /* the job, or its study, is still accepted or running */
-    JOBS_BUSY          /* the database did not answer in time */
+    JOBS_STUDY_CHILD,  /* a study's child goes only with its study (its summary row) */
+    JOBS_BUSY,         /* the database did not answer in time */
+    JOBS_OVER_QUOTA,   /* a job's estimated result file is above max_output_mb (errors, detail) */
+    JOBS_NO_SPACE      /* the data directory's disk cannot take it (detail) */
 };
 
 /* Most errors reported for one study (the rest are left out). */
@@ -48,7 +55,11 @@ enum jobs_rc {
 /* What a submit produced. */
 struct jobs_submitted {
     char id[JOB_ID_LEN + 1];    /* JOBS_OK: the new job (a study: the study) */
-    struct tlsph_errors errors; /* JOBS_INVALID: every problem, pointers relative to the inputs */
+    struct tlsph_errors errors; /* JOBS_INVALID, JOBS_OVER_QUOTA: every problem, pointers
+                                 * relative to the inputs */
+    char detail[512];           /* JOBS_OVER_QUOTA, JOBS_NO_SPACE: for the client, with the
+                                 * estimate */
+    double output_bytes;        /* the estimated result files, B (all children of a study) */
     char why[256];              /* other failures: one line for the log */
 };
 void jobs_submitted_init(struct jobs_submitted *s);
@@ -62,10 +73,14 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
 enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
                                struct jobs_submitted *out);
 /* Asks for job id (a study: each child) to stop: JOBS_OK (also for a job that
- * is final or unknown: nothing to do) or JOBS_BUSY. */
+ * is final or unknown: nothing to do), JOBS_NO_SPACE (the disk is full even
+ * after the reserve was freed) or JOBS_BUSY.  Cancelling and removing free
+ * the reserve (storage.h) when the disk refuses their write. */
 enum jobs_rc jobs_cancel(const struct jobs_env *env, const char *id);
 /* Removes a final job, its files and, for a study, its children's files:
- * JOBS_OK, JOBS_NO_SUCH_JOB, JOBS_NOT_FINAL or JOBS_BUSY. */
+ * JOBS_OK, JOBS_NO_SUCH_JOB, JOBS_NOT_FINAL, JOBS_STUDY_CHILD (a child alone
+ * is never removed: its study's summary and message count it), JOBS_NO_SPACE
+ * or JOBS_BUSY. */
 enum jobs_rc jobs_remove(const struct jobs_env *env, const struct tq_job *job);
 /* The children of study id ordered by seq (at most max_children + 1); free
  * with tq_jobs_free.  0 or -1 (busy). */

@@ -1,16 +1,24 @@
 /* tlsphd: the TLSPH job daemon.
  *
  * Start-up: configuration (config.h), data directory (tlsphd.sqlite, jobs/),
- * queue (tq_open + tq_recover), supervisor (tsup_start), HTTP (http_start).
+ * the checks of startup.h (the database's integrity, interrupted submissions,
+ * job directories without rows; --recover), the queue (tq_recover), the
+ * reserve file (storage.h), the listening socket, supervisor (tsup_start),
+ * HTTP (http_start).
+ * Exit status: 0 after a stop by signal, 1 when something needed could not be
+ * set up, 2 for a usage error, 3 (TLSPH_EXIT_UNTRUSTED) when the data
+ * directory failed the start-up checks.
  * SIGTERM/SIGINT: stop accepting (MHD_quiesce_daemon), answer parked
  * long-polls and finish deferred tasks, stop MHD, stop the supervisor (it
  * requeues running jobs), close the queue, exit 0. */
+#include <arpa/inet.h>
 #include <errno.h>
-#include <fcntl.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/socket.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -19,6 +27,8 @@
 #include "http.h"
 #include "queue.h"
 #include "routes.h"
+#include "startup.h"
+#include "storage.h"
 #include "strbuf.h"
 #include "supervisor.h"
 
@@ -38,21 +48,34 @@ static int mkdir_p(const char *path)
     return 0;
 }
 
-/* The whole file (malloc'ed, *len bytes), or NULL. */
-static char *read_file(const char *path, size_t *len)
+/* The listening socket, bound here so that a failure names the address and
+ * the reason (libmicrohttpd, handed only an address, would report "Failed to
+ * bind to port 0").  -1 when it cannot be had (logged). */
+static int open_listener(const struct tcfg *cfg)
 {
-    int fd = open(path, O_RDONLY | O_CLOEXEC);
-    if (fd < 0)
-        return NULL;
-    struct strbuf b = {0};
-    int rc = strbuf_read_fd(&b, fd);
-    close(fd);
-    *len = b.len;
-    if (rc != 0) {
-        strbuf_free(&b);
-        return NULL;
+    const struct sockaddr *addr = (const struct sockaddr *)&cfg->addr;
+    int fd = socket(addr->sa_family, SOCK_STREAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+    const int on = 1;
+    if (fd >= 0 && (setsockopt(fd, SOL_SOCKET, SO_REUSEADDR, &on, sizeof on) != 0 ||
+                    (addr->sa_family == AF_INET6 &&
+                     setsockopt(fd, IPPROTO_IPV6, IPV6_V6ONLY, &on, sizeof on) != 0) ||
+                    bind(fd, addr, cfg->addrlen) != 0 || listen(fd, SOMAXCONN) != 0)) {
+        const int e = errno;
+        close(fd);
+        fd = -1;
+        errno = e;
     }
-    return strbuf_take(&b);
+    if (fd < 0) {
+        const int e = errno;
+        const char *hint = e == EADDRINUSE ? ": another process listens on it (another tlsphd?); "
+                                             "stop it or choose another --listen"
+                           : e == EACCES ? ": ports below 1024 need privileges; choose a higher "
+                                           "port or run behind a proxy"
+                           : e == EADDRNOTAVAIL ? ": that address is not one of this machine's"
+                                                : "";
+        tlog("cannot listen on %s: %s%s", cfg->listen, strerror(e), hint);
+    }
+    return fd;
 }
 
 int main(int argc, char **argv)
@@ -86,11 +109,30 @@ int main(int argc, char **argv)
         return 1;
     }
     struct tq *q = NULL;
-    if (tq_open(cfg.db_path, &q, err, sizeof err) != 0) {
-        tlog("cannot open %s: %s", cfg.db_path, err);
+    struct startup_report rep;
+    switch (startup_check(&cfg, &q, &rep, err, sizeof err)) {
+    case STARTUP_OK:
+        break;
+    case STARTUP_FAILED:
+        tlog("%s", err);
         tcfg_free(&cfg);
         return 1;
+    case STARTUP_REFUSED:
+        tlog("%s", err);
+        tcfg_free(&cfg);
+        return TLSPHD_EXIT_UNTRUSTED;
     }
+    if (rep.moved_to[0])
+        tlog("--recover: %s failed PRAGMA integrity_check (%s); moved it aside as %s and started "
+             "a fresh database",
+             cfg.db_path, rep.damage, rep.moved_to);
+    if (rep.interrupted > 0)
+        tlog("removed %ld job director%s of a submission or removal that a crash interrupted",
+             rep.interrupted, rep.interrupted == 1 ? "y" : "ies");
+    if (cfg.recover)
+        tlog("--recover: rebuilt %ld job row(s) from their directories", rep.recovered);
+    if (storage_keep_reserve(&cfg, err, sizeof err) != 0)
+        tlog("warning: %s", err);
     int recovered = tq_recover(q, cfg.max_attempts);
     if (recovered < 0)
         tlog("recovery failed: %s", tq_last_error(q));
@@ -109,10 +151,18 @@ int main(int argc, char **argv)
         .kill_grace = cfg.kill_grace,
         .memory_limit_mb = cfg.memory_limit_mb,
         .max_attempts = cfg.max_attempts,
+        .storage = &cfg,
     };
+    const int listen_fd = open_listener(&cfg);
+    if (listen_fd < 0) {
+        tq_close(q);
+        tcfg_free(&cfg);
+        return 1;
+    }
     struct tsup *sup = NULL;
     if (tsup_start(&sc, &sup, err, sizeof err) != 0) {
         tlog("cannot start the supervisor: %s", err);
+        close(listen_fd);
         tq_close(q);
         tcfg_free(&cfg);
         return 1;
@@ -121,13 +171,14 @@ int main(int argc, char **argv)
     struct tapp app = {.cfg = &cfg, .q = q, .sup = sup};
     char oapath[1200];
     snprintf(oapath, sizeof oapath, "%s/openapi.json", cfg.schemas_dir);
-    app.openapi = read_file(oapath, &app.openapi_len);
+    app.openapi = strbuf_read_file(oapath, &app.openapi_len);
     if (!app.openapi)
         tlog("warning: %s not found; /openapi.json will answer 404", oapath);
 
     struct http_config hc = {
         .addr = (const struct sockaddr *)&cfg.addr,
         .addrlen = cfg.addrlen,
+        .listen_fd = listen_fd,
         .connection_limit = cfg.connection_limit,
         .per_ip_limit = cfg.per_ip_limit,
         .connection_timeout = cfg.connection_timeout,
@@ -141,6 +192,7 @@ int main(int argc, char **argv)
     };
     struct http *h = http_start(&hc);
     if (!h) {
+        close(listen_fd);
         tsup_stop(sup);
         tq_close(q);
         free(app.openapi);

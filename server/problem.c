@@ -24,12 +24,15 @@ static const struct {
     [PROBLEM_RESULT_NOT_READY] = {409, OGC_EXC "result-not-ready", "Result not ready"},
     [PROBLEM_CONFLICT] = {409, "urn:tlsph:problem:conflict", "Conflict"},
     [PROBLEM_TOO_LARGE] = {413, "urn:tlsph:problem:payload-too-large", "Request body too large"},
+    [PROBLEM_OUTPUT_QUOTA] = {413, "urn:tlsph:problem:output-quota",
+                              "Estimated result file above the quota"},
     [PROBLEM_MEDIA_TYPE] = {415, "urn:tlsph:problem:unsupported-media-type",
                             "Unsupported media type"},
     [PROBLEM_RANGE] = {416, "urn:tlsph:problem:range-not-satisfiable", "Range not satisfiable"},
     [PROBLEM_VALIDATION] = {422, "urn:tlsph:problem:validation", "Request failed validation"},
     [PROBLEM_INTERNAL] = {500, "urn:tlsph:problem:internal", "Internal server error"},
     [PROBLEM_UNAVAILABLE] = {503, "urn:tlsph:problem:unavailable", "Service unavailable"},
+    [PROBLEM_NO_STORAGE] = {507, "urn:tlsph:problem:insufficient-storage", "Insufficient storage"},
 };
 
 unsigned problem_status(enum problem_kind kind)

@@ -20,6 +20,10 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
+
+#include "errmsg.h"
+#include "strbuf.h"
 
 /* ------------------------------------------------------------------ schema */
 
@@ -77,6 +81,10 @@ static const char *const stmt_sql[S_LIST0] = {
     [S_INSERT] = "INSERT INTO jobs(id, process, study_id, seq, status, message, input, params,"
                  " created, threads, wall_limit, eta)"
                  " VALUES(?1, ?2, ?3, ?4, 'accepted', ?5, ?6, ?7, ?8, ?9, ?10, -1)",
+    [S_INSERT_RECOVERED] =
+        "INSERT INTO jobs(id, process, status, outcome, message, input, progress, created,"
+        " started, finished, attempts, threads, wall_limit, eta)"
+        " VALUES(?1, 'run', ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9, ?10, ?11, ?12, -1)",
     [S_GET] = "SELECT " JOB_COLS " FROM jobs WHERE id = ?1",
     [S_LOOKUP] = "SELECT process, status, study_id, cancel_requested FROM jobs WHERE id = ?1",
     [S_CLAIM] = "UPDATE jobs SET status='running', attempts=attempts+1, started=?1, outcome=''"
@@ -128,7 +136,7 @@ static const char *const stmt_sql[S_LIST0] = {
     [S_STUDY_UPDATE] = "UPDATE jobs SET status=?2, outcome=?3, message=?4, progress=?5,"
                        " started=?6, finished=?7 WHERE id=?1",
     [S_COUNTS] = "SELECT TOTAL(status='accepted'), TOTAL(status='running'),"
-                 " TOTAL(status IN " FINAL_SQL ") FROM jobs WHERE process='run'",
+                 " TOTAL(status IN " FINAL_SQL ") FROM jobs WHERE process=?1",
 };
 
 /* ------------------------------------------------------------------ helpers */
@@ -146,11 +154,18 @@ void tqi_set_err(struct tq *q, const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(q->err, sizeof q->err, fmt, ap);
     va_end(ap);
+    q->err_code = 0;
 }
 
 void tqi_set_db_err(struct tq *q, const char *what)
 {
     tqi_set_err(q, "%s: %s", what, sqlite3_errmsg(q->db));
+    q->err_code = sqlite3_extended_errcode(q->db);
+}
+
+bool tq_disk_full(struct tq *q)
+{
+    return q && (q->err_code & 0xff) == SQLITE_FULL;
 }
 
 const char *tq_last_error(struct tq *q)
@@ -230,6 +245,7 @@ int tqi_tx_begin(struct tq *q, const char *fn)
     sqlite3_reset(q->st[S_BEGIN]);
     if (rc != SQLITE_DONE) {
         tqi_set_err(q, "%s: BEGIN IMMEDIATE: %s", fn, sqlite3_errstr(rc));
+        q->err_code = rc;
         return -1;
     }
     return 0;
@@ -256,6 +272,7 @@ int tqi_tx_commit(struct tq *q, const char *fn)
     sqlite3_reset(q->st[S_COMMIT]);
     if (rc != SQLITE_DONE) {
         tqi_set_err(q, "%s: COMMIT: %s", fn, sqlite3_errstr(rc));
+        q->err_code = rc;
         tqi_tx_rollback(q);
         return -1;
     }
@@ -644,6 +661,49 @@ int tq_open(const char *path, struct tq **out, char *err, size_t errsize)
 fail:
     tq_close(q);
     return -1;
+}
+
+enum tq_trust tq_check_file(const char *path, char *report, size_t size)
+{
+    errmsg_set(report, size, "ok");
+    sqlite3 *db = NULL;
+    /* READWRITE without CREATE: a missing file is a fresh start; read-write
+     * so that a WAL database can be read (its -shm index may need writing) */
+    int rc = sqlite3_open_v2(path, &db, SQLITE_OPEN_READWRITE | SQLITE_OPEN_NOMUTEX, NULL);
+    if (rc == SQLITE_CANTOPEN && access(path, F_OK) != 0) {
+        sqlite3_close(db);
+        return TQ_TRUSTED;
+    }
+    enum tq_trust trust = TQ_TRUSTED;
+    sqlite3_stmt *st = NULL;
+    if (rc == SQLITE_OK) {
+        sqlite3_extended_result_codes(db, 1);
+        sqlite3_busy_timeout(db, 5000);
+        rc = sqlite3_prepare_v2(db, "PRAGMA integrity_check", -1, &st, NULL);
+    }
+    struct strbuf found = {0};
+    int lines = 0;
+    while (rc == SQLITE_OK || rc == SQLITE_ROW) {
+        rc = sqlite3_step(st);
+        if (rc != SQLITE_ROW)
+            break;
+        const char *t = (const char *)sqlite3_column_text(st, 0);
+        if (t && strcmp(t, "ok") != 0 && lines++ < 3)
+            strbuf_printf(&found, "%s%s", found.len ? "; " : "", t);
+    }
+    if (rc != SQLITE_DONE) {
+        const int primary = rc & 0xff;
+        trust = primary == SQLITE_CORRUPT || primary == SQLITE_NOTADB ? TQ_CORRUPT : TQ_UNREADABLE;
+        errmsg_set(report, size, "%s", db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
+    } else if (lines > 0) {
+        trust = TQ_CORRUPT;
+        errmsg_set(report, size, "%s%s", found.p ? found.p : "damaged",
+                   lines > 3 ? "; ..." : "");
+    }
+    strbuf_free(&found);
+    sqlite3_finalize(st);
+    sqlite3_close(db);
+    return trust;
 }
 
 void tq_close(struct tq *q)

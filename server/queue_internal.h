@@ -16,6 +16,7 @@ enum tqi_stmt {
     S_COMMIT,
     S_ROLLBACK,
     S_INSERT,
+    S_INSERT_RECOVERED, /* a run rebuilt from its directory (tlsphd --recover) */
     S_GET,
     S_LOOKUP,
     S_CLAIM,
@@ -44,6 +45,7 @@ struct tq {
     sqlite3 *db;
     sqlite3_stmt *st[S_COUNT];
     char err[512];
+    int err_code; /* SQLite's extended result code of the last error, 0 for others */
 };
 
 /* Row of S_LOOKUP. */

@@ -88,7 +88,35 @@ enum tq_rc tq_insert_study(struct tq *q, const struct tq_job *study,
     return tqi_tx_end(q, "tq_insert_study", rc);
 }
 
+enum tq_rc tq_insert_recovered(struct tq *q, const struct tq_job *j)
+{
+    NEED_Q(q);
+    if (check_job_fields(q, "tq_insert_recovered", j, "run") < 0)
+        return -1;
+    if (!tq_status_valid(j->status)) {
+        tqi_set_err(q, "tq_insert_recovered: job %s has no valid status", j->id);
+        return -1;
+    }
+    if (tqi_tx_begin(q, "tq_insert_recovered") < 0)
+        return -1;
+    sqlite3_stmt *st = q->st[S_INSERT_RECOVERED];
+    TQI_BIND(st, TQI_TEXT(j->id), TQI_TEXT(j->status), TQI_TEXT(j->outcome), TQI_TEXT(j->message),
+             TQI_TEXT(j->input), TQI_REAL(j->progress), TQI_REAL(j->created),
+             TQI_REAL(j->started), TQI_REAL(j->finished), TQI_INT(j->attempts),
+             TQI_INT(j->threads), TQI_REAL(j->wall_limit));
+    return tqi_tx_end(q, "tq_insert_recovered", tqi_run_stmt(q, st, "tq_insert_recovered"));
+}
+
 /* ------------------------------------------------------------------ reads */
+
+enum tq_rc tq_has_row(struct tq *q, const char *id)
+{
+    NEED_Q(q);
+    if (tqi_check_id(q, "tq_has_row", id) < 0)
+        return -1;
+    struct tqi_lookup l;
+    return tqi_lookup(q, id, &l);
+}
 
 enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out)
 {
@@ -115,8 +143,8 @@ enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const
     }
     *out = NULL;
     *n = 0;
-    if (limit < 1 || limit > 10000) {
-        tqi_set_err(q, "tq_list: limit must be in 1..10000 (got %ld)", limit);
+    if (limit < 1 || limit > TQ_LIST_MAX) {
+        tqi_set_err(q, "tq_list: limit must be in 1..%d (got %ld)", TQ_LIST_MAX, limit);
         return -1;
     }
     if (offset < 0) {
@@ -173,8 +201,15 @@ enum tq_rc tq_cancel_requests(struct tq *q, char (**ids)[TQ_ID_LEN + 1], size_t 
 
 enum tq_rc tq_counts(struct tq *q, long *accepted, long *running, long *final)
 {
+    return tq_counts_of(q, "run", accepted, running, final);
+}
+
+enum tq_rc tq_counts_of(struct tq *q, const char *process, long *accepted, long *running,
+                        long *final)
+{
     NEED_Q(q);
     sqlite3_stmt *st = q->st[S_COUNTS];
+    TQI_BIND(st, TQI_TEXT(process));
     int rc = sqlite3_step(st);
     if (rc != SQLITE_ROW) {
         tqi_set_db_err(q, "tq_counts");

@@ -21,7 +21,7 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
         return -1;
     }
     long acc = 0, run = 0, succ = 0, fail = 0, dism = 0;
-    double run_progress = 0, started = 0, finished = 0;
+    double run_progress = 0, dism_progress = 0, started = 0, finished = 0;
     sqlite3_stmt *st = q->st[S_STUDY_AGG];
     TQI_BIND(st, TQI_TEXT(study_id));
     while ((rc = sqlite3_step(st)) == SQLITE_ROW) {
@@ -38,8 +38,10 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
             succ += c;
         else if (!strcmp(s, TQ_FAILED))
             fail += c;
-        else if (!strcmp(s, TQ_DISMISSED))
+        else if (!strcmp(s, TQ_DISMISSED)) {
             dism += c;
+            dism_progress += sqlite3_column_double(st, 2);
+        }
         if (sqlite3_column_type(st, 3) != SQLITE_NULL) {
             double s0 = sqlite3_column_double(st, 3);
             if (started == 0 || s0 < started)
@@ -59,7 +61,10 @@ int tqi_study_refresh_locked(struct tq *q, const char *study_id)
     const char *status, *outcome = "";
     char msg[128];
     const char *message = msg;
-    double progress = (100.0 * (double)fin + run_progress) / (double)n;
+    /* Work done: a child that ran to its end (successful or failed) counts
+     * 100, a running or dismissed one the progress it reached; so a cancelled
+     * study reports how far it got, not 100. */
+    double progress = (100.0 * (double)(succ + fail) + run_progress + dism_progress) / (double)n;
     if (fin == n) {
         if (succ == n) {
             status = TQ_SUCCESSFUL;

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "errmsg.h"
+#include "numtext.h"
 #include "results_h5.h"
 #include "strbuf.h"
 #include "util/names.h"
@@ -340,8 +341,9 @@ json_t *tres_series(const char *h5path, const char *name, int *not_found, char *
 
 static void sb_num(struct strbuf *b, double v)
 {
+    char text[NUMTEXT_REAL_MAX];
     if (isfinite(v))
-        strbuf_printf(b, ",%.17g", v);
+        strbuf_printf(b, ",%s", numtext_real(text, sizeof text, v));
     else
         strbuf_printf(b, ",%s", isnan(v) ? "nan" : (v > 0 ? "inf" : "-inf"));
 }
@@ -422,4 +424,26 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
     if (min)
         *min = mn;
     return 0;
+}
+
+enum tres_rc tres_run_status(const char *h5path, char *status, size_t size, char *err,
+                             size_t errsize)
+{
+    hid_t f = h5r_open_file(h5path, err, errsize);
+    if (f < 0)
+        return TRES_ERROR;
+    enum tres_rc rc = TRES_ERROR;
+    hid_t g = H5Gopen2(f, "diagnostics", H5P_DEFAULT);
+    if (g < 0) {
+        h5r_error(err, errsize, "no /diagnostics in", h5path);
+        rc = TRES_NOT_FOUND;
+    } else {
+        int a = h5r_read_str_attr(g, "status", status, size);
+        rc = a == 0 ? TRES_OK : a == 1 ? TRES_NOT_FOUND : TRES_ERROR;
+        if (a < 0)
+            errmsg_set(err, errsize, "cannot read /diagnostics status of %s", h5path);
+    }
+    h5r_close(&g, H5Gclose);
+    h5r_close(&f, H5Fclose);
+    return rc;
 }

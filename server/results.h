@@ -55,6 +55,13 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
                                 double *final, double *max, double *min, char *err,
                                 size_t errsize);
 
+/* The run's outcome as the file records it (/diagnostics status:
+ * "running" while it writes, or after its process died; then "successful",
+ * "unstable", "cancelled" or "io_error"): TRES_OK, TRES_NOT_FOUND (no
+ * attribute), TRES_ERROR (the file cannot be read). */
+enum tres_rc tres_run_status(const char *h5path, char *status, size_t size, char *err,
+                             size_t errsize);
+
 /* The one definition of a valid result name, checked before any HDF5 path is
  * built (1 ok, 0 rejected); the routes refuse other names up front with the
  * same words (TRES_NO_SERIES, TRES_NO_FIELD, printf formats of the name).

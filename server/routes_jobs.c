@@ -50,10 +50,14 @@ static json_t *status_info(const struct tapp *a, struct tq *q, const struct tq_j
         size_t nacc = 0, nfinal = 0;
         double sum = 0;
         for (size_t i = 0; i < nk; i++) {
+            /* the queue's rule (queue_study.c): a child that ran to its end
+             * counts 100, a running or dismissed one the progress it reached */
             if (!strcmp(kids[i].status, TQ_ACCEPTED))
                 nacc++;
-            else if (tq_status_final(kids[i].status))
+            else if (!strcmp(kids[i].status, TQ_SUCCESSFUL) || !strcmp(kids[i].status, TQ_FAILED))
                 nfinal++, sum += 100.0;
+            else if (tq_status_final(kids[i].status))
+                nfinal++, sum += kids[i].progress;
             else
                 sum += kids[i].progress;
             if (kids[i].started > 0 && (started <= 0 || kids[i].started < started))
@@ -86,6 +90,8 @@ static json_t *status_info(const struct tapp *a, struct tq *q, const struct tq_j
     json_object_set_new(o, "progress", json_integer(p < 0 ? 0 : p > 100 ? 100 : p));
     if (j->study_id[0])
         json_object_set_new(o, "study", json_string(j->study_id));
+    if (study)
+        json_object_set_new(o, "children", json_integer((json_int_t)nk));
     if (!study && (j->started > 0 || j->end_time > 0)) {
         json_t *sim = json_object();
         json_object_set_new(sim, "time", json_real(j->sim_time));
@@ -225,6 +231,13 @@ static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
     case JOBS_NO_DIRECTORY:
         prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
         break;
+    case JOBS_OVER_QUOTA:
+        prob = problem_new(PROBLEM_OUTPUT_QUOTA, sub->detail, r->path);
+        problem_add_errors(prob, "/inputs", &sub->errors);
+        break;
+    case JOBS_NO_SPACE:
+        prob = problem_new(PROBLEM_NO_STORAGE, sub->detail, r->path);
+        break;
     default:
         prob = problem_new(PROBLEM_UNAVAILABLE,
                            study ? "cannot queue the study" : "cannot queue the job", r->path);
@@ -304,7 +317,7 @@ void job_list(struct hreq *r, struct route_call *c)
         http_reply_problem(r, PROBLEM_BAD_REQUEST, "processID must be run or study");
         return;
     }
-    if (route_query_long(http_query(r, "limit"), 1, 10000, &limit) < 0) {
+    if (route_query_long(http_query(r, "limit"), 1, TQ_LIST_MAX, &limit) < 0) {
         http_reply_problem(r, PROBLEM_BAD_REQUEST, "limit must be an integer in [1, 10000]");
         return;
     }
@@ -319,6 +332,15 @@ void job_list(struct hreq *r, struct route_call *c)
         http_add_header(r, "Retry-After", "1");
         return;
     }
+    /* a full page links to a next one only when that one is not empty */
+    bool more = false;
+    if ((long)n == limit) {
+        struct tq_job *peek = NULL;
+        size_t np = 0;
+        more = tq_list(a->q, status, study, process, 1, offset + limit, &peek, &np) != TQ_OK ||
+               np > 0;
+        tq_jobs_free(peek, np);
+    }
     json_t *arr = json_array();
     for (size_t i = 0; i < n; i++)
         json_array_append_new(arr, status_info(a, a->q, &jobs[i], false));
@@ -331,7 +353,7 @@ void job_list(struct hreq *r, struct route_call *c)
              process && *process ? process : "");
     route_add_link(links, "self", "application/json", NULL, "/jobs?limit=%ld&offset=%ld%s", limit,
              offset, q);
-    if ((long)n == limit)
+    if (more)
         route_add_link(links, "next", "application/json", NULL, "/jobs?limit=%ld&offset=%ld%s", limit,
                  offset + limit, q);
     http_reply_json(r, 200, json_pack("{s:o,s:o}", "jobs", arr, "links", links));
@@ -381,9 +403,15 @@ void job_delete(struct hreq *r, struct route_call *c)
     }
     const struct jobs_env env = route_jobs_env(a, a->q);
     if (!tq_status_final(j.status)) {
-        if (jobs_cancel(&env, j.id) != JOBS_OK) {
+        const enum jobs_rc rc = jobs_cancel(&env, j.id);
+        if (rc != JOBS_OK) {
             tq_job_free(&j);
-            http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
+            if (rc == JOBS_NO_SPACE)
+                http_reply_problem(r, PROBLEM_NO_STORAGE,
+                                   "the data directory's disk is full: the cancellation cannot "
+                                   "be recorded; free space and retry");
+            else
+                http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
             return;
         }
         tq_job_free(&j);
@@ -411,6 +439,19 @@ void job_delete(struct hreq *r, struct route_call *c)
         http_reply_problem(r, PROBLEM_CONFLICT,
                            "the job (or its study) is not in a final state; cancel it first");
         break;
+    case JOBS_NO_SPACE:
+        http_reply_problem(r, PROBLEM_NO_STORAGE,
+                           "the data directory's disk is full: the removal cannot be recorded");
+        break;
+    case JOBS_STUDY_CHILD: {
+        char detail[160];
+        snprintf(detail, sizeof detail,
+                 "a study's child is removed only with its study (its summary row): "
+                 "DELETE /jobs/%s",
+                 j.study_id);
+        http_reply_problem(r, PROBLEM_CONFLICT, detail);
+        break;
+    }
     default:
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
         break;

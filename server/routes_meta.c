@@ -11,7 +11,10 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "output_size.h"
 #include "problem.h"
+#include "storage.h"
+#include "supervisor.h"
 
 void meta_landing(struct hreq *r, struct route_call *c)
 {
@@ -156,16 +159,69 @@ void meta_schema(struct hreq *r, struct route_call *c)
     http_reply_fd(r, 200, "application/schema+json", fd, 0, (uint64_t)st.st_size);
 }
 
+/* {"accepted", "running", "final"} of one process, or NULL. */
+static json_t *counts_of(struct tq *q, const char *process)
+{
+    long acc = 0, run = 0, fin = 0;
+    if (tq_counts_of(q, process, &acc, &run, &fin) != TQ_OK)
+        return NULL;
+    return json_pack("{s:I,s:I,s:I}", "accepted", (json_int_t)acc, "running", (json_int_t)run,
+                     "final", (json_int_t)fin);
+}
+
+/* What keeps the service from doing all its work (storage.h, finals.h): one
+ * sentence each, for people. */
+static json_t *problems_of(const struct tapp *a, json_t *disk)
+{
+    const struct tcfg *cfg = a->cfg;
+    json_t *problems = json_array();
+    char fr[32], fl[32], why[300], text[600];
+    const int64_t free_bytes = storage_free_bytes(cfg);
+    const uint64_t floor_bytes = storage_floor_bytes(cfg);
+    const bool held = storage_reserve_held(cfg);
+    json_object_set_new(disk, "free_bytes",
+                        free_bytes >= 0 ? json_integer((json_int_t)free_bytes) : json_null());
+    json_object_set_new(disk, "floor_bytes", json_integer((json_int_t)floor_bytes));
+    json_object_set_new(disk, "reserve_held", json_boolean(held));
+    if (free_bytes >= 0 && (uint64_t)free_bytes < floor_bytes) {
+        snprintf(text, sizeof text,
+                 "the data directory has %s free, below the floor of %s (min_free_mb): new jobs "
+                 "are refused (507) and queued jobs wait",
+                 output_size_text(fr, sizeof fr, (double)free_bytes),
+                 output_size_text(fl, sizeof fl, (double)floor_bytes));
+        json_array_append_new(problems, json_string(text));
+    }
+    if (!held)
+        json_array_append_new(problems,
+                              json_string("the reserve file was freed to record jobs on a full "
+                                          "disk; it is allocated again once the space is back"));
+    const size_t waiting = tsup_unrecorded(a->sup, why, sizeof why);
+    if (waiting > 0) {
+        snprintf(text, sizeof text,
+                 "%zu finished job(s) wait for their final state to be recorded (retried every "
+                 "second): %s",
+                 waiting, why);
+        json_array_append_new(problems, json_string(text));
+    }
+    return problems;
+}
+
+/* 200 "ok", or 200 "degraded" with the problems; 503 when the database
+ * cannot be read. */
 void meta_healthz(struct hreq *r, struct route_call *c)
 {
     const struct tapp *a = c->app;
-    long acc = 0, run = 0, fin = 0;
-    if (tq_counts(a->q, &acc, &run, &fin) != TQ_OK) {
+    json_t *runs = counts_of(a->q, "run"), *studies = counts_of(a->q, "study");
+    if (!runs || !studies) {
+        json_decref(runs);
+        json_decref(studies);
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "database unavailable");
         return;
     }
+    json_t *disk = json_object();
+    json_t *problems = problems_of(a, disk);
+    const bool ok = json_array_size(problems) == 0;
     http_reply_json(r, 200,
-                    json_pack("{s:s,s:{s:I,s:I,s:I}}", "status", "ok", "jobs", "accepted",
-                              (json_int_t)acc, "running", (json_int_t)run, "final",
-                              (json_int_t)fin));
+                    json_pack("{s:s,s:o,s:o,s:o,s:o}", "status", ok ? "ok" : "degraded", "jobs",
+                              runs, "studies", studies, "disk", disk, "problems", problems));
 }

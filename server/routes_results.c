@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "jobdir.h"
+#include "numtext.h"
 #include "problem.h"
 #include "results.h"
 #include "study.h"
@@ -280,8 +281,7 @@ static void task_field(struct hreq *r, struct route_call *c, struct tq *q)
     long frame = c->frame < 0 ? f.frames + c->frame : c->frame;
     snprintf(buf, sizeof buf, "%ld", frame);
     http_add_header(r, "X-Frame", buf);
-    snprintf(buf, sizeof buf, "%.17g", f.time);
-    http_add_header(r, "X-Time", buf);
+    http_add_header(r, "X-Time", numtext_real(buf, sizeof buf, f.time));
     snprintf(buf, sizeof buf, "%ld", f.step);
     http_add_header(r, "X-Step", buf);
     if (f.units[0])

@@ -2,6 +2,7 @@
 #include "strbuf.h"
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -112,4 +113,23 @@ int strbuf_read_fd(struct strbuf *b, int fd)
         b->len += (size_t)n;
         b->p[b->len] = '\0';
     }
+}
+
+char *strbuf_read_file(const char *path, size_t *len)
+{
+    int fd = open(path, O_RDONLY | O_CLOEXEC);
+    if (fd < 0)
+        return NULL;
+    struct strbuf b = {0};
+    const int rc = strbuf_read_fd(&b, fd);
+    const int e = errno;
+    close(fd);
+    if (rc != 0) {
+        strbuf_free(&b);
+        errno = e;
+        return NULL;
+    }
+    if (len)
+        *len = b.len;
+    return strbuf_take(&b);
 }

@@ -29,5 +29,8 @@ char *strbuf_take(struct strbuf *b);
 void strbuf_free(struct strbuf *b);
 /* Reads the rest of fd into b; 0, or -1 with errno (read error or oom). */
 int strbuf_read_fd(struct strbuf *b, int fd);
+/* The whole file at path (malloc'ed, NUL-terminated; *len bytes when len is
+ * not NULL), or NULL with errno. */
+char *strbuf_read_file(const char *path, size_t *len);
 
 #endif

@@ -11,6 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "numtext.h"
 #include "results.h"
 #include "strbuf.h"
 
@@ -208,30 +209,54 @@ static int pointer_within(const char *p, const char *prefix)
     return strncmp(p, prefix, n) == 0 && (p[n] == '\0' || p[n] == '/');
 }
 
-/* linspace(start, stop, num) inclusive, numpy's formula; integers when both ends
- * are JSON integers and every value is integral. */
-static json_t *linspace(const json_t *jstart, const json_t *jstop, size_t num)
+/* linspace(start, stop, num) inclusive, numpy's formula start + i * step with
+ * step = (stop - start) / (num - 1); integers when both ends are JSON integers
+ * and every value is integral.  A step that is not a finite number (stop -
+ * start overflows a double) and neighbouring values that round to the same
+ * double are refused with an error at `at`: either would otherwise give fewer
+ * distinct children than num, or a value that JSON cannot hold.  NULL then. */
+static json_t *linspace(const json_t *jstart, const json_t *jstop, size_t num, const char *at,
+                        struct tlsph_errors *err)
 {
     double start = json_number_value(jstart), stop = json_number_value(jstop);
-    json_t *a = json_array();
-    if (!a)
-        return NULL;
     double step = num > 1 ? (stop - start) / (double)(num - 1) : 0.0;
+    if (!isfinite(step)) {
+        tlsph_errors_add(err, at,
+                         "the step (stop - start) / (num - 1) is not a finite number "
+                         "(start %g, stop %g, num %zu): stop - start overflows a double",
+                         start, stop, num);
+        return NULL;
+    }
     int ints = json_is_integer(jstart) && json_is_integer(jstop);
     double *v = malloc(num * sizeof *v);
-    if (!v) {
-        json_decref(a);
-        return NULL;
+    json_t *a = json_array();
+    if (!v || !a) {
+        tlsph_errors_add(err, at, "out of memory");
+        goto fail;
     }
     for (size_t i = 0; i < num; i++) {
         v[i] = i + 1 == num && num > 1 ? stop : start + (double)i * step;
+        if (i > 0 && step != 0.0 && v[i] == v[i - 1]) {
+            tlsph_errors_add(err, at,
+                             "values %zu and %zu of the range are both %.17g: a step of %g is "
+                             "below double precision here; use a smaller num or a wider range",
+                             i - 1, i, v[i], step);
+            goto fail;
+        }
         if (ints && (v[i] != floor(v[i]) || fabs(v[i]) > 9007199254740992.0))
             ints = 0;
     }
     for (size_t i = 0; i < num; i++)
-        json_array_append_new(a, ints ? json_integer((json_int_t)v[i]) : json_real(v[i]));
+        if (json_array_append_new(a, ints ? json_integer((json_int_t)v[i]) : json_real(v[i])) != 0) {
+            tlsph_errors_add(err, at, "out of memory");
+            goto fail;
+        }
     free(v);
     return a;
+fail:
+    free(v);
+    json_decref(a);
+    return NULL;
 }
 
 static int name_ok(const char *s)
@@ -398,11 +423,8 @@ static void validate_parameter(const json_t *base, const json_t *prm, size_t i, 
             else if (!json_is_integer(num) || json_integer_value(num) < 1 ||
                      json_integer_value(num) > MAX_VALUES)
                 tlsph_errors_add(err, q, "num must be an integer 1..%d", MAX_VALUES);
-            if (err->count == rbefore) {
-                list = linspace(start, stop, (size_t)json_integer_value(num));
-                if (!list)
-                    tlsph_errors_add(err, p, "out of memory");
-            }
+            if (err->count == rbefore)
+                list = linspace(start, stop, (size_t)json_integer_value(num), p, err);
         }
     }
     if (err->count == before && pointer && list && pl->np < MAX_PARAMETERS) {
@@ -691,16 +713,6 @@ static void csv_field(struct strbuf *b, const char *s)
     strbuf_add(b, "\"", 1);
 }
 
-/* Shortest %.Ng (N = 15..17) that reads back exactly. */
-static void fmt_real(char *buf, size_t size, double v)
-{
-    for (int prec = 15; prec <= 17; prec++) {
-        snprintf(buf, size, "%.*g", prec, v);
-        if (strtod(buf, NULL) == v)
-            return;
-    }
-}
-
 static void csv_value(struct strbuf *b, const json_t *v)
 {
     char buf[64];
@@ -713,8 +725,7 @@ static void csv_value(struct strbuf *b, const json_t *v)
         strbuf_add(b, buf, strlen(buf));
         break;
     case JSON_REAL:
-        fmt_real(buf, sizeof buf, json_real_value(v));
-        strbuf_add(b, buf, strlen(buf));
+        strbuf_adds(b, numtext_real(buf, sizeof buf, json_real_value(v)));
         break;
     case JSON_TRUE:
         strbuf_add(b, "true", 4);

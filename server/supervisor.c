@@ -40,15 +40,19 @@
 
 #include "engine_report.h"
 #include "errmsg.h"
+#include "finals.h"
 #include "jobdir.h"
 #include "queue.h"
 #include "result_repair.h"
+#include "storage.h"
 #include "util/clock.h"
 
 #define TSUP_TICK_MS 200             /* poll timeout: reaping, limits, cancels */
 #define TSUP_CLAIM_INTERVAL 1.0      /* s between claim attempts when not woken */
 #define TSUP_PROGRESS_INTERVAL 0.25  /* s between queue progress writes per job */
 #define TSUP_NOFILE 256              /* RLIMIT_NOFILE of an engine */
+#define TSUP_RETRY_INTERVAL 1.0      /* s between writes of final states still waiting */
+#define TSUP_STORAGE_INTERVAL 2.0    /* s between looks at the disk (floor, reserve) */
 
 struct child {
     bool used;
@@ -62,6 +66,7 @@ struct child {
     bool killed;             /* SIGKILL sent */
     struct engine_report report;
     bool pending;            /* progress not yet written to the queue */
+    bool progress_failing;   /* the last progress write failed (logged once) */
     double t_update;         /* monotonic time of the last queue write */
 };
 
@@ -84,8 +89,13 @@ struct tsup {
     int init_done, init_rc;
     char init_err[320];
 
+    const struct tcfg *storage; /* NULL: the disk is not watched */
+    struct finals *finals;      /* final states still to be written */
+
     /* thread-private */
     struct tq *q;
+    double t_retry, t_storage;  /* monotonic times of the last retry and disk look */
+    bool below_floor;           /* claims stopped for the free-space floor (logged once) */
     struct child *kids;      /* max_jobs slots */
     int nrunning;
     pid_t self;
@@ -110,9 +120,11 @@ static void flush_progress(struct tsup *s, struct child *c, double now)
         p = 0;
     if (p > 100)
         p = 100;
-    if (tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) ==
-        TQ_ERROR)
-        tlog("supervisor: job %s: cannot update progress", c->id);
+    const bool failed =
+        tq_update_progress(s->q, c->id, p, r->sim_time, r->end_time, r->step, r->eta) == TQ_ERROR;
+    if (failed && !c->progress_failing)
+        tlog("supervisor: job %s: cannot update progress: %s", c->id, tq_last_error(s->q));
+    c->progress_failing = failed;
     c->pending = false;
     c->t_update = now;
 }
@@ -134,7 +146,7 @@ static void read_progress(struct tsup *s, struct child *c)
         if (n == 0) {
             close(c->fd);
             c->fd = -1;
-            engine_report_eof(&c->report);
+            c->pending |= engine_report_eof(&c->report);
             return;
         }
         if (engine_report_feed(&c->report, buf, (size_t)n)) {
@@ -203,7 +215,7 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
     if (c->fd >= 0) {
         close(c->fd);
         c->fd = -1;
-        engine_report_eof(&c->report); /* the leader is dead: its last words count */
+        c->pending |= engine_report_eof(&c->report); /* the leader is dead: its last words count */
     }
 
     struct engine_outcome out;
@@ -227,8 +239,7 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
             flush_progress(s, c, tlsph_monotonic_seconds());
         }
         repair_result(s, c->id, &out.message); /* before the job is seen final */
-        if (tq_finish(s->q, c->id, out.status, out.outcome, out.message, r->cost) == TQ_ERROR)
-            tlog("supervisor: job %s: cannot record the final state", c->id);
+        finals_record(s->finals, s->q, c->id, out.status, out.outcome, out.message, r->cost);
     }
     free(out.message);
     child_clear(c);
@@ -402,8 +413,7 @@ static void fail_start(struct tsup *s, const char *id, const char *outcome, cons
     va_start(ap, fmt);
     vsnprintf(message, sizeof message, fmt, ap);
     va_end(ap);
-    if (tq_finish(s->q, id, TQ_FAILED, outcome, message, NULL) == TQ_ERROR)
-        tlog("supervisor: job %s: cannot record the final state", id);
+    finals_record(s->finals, s->q, id, TQ_FAILED, outcome, message, NULL);
 }
 
 /* Starts a claimed job in slot c. On failure the job is finished as failed. */
@@ -486,8 +496,40 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         tlog("supervisor: job %s: cannot record pid", id);
 }
 
+/* Below the free-space floor no engine starts: it would only fill the disk
+ * further or fail at its first write.  Queued jobs wait for the space. */
+static bool room_to_start(struct tsup *s)
+{
+    const bool below = s->storage && storage_below_floor(s->storage);
+    if (below != s->below_floor)
+        tlog(below ? "supervisor: free space below the floor (min_free_mb): no job starts until "
+                     "space is freed"
+                   : "supervisor: free space above the floor again: jobs start");
+    s->below_floor = below;
+    return !below;
+}
+
+/* Every TSUP_RETRY_INTERVAL: the final states still waiting; every
+ * TSUP_STORAGE_INTERVAL: the reserve file. */
+static void keep_records(struct tsup *s, double now)
+{
+    char err[300];
+    if (now - s->t_retry >= TSUP_RETRY_INTERVAL) {
+        s->t_retry = now;
+        if (finals_pending(s->finals, NULL, 0) > 0)
+            finals_retry(s->finals, s->q);
+    }
+    if (s->storage && now - s->t_storage >= TSUP_STORAGE_INTERVAL) {
+        s->t_storage = now;
+        if (storage_keep_reserve(s->storage, err, sizeof err) != 0)
+            tlog("supervisor: %s", err);
+    }
+}
+
 static void claim_jobs(struct tsup *s)
 {
+    if (s->nrunning < s->max_jobs && !room_to_start(s))
+        return;
     while (s->nrunning < s->max_jobs && !atomic_load(&s->stop)) {
         struct child *slot = NULL;
         for (int i = 0; i < s->max_jobs; i++)
@@ -623,6 +665,7 @@ static void *sup_main(void *arg)
         now = tlsph_monotonic_seconds();
         if (!stopping)
             check_cancels(s, now);
+        keep_records(s, now);
         for (int i = 0; i < s->max_jobs; i++) {
             struct child *c = &s->kids[i];
             if (!c->used)
@@ -640,6 +683,11 @@ static void *sup_main(void *arg)
         }
     }
 
+    const size_t lost = finals_retry(s->finals, s->q);
+    if (lost > 0)
+        tlog("supervisor: %zu final state(s) could not be recorded before the stop; the next "
+             "start requeues those jobs",
+             lost);
     free(pfds);
     free(idx);
     tq_close(s->q);
@@ -662,6 +710,7 @@ static void tsup_free(struct tsup *s)
             child_clear(&s->kids[i]);
         free(s->kids);
     }
+    finals_free(s->finals);
     free(s->db_path);
     free(s->engine_path);
     free(s->jobs_dir);
@@ -716,7 +765,9 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->engine_path = absolute_path(cfg->engine_path);
     s->jobs_dir = absolute_path(cfg->jobs_dir);
     s->kids = calloc((size_t)cfg->max_jobs, sizeof *s->kids);
-    if (!s->db_path || !s->engine_path || !s->jobs_dir || !s->kids) {
+    s->storage = cfg->storage;
+    s->finals = finals_new(cfg->storage);
+    if (!s->db_path || !s->engine_path || !s->jobs_dir || !s->kids || !s->finals) {
         errmsg_set(err, errsize, "out of memory");
         tsup_free(s);
         return -1;
@@ -787,6 +838,11 @@ void tsup_wake(struct tsup *s)
         r = write(s->wake_wr, &b, 1);
     } while (r < 0 && errno == EINTR);
     /* EAGAIN: the pipe is full, so the thread is going to wake anyway */
+}
+
+size_t tsup_unrecorded(struct tsup *s, char *why, size_t size)
+{
+    return s ? finals_pending(s->finals, why, size) : (errmsg_set(why, size, "%s", ""), 0);
 }
 
 void tsup_stop(struct tsup *s)

@@ -10,12 +10,18 @@
  * progress (written to the queue) and the final event, and turns the exit
  * status into the job's final state (docs/protocol.md).
  * Cancellation: SIGTERM to the process group, SIGKILL after a grace period.
+ * A final state the queue cannot take (a full disk) is kept and written
+ * again until it is (finals.h).  While the data directory's free space is
+ * below its floor no job is claimed, and the reserve file is allocated again
+ * once the space is back (storage.h).
  *
  * Job directories: jobdir.h. */
 #ifndef TLSPHD_SUPERVISOR_H
 #define TLSPHD_SUPERVISOR_H
 
 #include <stddef.h>
+
+struct tcfg;
 
 struct tsup_config {
     const char *db_path;       /* SQLite file (the supervisor opens its own handle) */
@@ -27,6 +33,8 @@ struct tsup_config {
     double kill_grace;         /* s between SIGTERM and SIGKILL */
     long memory_limit_mb;      /* RLIMIT_AS per engine, 0 = none */
     int max_attempts;          /* requeue limit after daemon crashes */
+    const struct tcfg *storage; /* the data directory's floor and reserve (storage.h);
+                                 * NULL: not watched.  Must outlive the supervisor */
 };
 
 struct tsup; /* opaque */
@@ -35,6 +43,9 @@ struct tsup; /* opaque */
 int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size_t errsize);
 /* Wakes the supervisor (new job queued, cancel requested). Async-signal-unsafe; thread-safe. */
 void tsup_wake(struct tsup *s);
+/* How many finished jobs wait for their final state to be recorded, and why
+ * the last write failed (finals.h).  Any thread. */
+size_t tsup_unrecorded(struct tsup *s, char *why, size_t size);
 /* Stops: running engines get SIGTERM (then SIGKILL after the grace period) and
  * their jobs are requeued so the next daemon runs them again; joins the thread. */
 void tsup_stop(struct tsup *s);

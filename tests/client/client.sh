@@ -177,6 +177,7 @@ check "fetch of an unknown job → exit 2, no file left" bash -c "[ $RC = 2 ] &&
 # ------------------------------------------------------------ authentication and settings
 TOKEN=$(head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n')
 printf '%s\n' "$TOKEN" >"$TMP/tokens"
+chmod 600 "$TMP/tokens" # the daemon refuses a token file others can read
 start_daemon A "$TMP/data-auth" --token-file "$TMP/tokens" || exit 1
 cl --url "$A_URL" --token wrong list
 check "wrong token → exit 6, clear message" bash -c "[ $RC = 6 ] && grep -q 'authentication failed' '$TMP/err'"

@@ -166,6 +166,7 @@ check "queued job dismissed" [ "$(job_status "$B" "$QID")" = dismissed ]
 # ------------------------------------------------------------ tokens
 TOKEN=$(head -c 24 /dev/urandom | od -An -tx1 | tr -d ' \n')
 printf '# test tokens\n%s\n' "$TOKEN" >"$TMP/tokens"
+chmod 600 "$TMP/tokens" # the daemon refuses a token file others can read
 start_daemon A "$TMP/data-auth" --token-file "$TMP/tokens" || exit 1
 expect 401 "no token" GET "$A_URL/jobs"
 check "  WWW-Authenticate: Bearer" bash -c "grep -qi '^WWW-Authenticate: Bearer' '$HDRS'"

@@ -21,12 +21,17 @@ done
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/tlsphd-test.XXXXXX")
 DAEMON_PIDS=""
 
-cleanup() {
+# stop_daemons: SIGTERM to every daemon started here, SIGKILL after 5 s
+stop_daemons() {
     for p in $DAEMON_PIDS; do kill -TERM "$p" 2>/dev/null; done
     for p in $DAEMON_PIDS; do
         for _ in $(seq 50); do kill -0 "$p" 2>/dev/null || break; sleep 0.1; done
         kill -KILL "$p" 2>/dev/null
     done
+    DAEMON_PIDS=""
+}
+cleanup() {
+    stop_daemons
     if [ "${KEEP:-0}" = 1 ]; then echo "# kept $TMP"; else rm -rf "$TMP"; fi
 }
 trap cleanup EXIT
@@ -61,6 +66,22 @@ start_daemon() {
         sleep 0.1
     done
     echo "FAIL: daemon did not start"; cat "$log"; return 1
+}
+
+# start_refused VAR DATA [args]: starts tlsphd where it should refuse to
+# start; waits until it exits or answers (a hang detector, not a deadline);
+# sets VAR_RC (the exit status, "running" when it serves after all) and VAR_LOG.
+start_refused() {
+    local var=$1 data=$2; shift 2
+    local log="$TMP/$var.log" port; port=$(free_port)
+    "$TLSPHD" --listen "127.0.0.1:$port" --data-dir "$data" --engine "$ENGINE" \
+        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 "$@" >"$log" 2>&1 &
+    local pid=$! rc=running
+    DAEMON_PIDS="$DAEMON_PIDS $pid"
+    exited_or_up() { ! kill -0 "$pid" 2>/dev/null || curl -sf "http://127.0.0.1:$port/healthz" >/dev/null; }
+    wait_until exited_or_up
+    if ! kill -0 "$pid" 2>/dev/null; then wait "$pid"; rc=$?; fi
+    eval "${var}_RC=$rc; ${var}_LOG=$log"
 }
 
 # req METHOD URL [curl args...]: sets STATUS, BODY (file), HDRS (file).

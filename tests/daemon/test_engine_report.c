@@ -72,8 +72,9 @@ START_TEST(test_last_words_without_newline)
     feed(&r, "{\"event\":\"finished\",\"status\":\"successful\",\"step\":4,\"time\":1.0,"
              "\"cost\":{\"steps\":4}}");
     ck_assert(!r.finished);
-    engine_report_eof(&r);
+    ck_assert(engine_report_eof(&r)); /* its step and time are the job's last */
     ck_assert(r.finished);
+    ck_assert_int_eq(r.step, 4);
     ck_assert_str_eq(r.cost, "{\"steps\":4}");
     struct engine_outcome o;
     engine_outcome(&r, EXITED(TLSPH_EXIT_SUCCESS), ENGINE_NOT_STOPPED, 60, &o);
@@ -183,11 +184,28 @@ START_TEST(test_stops_and_deaths)
 }
 END_TEST
 
+/* A cancelled run's final event carries its last step and time: they move the
+ * job's progress, so that simulation.step agrees with cost.steps. */
+START_TEST(test_final_event_moves_progress)
+{
+    struct engine_report r;
+    engine_report_init(&r, 1.0);
+    ck_assert(feed(&r, "{\"event\":\"progress\",\"step\":4002,\"time\":0.0002}\n"));
+    ck_assert(feed(&r, "{\"event\":\"finished\",\"status\":\"cancelled\",\"step\":5072,"
+                       "\"time\":0.00025,\"cost\":{\"steps\":5072}}\n"));
+    ck_assert(r.finished);
+    ck_assert_int_eq(r.step, 5072);
+    ck_assert(r.sim_time == 0.00025);
+    engine_report_free(&r);
+}
+END_TEST
+
 static Suite *report_suite(void)
 {
     Suite *s = suite_create("engine_report");
     TCase *tc = tcase_create("engine_report");
     tcase_add_test(tc, test_chunked_progress);
+    tcase_add_test(tc, test_final_event_moves_progress);
     tcase_add_test(tc, test_junk_and_long_lines);
     tcase_add_test(tc, test_last_words_without_newline);
     tcase_add_test(tc, test_invalid_from_event);

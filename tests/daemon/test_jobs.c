@@ -1,6 +1,8 @@
 /* Unit tests of server/jobs.c, the jobs service without HTTP: validation with
  * pointers relative to the inputs, the particle limit, ids, directories
- * before rows, rollback when a directory cannot be made, cancel and remove.
+ * before rows, rollback when a directory cannot be made, cancel and remove,
+ * the output quota, a study child removed only with its study, and the
+ * intent files that make submissions and removals crash-safe (intent.c).
  * A scene from $top_srcdir/tests/scenes/good (default "."). */
 #include <check.h>
 #include <limits.h>
@@ -10,6 +12,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "intent.h"
 #include "jobdir.h"
 #include "jobs.h"
 #include "queue.h"
@@ -65,6 +68,16 @@ static bool has_error(const struct tlsph_errors *e, const char *pointer, const c
     return false;
 }
 
+/* Submits strip_2d as a run: JOBS_OK, with the id in sub->id. */
+static void submit_good_run(struct jobs_submitted *sub)
+{
+    jobs_submitted_init(sub);
+    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, sub), JOBS_OK);
+    json_decref(inputs);
+    ck_assert(job_id_valid(sub->id));
+}
+
 static long count_jobs(void)
 {
     long acc = -1;
@@ -108,11 +121,7 @@ END_TEST
 START_TEST(test_run_queued_then_removed)
 {
     struct jobs_submitted sub;
-    jobs_submitted_init(&sub);
-    json_t *inputs = json_pack("{s:o}", "scene", good_scene());
-    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OK);
-    json_decref(inputs);
-    ck_assert(job_id_valid(sub.id));
+    submit_good_run(&sub);
 
     struct tq_job j;
     ck_assert_int_eq(tq_get(g_q, sub.id, &j), TQ_OK);
@@ -206,6 +215,114 @@ START_TEST(test_rollback_without_directory)
 }
 END_TEST
 
+/* The estimate of a result file against the per-job quota: strip_2d has 250
+ * particles (50 x 5 at 2 mm); the engine's field table writes 52 B per
+ * particle once and 116 B per particle and frame (docs/api.md); frames + 1
+ * records.  101 records: 250 x (52 + 101 x 116) B = 2.8 MiB > 1 MiB. */
+START_TEST(test_output_quota)
+{
+    g_cfg.max_output_mb = 1;
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    json_t *scene = good_scene();
+    json_object_set_new(json_object_get(scene, "output"), "frames", json_integer(100));
+    json_t *inputs = json_pack("{s:o}", "scene", scene);
+    ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OVER_QUOTA);
+    ck_assert(has_error(&sub.errors, "/scene/output/frames",
+                        "250 particles x (52 B + 101 frames x 116 B)"));
+    ck_assert(sub.output_bytes == 250.0 * (52 + 101 * 116));
+    ck_assert_msg(strstr(sub.detail, "2.8 MiB") && strstr(sub.detail, "1.0 MiB"), "%s", sub.detail);
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+    ck_assert_int_eq(count_jobs(), 0);
+
+    /* 11 records: 332 000 B fit */
+    submit_good_run(&sub);
+    ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 116));
+    jobs_submitted_free(&sub);
+
+    /* a study: the child above the quota is named */
+    jobs_submitted_init(&sub);
+    inputs = json_pack("{s:o, s:{s:[{s:s, s:[i, i]}]}}", "base", good_scene(), "sweep",
+                       "parameters", "pointer", "/output/frames", "values", 10, 100);
+    ck_assert_int_eq(jobs_submit_study(&g_env, inputs, &sub), JOBS_OVER_QUOTA);
+    ck_assert(has_error(&sub.errors, "/base/output/frames", "child 1 {\"/output/frames\":100}"));
+    ck_assert_uint_eq(sub.errors.count, 1);
+    json_decref(inputs);
+    jobs_submitted_free(&sub);
+    ck_assert_int_eq(count_jobs(), 1);
+}
+END_TEST
+
+/* A child of a study goes only with its study: the study's summary has a row
+ * and its message a count for every child. */
+START_TEST(test_child_removed_with_its_study)
+{
+    struct jobs_submitted sub;
+    jobs_submitted_init(&sub);
+    json_t *inputs = json_pack("{s:o, s:{s:[{s:s, s:[f, f]}]}}", "base", good_scene(), "sweep",
+                               "parameters", "pointer", "/time/cfl", "values", 0.3, 0.4);
+    ck_assert_int_eq(jobs_submit_study(&g_env, inputs, &sub), JOBS_OK);
+    json_decref(inputs);
+    ck_assert_int_eq(jobs_cancel(&g_env, sub.id), JOBS_OK); /* all final */
+    struct tq_job *kids = NULL;
+    size_t nk = 0;
+    ck_assert_int_eq(jobs_study_children(&g_env, sub.id, &kids, &nk), 0);
+    ck_assert_uint_eq(nk, 2);
+    ck_assert_str_eq(kids[0].status, TQ_DISMISSED);
+    ck_assert_int_eq(jobs_remove(&g_env, &kids[0]), JOBS_STUDY_CHILD);
+    ck_assert_int_eq(tq_has_row(g_q, kids[0].id), TQ_OK);
+    struct tq_job study;
+    ck_assert_int_eq(tq_get(g_q, sub.id, &study), TQ_OK);
+    ck_assert_int_eq(jobs_remove(&g_env, &study), JOBS_OK); /* the study takes them along */
+    ck_assert_int_eq(tq_has_row(g_q, kids[0].id), TQ_NOT_FOUND);
+    char path[PATH_MAX];
+    ck_assert_int_eq(jobdir_path(path, sizeof path, g_jobs, kids[1].id, JOBDIR_FILES), 0);
+    ck_assert_int_eq(access(path, F_OK), -1);
+    tq_job_free(&study);
+    tq_jobs_free(kids, nk);
+    jobs_submitted_free(&sub);
+}
+END_TEST
+
+static int has_row_cb(void *ctx, const char *id)
+{
+    (void)ctx;
+    const enum tq_rc rc = tq_has_row(g_q, id);
+    return rc == TQ_OK ? 1 : rc == TQ_NOT_FOUND ? 0 : -1;
+}
+
+/* An intent file left by a crash: the listed directories without a row go
+ * (a submission that never committed, a removal that did), those with a row
+ * stay, directories it does not list are not its business. */
+START_TEST(test_intent_replay)
+{
+    struct jobs_submitted sub;
+    submit_good_run(&sub);
+    char ids[3][JOB_ID_LEN + 1], path[PATH_MAX], err[256];
+    snprintf(ids[0], sizeof ids[0], "%s", sub.id); /* has a row */
+    for (int i = 1; i < 3; i++) {
+        ck_assert_int_eq(job_id_new(ids[i]), 0);
+        ck_assert_int_eq(jobdir_create(g_jobs, ids[i], "{}", err, sizeof err), 0);
+    }
+    const char *listed[] = {ids[0], ids[1]}; /* ids[2]: a directory it does not list */
+    struct intent in;
+    ck_assert_int_eq(intent_begin(&in, g_jobs, listed, 2, err, sizeof err), 0);
+    ck_assert_int_eq(access(in.path, R_OK), 0);
+    long removed = -1;
+    ck_assert_int_eq(intent_replay(g_jobs, has_row_cb, NULL, &removed, err, sizeof err), 0);
+    ck_assert_int_eq(removed, 1);
+    ck_assert_int_eq(access(in.path, F_OK), -1);
+    for (int i = 0; i < 3; i++) {
+        ck_assert_int_eq(jobdir_path(path, sizeof path, g_jobs, ids[i], JOBDIR_FILES), 0);
+        ck_assert_int_eq(access(path, F_OK), i == 1 ? -1 : 0);
+    }
+    ck_assert_int_eq(intent_replay(g_jobs, has_row_cb, NULL, &removed, err, sizeof err), 0);
+    ck_assert_int_eq(removed, 0);
+    jobs_submitted_free(&sub);
+}
+END_TEST
+
 static Suite *jobs_suite(void)
 {
     Suite *s = suite_create("jobs");
@@ -216,6 +333,9 @@ static Suite *jobs_suite(void)
     tcase_add_test(tc, test_run_queued_then_removed);
     tcase_add_test(tc, test_study_children_and_errors);
     tcase_add_test(tc, test_rollback_without_directory);
+    tcase_add_test(tc, test_output_quota);
+    tcase_add_test(tc, test_child_removed_with_its_study);
+    tcase_add_test(tc, test_intent_replay);
     suite_add_tcase(s, tc);
     return s;
 }

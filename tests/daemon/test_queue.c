@@ -1,7 +1,9 @@
 /* The SQLite job queue (server/queue.c): schema setup and versioning, insert /
  * get / list, FIFO and concurrent claims, progress, finish, cancel, studies
- * (status and progress aggregation), crash recovery, delete rules, and that
- * user strings (quotes, unicode, SQL) round-trip verbatim.
+ * (status and progress aggregation, also of a cancelled study), crash
+ * recovery, delete rules, counts by process, the start-up integrity check,
+ * rows rebuilt by --recover, and that user strings (quotes, unicode, SQL)
+ * round-trip verbatim.
  * Each test gets a fresh database in its own mkdtemp directory under /tmp. */
 #include <check.h>
 #include <dirent.h>
@@ -903,6 +905,96 @@ START_TEST(strings_round_trip)
 }
 END_TEST
 
+/* A cancelled study reports the work its children did: 100 for each that ran
+ * to its end, the progress a cancelled one reached, 0 for those that never
+ * started; (100 + 40 + 0 + 0) / 4 = 35 here, not 100. */
+START_TEST(study_cancel_progress)
+{
+    insert_study("st", 4);
+    claim_expect("st-c0");
+    ck_assert_int_eq(tq_finish(g_q, "st-c0", TQ_SUCCESSFUL, "successful", NULL, NULL), 0);
+    claim_expect("st-c1");
+    ck_assert_int_eq(tq_update_progress(g_q, "st-c1", 40, 0, 1, 1, 1), 0);
+    ck_assert_int_eq(tq_request_cancel(g_q, "st"), 0);
+    ck_assert_int_eq(tq_finish(g_q, "st-c1", TQ_DISMISSED, "cancelled", NULL, NULL), 0);
+    assert_status("st", TQ_DISMISSED);
+    ck_assert_msg(fabs(study_progress() - 35.0) < 1e-9, "progress %g", study_progress());
+}
+END_TEST
+
+/* /healthz's counts: run jobs (study children included) and studies apart. */
+START_TEST(counts_by_process)
+{
+    insert_run("a");
+    insert_study("st", 3);
+    claim_expect("a");
+    long acc = -1, run = -1, fin = -1;
+    ck_assert_int_eq(tq_counts_of(g_q, "run", &acc, &run, &fin), 0);
+    ck_assert(acc == 3 && run == 1 && fin == 0);
+    ck_assert_int_eq(tq_counts_of(g_q, "study", &acc, &run, &fin), 0);
+    ck_assert(acc == 1 && run == 0 && fin == 0);
+    ck_assert_int_eq(tq_counts(g_q, &acc, &run, &fin), 0); /* runs, as before */
+    ck_assert(acc == 3 && run == 1 && fin == 0);
+}
+END_TEST
+
+/* Start-up trust: PRAGMA integrity_check finds damage that opening does not;
+ * a missing file is a fresh start; a 0-byte file is an empty database. */
+START_TEST(check_file)
+{
+    char report[256], path[160];
+    for (int i = 0; i < 60; i++) {
+        char id[16];
+        snprintf(id, sizeof id, "j%d", i);
+        insert_run(id);
+    }
+    tq_close(g_q); /* checkpoints the WAL into the file */
+    g_q = NULL;
+    ck_assert_int_eq(tq_check_file(g_db, report, sizeof report), TQ_TRUSTED);
+    ck_assert_str_eq(report, "ok");
+    FILE *f = fopen(g_db, "r+b");
+    ck_assert_ptr_nonnull(f);
+    ck_assert_int_eq(fseek(f, 4096, SEEK_SET), 0);
+    for (int i = 0; i < 4096; i++)
+        fputc((i * 7919) & 0xff, f); /* page 2 overwritten */
+    fclose(f);
+    ck_assert_int_eq(tq_check_file(g_db, report, sizeof report), TQ_CORRUPT);
+    ck_assert_msg(strlen(report) > 0 && strcmp(report, "ok"), "report: %s", report);
+    snprintf(path, sizeof path, "%s/missing.db", g_dir);
+    ck_assert_int_eq(tq_check_file(path, report, sizeof report), TQ_TRUSTED);
+    ck_assert_int_ne(access(path, F_OK), 0); /* not created */
+    snprintf(path, sizeof path, "%s/empty.db", g_dir);
+    f = fopen(path, "w");
+    fclose(f);
+    ck_assert_int_eq(tq_check_file(path, report, sizeof report), TQ_TRUSTED);
+}
+END_TEST
+
+/* Rows rebuilt from job directories (tlsphd --recover) keep what they are given. */
+START_TEST(insert_recovered)
+{
+    struct tq_job j = mkjob("rec", "run");
+    strcpy(j.status, TQ_SUCCESSFUL);
+    strcpy(j.outcome, "successful");
+    j.message = (char *)"recovered";
+    j.progress = 100;
+    j.created = 10;
+    j.started = 11;
+    j.finished = 12;
+    j.attempts = 1;
+    ck_assert_int_eq(tq_has_row(g_q, "rec"), TQ_NOT_FOUND);
+    ck_assert_int_eq(tq_insert_recovered(g_q, &j), TQ_OK);
+    ck_assert_int_eq(tq_has_row(g_q, "rec"), TQ_OK);
+    struct tq_job got = get("rec");
+    ck_assert_str_eq(got.status, TQ_SUCCESSFUL);
+    ck_assert_str_eq(got.outcome, "successful");
+    ck_assert_str_eq(got.message, "recovered");
+    ck_assert(got.progress == 100 && got.created == 10 && got.finished == 12 && got.attempts == 1);
+    tq_job_free(&got);
+    ck_assert_int_eq(tq_insert_recovered(g_q, &j), TQ_ERROR); /* the id is taken */
+}
+END_TEST
+
 static Suite *queue_suite(void)
 {
     Suite *s = suite_create("queue");
@@ -926,6 +1018,10 @@ static Suite *queue_suite(void)
     tcase_add_test(tc, recover);
     tcase_add_test(tc, delete_rules);
     tcase_add_test(tc, strings_round_trip);
+    tcase_add_test(tc, study_cancel_progress);
+    tcase_add_test(tc, counts_by_process);
+    tcase_add_test(tc, check_file);
+    tcase_add_test(tc, insert_recovered);
     suite_add_tcase(s, tc);
     return s;
 }

@@ -494,6 +494,51 @@ START_TEST(test_example_study)
 }
 END_TEST
 
+/* A range whose step (stop - start) / (num - 1) is not a finite double is
+ * refused: -1e308..1e308 in 2 values used to yield one value (0 * inf is
+ * NaN, which JSON cannot hold, and the append failed silently), and with a
+ * second parameter of 1000 values a study of 1000 children instead of 2000.
+ * Values that round to the same double are refused too. */
+START_TEST(test_range_refused)
+{
+    static const struct {
+        const char *parameters, *needle;
+    } refused[] = {
+        {"{\"pointer\": \"/time/end\", \"range\": {\"start\": -1e308, \"stop\": 1e308, \"num\": 2}},"
+         "{\"pointer\": \"/time/cfl\", \"range\": {\"start\": 0.1, \"stop\": 0.9, \"num\": 1000}}",
+         "not a finite number"},
+        /* 1 + 2^-52 is the next double after 1: three values cannot be distinct */
+        {"{\"pointer\": \"/time/end\", \"range\": {\"start\": 1, \"stop\": 1.0000000000000002, "
+         "\"num\": 3}}",
+         "below double precision"},
+    };
+    struct tlsph_errors e;
+    for (size_t i = 0; i < sizeof refused / sizeof *refused; i++) {
+        char text[1024];
+        snprintf(text, sizeof text, "{\"base\": %s, \"sweep\": {\"parameters\": [%s]}}", BASE,
+                 refused[i].parameters);
+        expect_fail(text, 10000, &e);
+        ck_assert(has_error(&e, "/sweep/parameters/0/range", refused[i].needle));
+        ck_assert_int_eq(e.count, 1);
+        tlsph_errors_free(&e);
+    }
+    /* the widest finite span that still has a finite step is accepted */
+    json_t *study = load("{\"base\": " BASE ", \"sweep\": {\"parameters\": ["
+                         "{\"pointer\": \"/time/end\", \"range\": {\"start\": -8e307, "
+                         "\"stop\": 8e307, \"num\": 2}}]}}");
+    struct tstudy_child *c;
+    size_t n;
+    tlsph_errors_init(&e);
+    ck_assert_int_eq(tstudy_expand(study, 10, &c, &n, &e), 0);
+    ck_assert_int_eq(n, 2);
+    ck_assert(num_at(c[0].scene, "/time/end") == -8e307);
+    ck_assert(num_at(c[1].scene, "/time/end") == 8e307);
+    tstudy_children_free(c, n);
+    json_decref(study);
+    tlsph_errors_free(&e);
+}
+END_TEST
+
 static Suite *study_suite(void)
 {
     Suite *s = suite_create("study");
@@ -506,6 +551,7 @@ static Suite *study_suite(void)
     tcase_add_test(tc, test_errors_all_at_once);
     tcase_add_test(tc, test_summary);
     tcase_add_test(tc, test_example_study);
+    tcase_add_test(tc, test_range_refused);
     suite_add_tcase(s, tc);
     return s;
 }
