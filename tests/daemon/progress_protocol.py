@@ -169,7 +169,7 @@ def main():
             with open(scene, "w") as f:
                 f.write(longer)
             p, stream = start(scene, os.path.join(tmp, "long"), tmp)
-            deadline = time.monotonic() + 60
+            deadline = time.monotonic() + 300  # a hang detector: waits on the first progress event
             while time.monotonic() < deadline and p.poll() is None:
                 with open(stream) as f:
                     if '"event":"progress"' in f.read():
