@@ -107,7 +107,7 @@ pl = root.findall(".//" + ns + "polyline")
 d = json.load(urllib.request.urlopen(sys.argv[2]))
 assert len(pl) == 1 and len(pl[0].get("points").split()) == len(d["time"])
 texts = " ".join(t.text or "" for t in root.iter(ns + "text"))
-assert "groups/right/displacement[x] [m]" in texts and "[N]" in texts, texts
+assert "displacement x of groups/right [m]" in texts and "[N]" in texts, texts
 PYEOF
 cl plot "$ID" kinetic_energy:3 -o "$TMP/bad.svg"
 check "plot: component of a scalar series → exit 1" rc_is 1
