@@ -1,0 +1,38 @@
+#!/bin/bash
+# Output a person can read (issue 13, item 21), against a stand-in server with
+# data of known shape (fake_results.py): plots whose y labels name the
+# quantity, whose small series are not flattened by large ones and whose
+# legends cover no curve; a progress bar for fetch on a terminal only; a study
+# table of at most 100 columns with units and uniform numbers.
+. "$(cd "$(dirname "$0")" && pwd)/fake_common.sh"
+PC=$top_srcdir/tests/client/plot_check.py
+
+# ------------------------------------------------------------ plot
+# kinetic energy ~1e-3 J beside internal energy and external work ~10 J
+cl plot "$FID" kinetic_energy internal_energy external_work -o "$TMP/energy.svg"
+check "plot energies: exit 0" rc_is 0
+check "plot: each y label names the quantity and its unit" "$PY" "$PC" svg "$TMP/energy.svg" labels
+check "plot: 1e-3 J kinetic energy is not flattened by 10 J energies" \
+    "$PY" "$PC" svg "$TMP/energy.svg" panels --spread kinetic_energy --spread internal_energy
+check "plot: no legend over a frame or a curve" "$PY" "$PC" svg "$TMP/energy.svg" legend
+check "plot: the energy panel's label is 'energy [J]'" grep -q '>energy \[J\]</text>' "$TMP/energy.svg"
+# reaction force components 2e5 N and 15 N
+cl plot "$FID" groups/right/reaction_force -o "$TMP/force.svg" --title "Reaction force"
+check "plot reaction force (2e5 N beside 15 N): exit 0" rc_is 0
+check "plot force: labels, panels, legend" bash -c "'$PY' '$PC' svg '$TMP/force.svg' labels &&
+    '$PY' '$PC' svg '$TMP/force.svg' panels --spread 'groups/right/reaction_force[y]' &&
+    '$PY' '$PC' svg '$TMP/force.svg' legend"
+cl plot "$FID" groups/right/reaction_force:x --x groups/right/displacement:x -o "$TMP/fd.svg"
+check "plot --x: both labels name quantity, owner and unit" bash -c "[ $RC = 0 ] &&
+    grep -q '>reaction force x of groups/right \[N\]</text>' '$TMP/fd.svg' &&
+    grep -q '>displacement x of groups/right \[m\]</text>' '$TMP/fd.svg'"
+# --log: one log axis per unit; every curve inside its frame
+cl plot "$FID" kinetic_energy internal_energy --log -o "$TMP/log.svg"
+check "plot --log: exit 0, one frame for both energies, decade ticks" bash -c "[ $RC = 0 ] &&
+    [ \$(grep -c 'class=\"frame\"' '$TMP/log.svg') = 1 ] && grep -q '>10<tspan[^>]*>-3</tspan>' '$TMP/log.svg' &&
+    '$PY' '$PC' svg '$TMP/log.svg' panels && '$PY' '$PC' svg '$TMP/log.svg' labels"
+cl plot "$FID" groups/right/displacement --log -o "$TMP/log0.svg"
+check "plot --log: points <= 0 are left out and counted" bash -c "[ $RC = 0 ] &&
+    grep -q 'displacement\[y\]: 0 points (101 points <= 0 left out of the log axis)' '$TMP/err'"
+
+finish
