@@ -35,4 +35,22 @@ cl plot "$FID" groups/right/displacement --log -o "$TMP/log0.svg"
 check "plot --log: points <= 0 are left out and counted" bash -c "[ $RC = 0 ] &&
     grep -q 'displacement\[y\]: 0 points (101 points <= 0 left out of the log axis)' '$TMP/err'"
 
+# ------------------------------------------------------------ fetch progress
+# the stand-in sends 3 MiB files in 64 KiB slices 10 ms apart
+cl fetch "$FID" -o "$TMP/dl"
+check "fetch, stderr not a terminal: exactly the two result lines, no bar" bash -c "[ $RC = 0 ] &&
+    printf '%s\n' '$TMP/dl/result.h5: 3145728 bytes' '$TMP/dl/result.xmf: 3145728 bytes' | cmp -s - '$TMP/err' &&
+    ! grep -q \$'[\r\033]' '$TMP/out'"
+if script -qec true /dev/null </dev/null >/dev/null 2>&1; then
+    # script(1) gives the client a terminal; its stdout and stderr land in the typescript
+    script -qec "'$CLIENT' fetch '$FID' -o '$TMP/dl-tty'" "$TMP/typescript" </dev/null >/dev/null 2>&1
+    check "fetch on a terminal: a progress bar redrawn in place up to 100%" bash -c "
+        grep -q \$'\rresult.h5  \\[#*\\.*\\] *[0-9]*%  .* of 3.0 MiB\033\\[K' '$TMP/typescript' &&
+        grep -q \$'\rresult.xmf  \\[####################\\] 100%  3.0 MiB of 3.0 MiB' '$TMP/typescript' &&
+        grep -q '$TMP/dl-tty/result.h5: 3145728 bytes' '$TMP/typescript' &&
+        cmp -s '$TMP/dl/result.h5' '$TMP/dl-tty/result.h5'"
+else
+    echo "# skipped the terminal check: script(1) (util-linux) missing"
+fi
+
 finish
