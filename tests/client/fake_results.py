@@ -3,7 +3,8 @@
 shape so the client's plots, tables and downloads can be checked exactly:
 
   GET /jobs/<id>/results/series/<name>   series documents (docs/api.md)
-  GET /jobs/<id>/results/summary         a study summary table
+  GET /jobs/<id>/results/summary         a study summary table (job ffff...f:
+                                         one too wide for any terminal)
   GET /jobs/<id>/results/result.h5|.xmf  a file of BLOB_SIZE bytes, sent in
                                          slices with short pauses (a download
                                          that lasts long enough to show progress)
@@ -11,7 +12,7 @@ shape so the client's plots, tables and downloads can be checked exactly:
 
 usage: fake_results.py SCHEMAS_DIR PORT_FILE -- writes the chosen port to
 PORT_FILE once listening; runs until killed."""
-import json, math, os, sys, time
+import hashlib, json, math, os, sys, time
 from http.server import BaseHTTPRequestHandler, ThreadingHTTPServer
 
 N = 101
@@ -51,7 +52,7 @@ SUMMARY = {
     "columns": ["seq", "job_id", "status", "/time/end", "/parameters/vmax", "peak_force",
                 "particles", "steps", "wall_seconds", "particle_steps_per_second"],
     "rows": [
-        [i, "%032x" % (0xabc0 + i), st, end, vmax, pf, parts, steps, wall, rate]
+        [i, hashlib.md5(b"child %d" % i).hexdigest(), st, end, vmax, pf, parts, steps, wall, rate]
         for i, (st, end, vmax, pf, parts, steps, wall, rate) in enumerate([
             ("successful", 1e-4, 0.05, 711348.7526996768, 100, 2001, 0.27872819999993226, 717903.6782071159),
             ("successful", 2e-4, 0.15, 1422003.4009285646, 400, 4001, 1.330214900000101, 1203113.8728034685),
@@ -60,6 +61,14 @@ SUMMARY = {
         ])
     ],
 }
+
+# a study with many outputs: wider than any terminal even when shortened
+WIDE = {
+    "columns": SUMMARY["columns"][:5] + ["output_%02d_of_the_study" % k for k in range(12)] + SUMMARY["columns"][6:],
+    "rows": [r[:5] + [1.5 * 10 ** (k - 6) * (i + 1) for k in range(12)] + r[6:]
+             for i, r in enumerate(SUMMARY["rows"])],
+}
+WIDE_ID = "f" * 32
 
 
 class Handler(BaseHTTPRequestHandler):
@@ -87,7 +96,7 @@ class Handler(BaseHTTPRequestHandler):
             if what.startswith("series/") and what[7:] in SERIES:
                 return self.send(200, json.dumps(SERIES[what[7:]]).encode())
             if what == "summary":
-                return self.send(200, json.dumps(SUMMARY).encode())
+                return self.send(200, json.dumps(WIDE if parts[2] == WIDE_ID else SUMMARY).encode())
             if what in ("result.h5", "result.xmf"):
                 return self.blob()
         self.send(404, b'{"type":"urn:tlsph:problem:no-such-result","title":"No such result","status":404}',

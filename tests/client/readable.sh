@@ -53,4 +53,16 @@ else
     echo "# skipped the terminal check: script(1) (util-linux) missing"
 fi
 
+# ------------------------------------------------------------ study table
+TC=$top_srcdir/tests/client/table_check.py
+cl study table "$FID"
+check "study table: at most 100 columns, units in the header, numbers alike and aligned" bash -c "[ $RC = 0 ] &&
+    '$PY' '$TC' '$TMP/out' 100 'end [s]' vmax peak_force 'wall [s]' 'speed [1/s]'"
+check "study table: 4 rows under one header; what was shortened said on stderr" bash -c "
+    [ \$(wc -l <'$TMP/out') = 5 ] && grep -q '^ *2  4b577b8c  failed ' '$TMP/out' &&
+    grep -q 'job ids shortened to 8 characters' '$TMP/err'"
+cl study table ffffffffffffffffffffffffffffffff
+check "study table with 16 outputs: blocks of at most 100 columns, each starting with seq" bash -c "[ $RC = 0 ] &&
+    '$PY' '$TC' '$TMP/out' 100 output_00_of_the_study output_05_of_the_study output_11_of_the_study 'wall [s]'"
+
 finish
