@@ -5,7 +5,7 @@
       every line has at most WIDTH characters; the output is blocks (separated
       by a blank line) of a header line and rows, each block starting with
       seq; every COLUMN (a header text such as "wall [s]") is present, and its
-      numbers (every cell but "-") have 4 significant digits and are aligned:
+      numbers (every cell but "-") have 4 significant digits (zero aside) and are aligned:
       all on one decimal point position or all ending at one position."""
 import re, sys
 
@@ -55,6 +55,8 @@ def main():
             found.add(name)
             nums = [r[k] for r in rows if r[k][0] != "-"]
             for t, _, _ in nums:
+                if re.match(r"^-?0(\.0*)?(e[+-]00)?$", t):
+                    continue  # zero has no significant digits to count
                 if not re.match(r"^-?\d+(\.\d+)?(e[+-]\d+)?$", t) or significant(t) != 4:
                     fail("column %s: %r is not a number with 4 significant digits" % (name, t))
             dots = {s + t.find(".") if "." in t and "e" not in t else s + len(t) for t, s, _ in nums}
