@@ -184,7 +184,9 @@ static int write_svg(const char *out, const plot_axes *ax, const plot_line *line
     if (fclose(f) != 0 && werr == 0)
         werr = -1;
     if (werr == -2) {
-        fprintf(stderr, "tlsph plot: the series have more than %d different units; plot them in separate files\n",
+        fprintf(stderr,
+                "tlsph plot: the series need more than %d panels (one per unit and magnitude); "
+                "plot fewer at a time, or use --log\n",
                 PLOT_MAX_PANELS);
         remove(out);
         return RC_USAGE;

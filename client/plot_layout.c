@@ -33,8 +33,9 @@ static int same_units(const plot_line *a, const plot_line *b)
     return strcmp(ua, ub) == 0;
 }
 
-/* group[i] = the group of line i; returns the number of groups, or 0 when the
- * units alone need more than PLOT_MAX_PANELS.  Lines are taken largest first,
+/* group[i] = the group of line i; returns the number of groups, or 0 when a
+ * line of a new unit finds every one of the PLOT_MAX_PANELS panels taken (a
+ * line of a known unit then joins the panel of the nearest magnitude).  Lines are taken largest first,
  * so that a group's first line is its largest. */
 static size_t group_lines(const plot_line *lines, size_t n, int log_y, const double *scale,
                           size_t *order, size_t *group)

@@ -47,7 +47,8 @@ typedef struct {
 } plot_layout;
 
 /* Lays out lines[0..n-1] (title: leave room for one).  Returns 0; -1 when out
- * of memory; -2 when the lines have more than PLOT_MAX_PANELS different units. */
+ * of memory; -2 when a line finds no panel: its unit is new and PLOT_MAX_PANELS
+ * panels are taken (by other units or magnitudes). */
 int plot_layout_make(plot_layout *L, const plot_line *lines, size_t n, int log_y, int title);
 void plot_layout_free(plot_layout *L);
 

@@ -19,8 +19,8 @@ typedef struct {
  * each panel's frame is <rect class="frame" id="frame-P">, its legend box
  * <rect class="legend" id="legend-P">, and each line one
  * <polyline class="curve" data-panel="P"> with exactly n points.  Returns 0;
- * -1 on a write error or when out of memory; -2 when the lines have more than
- * PLOT_MAX_PANELS different units. */
+ * -1 on a write error or when out of memory; -2 when the lines need more than
+ * PLOT_MAX_PANELS panels (plot_layout_make). */
 int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t nlines);
 
 #endif
