@@ -27,6 +27,17 @@ int take_id(const char *cmd, const char *what, const char *arg, const char **id)
     return RC_OK;
 }
 
+int take_id_or_name(const char *cmd, const char *msg, const char *arg, const char **id, int *nnames)
+{
+    if (arg[0] == '-')
+        return usage_error(cmd, msg, arg);
+    if (!*id)
+        *id = arg;
+    else
+        (*nnames)++;
+    return RC_OK;
+}
+
 int need_id(const char *cmd, const char *what, const char *id)
 {
     if (!id) {

@@ -31,6 +31,10 @@ int usage_error(const char *cmd, const char *msg, const char *arg);
  * options: the ID of a `what` ("job", "study") when none was seen yet (RC_OK),
  * else a usage error ("unknown option", "more than one job id"). */
 int take_id(const char *cmd, const char *what, const char *arg, const char **id);
+/* The same for `tlsph CMD ID NAME...`: the first argument that is no option is
+ * the job ID, the others are names (counted in *nnames); an option is a usage
+ * error (msg). */
+int take_id_or_name(const char *cmd, const char *msg, const char *arg, const char **id, int *nnames);
 /* After the loop: a usage error when no ID was given ("missing job ID"), else
  * id_check's answer. */
 int need_id(const char *cmd, const char *what, const char *id);

@@ -7,6 +7,7 @@
 #include "exitcodes.h"
 #include "http.h"
 #include "jobfmt.h"
+#include "study_table.h"
 
 static int study_status(const settings *s, int argc, char **argv)
 {
@@ -46,32 +47,18 @@ static int study_status(const settings *s, int argc, char **argv)
     return RC_OK;
 }
 
-/* Cell text of a summary value. */
-static void cell_text(char *buf, size_t n, const json_t *v)
+/* The scene schema from the server, for the units of swept values; NULL (and
+ * no message) when the server has none to give. */
+static json_t *scene_schema(const settings *s)
 {
-    if (json_is_integer(v))
-        snprintf(buf, n, "%lld", (long long)json_integer_value(v));
-    else if (json_is_real(v))
-        snprintf(buf, n, "%.6g", json_real_value(v));
-    else if (json_is_string(v)) {
-        snprintf(buf, n, "%s", json_string_value(v));
-        for (char *p = buf; *p; p++)
-            if ((unsigned char)*p < 0x20)
-                *p = ' ';
-    } else if (json_is_null(v) || !v)
-        snprintf(buf, n, "-");
-    else
-        snprintf(buf, n, "%s", json_is_true(v) ? "true" : json_is_false(v) ? "false" : "?");
-}
-
-/* Column i of nc: numbers right-aligned to width w, text left-aligned (the
- * last column unpadded); two spaces between columns. */
-static void print_table_cell(size_t i, size_t nc, int w, int right, const char *text)
-{
-    if (right)
-        printf("%s%*s", i ? "  " : "", w, text);
-    else
-        printf("%s%-*s", i ? "  " : "", i + 1 < nc ? w : 0, text);
+    http_response r;
+    json_t *schema = NULL;
+    if (http_exchange(s, "GET", "/schemas/scene.schema.json", NULL, HTTP_TIMEOUT, &r) != RC_OK)
+        return NULL;
+    if (r.status == 200)
+        schema = json_loadb(r.body, r.len, 0, NULL);
+    http_response_free(&r);
+    return schema;
 }
 
 static int study_table(const settings *s, int argc, char **argv)
@@ -95,49 +82,16 @@ static int study_table(const settings *s, int argc, char **argv)
     json_t *doc;
     if ((rc = http_json(s, "GET", path, NULL, HTTP_TIMEOUT, &doc)) != RC_OK)
         return rc;
-    json_t *cols = json_object_get(doc, "columns"), *rows = json_object_get(doc, "rows");
-    size_t nc = json_array_size(cols);
-    int *w = calloc(nc ? nc : 1, sizeof *w), *numeric = calloc(nc ? nc : 1, sizeof *numeric);
-    if (!w || !numeric) {
-        free(w);
-        free(numeric);
-        json_decref(doc);
+    json_t *schema = scene_schema(s);
+    if (study_table_print(stdout, stderr, doc, schema, STUDY_TABLE_WIDTH) != 0) {
         fprintf(stderr, "tlsph: out of memory\n");
-        return RC_IO;
+        rc = RC_IO;
     }
-    char buf[256];
-    size_t i, r;
-    json_t *row;
-    for (i = 0; i < nc; i++) {
-        cell_text(buf, sizeof buf, json_array_get(cols, i));
-        w[i] = (int)strlen(buf);
-    }
-    json_array_foreach(rows, r, row) for (i = 0; i < nc; i++)
-    {
-        cell_text(buf, sizeof buf, json_array_get(row, i));
-        if ((int)strlen(buf) > w[i])
-            w[i] = (int)strlen(buf);
-        if (json_is_number(json_array_get(row, i)))
-            numeric[i] = 1;
-    }
-    for (i = 0; i < nc; i++) {
-        cell_text(buf, sizeof buf, json_array_get(cols, i));
-        print_table_cell(i, nc, w[i], numeric[i], buf);
-    }
-    putchar('\n');
-    json_array_foreach(rows, r, row)
-    {
-        for (i = 0; i < nc; i++) {
-            json_t *v = json_array_get(row, i);
-            cell_text(buf, sizeof buf, v);
-            print_table_cell(i, nc, w[i], numeric[i] && !json_is_string(v), buf);
-        }
-        putchar('\n');
-    }
-    free(w);
-    free(numeric);
+    json_decref(schema);
     json_decref(doc);
-    return fflush(stdout) == 0 ? RC_OK : RC_IO;
+    if (fflush(stdout) != 0)
+        rc = RC_IO;
+    return rc;
 }
 
 int cmd_study(const settings *s, int argc, char **argv)

@@ -16,6 +16,7 @@
 #include <unistd.h>
 
 #include "exitcodes.h"
+#include "fetch_bar.h"
 
 #ifndef PACKAGE_VERSION
 #define PACKAGE_VERSION "dev"
@@ -524,8 +525,16 @@ static int download_once(const settings *s, const char *path, const char *dest, 
         fprintf(stderr, "tlsph: libcurl rejected the callbacks\n");
         rc = RC_NETWORK;
     }
+    fetch_bar bar;
+    const char *slash = strrchr(dest, '/');
+    fetch_bar_init(&bar, slash ? slash + 1 : dest, &dl.h.status, &dl.offset);
+    if (rc == RC_OK && fetch_bar_attach(&bar, q.c) != 0) {
+        fprintf(stderr, "tlsph: libcurl rejected the progress callback\n");
+        rc = RC_NETWORK;
+    }
     if (rc == RC_OK) {
         rc = request_perform(&q, s, dl.err.overflow);
+        fetch_bar_end(&bar);
         if (dl.io_error) {
             fprintf(stderr, "tlsph: cannot write %s: %s\n", part, strerror(dl.io_error));
             rc = RC_IO;

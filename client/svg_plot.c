@@ -1,18 +1,13 @@
-/* SVG rendering of line plots.  Ticks at 1/2/5 x 10^k steps, text XML-escaped. */
+/* SVG rendering of a laid-out line plot; text is XML-escaped. */
 #include "svg_plot.h"
 
-#include <math.h>
 #include <string.h>
-
-#define W 800.0
-#define H 500.0
-#define ML 95.0 /* margins */
-#define MR 25.0
-#define MT 40.0
-#define MB 60.0
 
 static const char *const colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
                                      "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"};
+#define NCOLORS (sizeof colors / sizeof *colors)
+/* past the tenth line the colours repeat with a dash pattern */
+static const char *const dashes[] = {"", " stroke-dasharray=\"6 3\"", " stroke-dasharray=\"2 2\""};
 
 static void xml_text(FILE *f, const char *s)
 {
@@ -33,130 +28,166 @@ static void xml_text(FILE *f, const char *s)
     }
 }
 
-static double nice_step(double range, int target)
+/* Legend text: a long label keeps its end, which tells the series apart. */
+static void legend_text(FILE *f, const char *s)
 {
-    double raw = range / target, mag = pow(10, floor(log10(raw))), r = raw / mag;
-    double m = r < 1.5 ? 1 : r < 3 ? 2 : r < 7 ? 5 : 10;
-    return m * mag;
-}
-
-/* Expands [*lo, *hi] to tick multiples; degenerate ranges get a width. */
-static double axis_range(double *lo, double *hi)
-{
-    if (!(*hi > *lo)) {
-        double d = fabs(*lo) > 0 ? fabs(*lo) * 0.5 : 1.0;
-        *lo -= d;
-        *hi += d;
+    size_t n = strlen(s ? s : "");
+    if (n <= PLOT_LEGEND_MAX_CHARS) {
+        xml_text(f, s);
+        return;
     }
-    double step = nice_step(*hi - *lo, 5);
-    *lo = floor(*lo / step + 1e-9) * step;
-    *hi = ceil(*hi / step - 1e-9) * step;
-    if (!(*hi > *lo) || !isfinite(step) || step <= 0) { /* range tiny against its magnitude */
-        step = fabs(*lo) > 0 ? fabs(*lo) : 1;
-        *hi = *lo + step;
+    const char *t = s + n - (PLOT_LEGEND_MAX_CHARS - 3);
+    while (((unsigned char)*t & 0xC0) == 0x80) /* not inside a UTF-8 sequence */
+        t++;
+    fputs("...", f);
+    xml_text(f, t);
+}
+
+/* "×10^p" at (x, y) */
+static void power_text(FILE *f, double x, double y, const char *anchor, int power)
+{
+    if (power != 0)
+        fprintf(f,
+                "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"%s\">\xc3\x97"
+                "10<tspan baseline-shift=\"super\" font-size=\"9\">%d</tspan></text>\n",
+                x, y, anchor, power);
+}
+
+/* a log axis' "1e-8" as 10 with a superscript */
+static void tick_text(FILE *f, const plot_axis *a, size_t k)
+{
+    if (a->log && strncmp(a->label[k], "1e", 2) == 0)
+        fprintf(f, "10<tspan baseline-shift=\"super\" font-size=\"9\">%s</tspan>", a->label[k] + 2);
+    else
+        fputs(a->label[k], f);
+}
+
+static void line_style(FILE *f, size_t l)
+{
+    fprintf(f, "stroke=\"%s\"%s", colors[l % NCOLORS], dashes[(l / NCOLORS) % 3]);
+}
+
+static void draw_grid(FILE *f, const plot_layout *L, const plot_panel *P)
+{
+    const plot_box *b = &P->frame;
+    fputs("<g stroke=\"#e0e0e0\" stroke-width=\"1\">\n", f);
+    for (size_t k = 0; k < L->x.nticks; k++) {
+        double x = plot_layout_px(L, P, L->x.tick[k]);
+        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", x, b->y, x, b->y + b->h);
     }
-    return step;
+    for (size_t k = 0; k < P->y.nticks; k++) {
+        double y = plot_layout_py(P, P->y.tick[k]);
+        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", b->x, y, b->x + b->w, y);
+    }
+    fputs("</g>\n", f);
 }
 
-/* number of tick intervals, bounded (a range tiny against its magnitude) */
-static int nticks(double lo, double hi, double step)
+static void draw_y_axis(FILE *f, const plot_panel *P)
 {
-    double k = floor((hi - lo) / step + 0.5);
-    return k < 1 || !isfinite(k) ? 1 : k > 20 ? 20 : (int)k;
+    const plot_box *b = &P->frame;
+    fputs("<g fill=\"black\">\n", f);
+    for (size_t k = 0; k < P->y.nticks; k++) {
+        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"end\">", b->x - 6,
+                plot_layout_py(P, P->y.tick[k]) + 4);
+        tick_text(f, &P->y, k);
+        fputs("</text>\n", f);
+    }
+    power_text(f, b->x, b->y - 7, "start", P->y.power);
+    fprintf(f, "<text class=\"ylabel\" transform=\"translate(18 %.2f) rotate(-90)\" text-anchor=\"middle\">",
+            b->y + b->h / 2);
+    xml_text(f, P->ylabel);
+    fputs("</text>\n</g>\n", f);
 }
 
-static void fmt_tick(char *buf, size_t n, double v, double step)
+static void draw_x_axis(FILE *f, const plot_layout *L, const plot_panel *P, const char *xlabel)
 {
-    if (fabs(v) < step * 1e-6)
-        v = 0;
-    snprintf(buf, n, "%.4g", v);
+    const plot_box *b = &P->frame;
+    double base = b->y + b->h;
+    fputs("<g fill=\"black\">\n", f);
+    for (size_t k = 0; k < L->x.nticks; k++) {
+        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">", plot_layout_px(L, P, L->x.tick[k]),
+                base + 18);
+        tick_text(f, &L->x, k);
+        fputs("</text>\n", f);
+    }
+    power_text(f, b->x + b->w, base + 34, "end", L->x.power);
+    fprintf(f, "<text class=\"xlabel\" x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">", b->x + b->w / 2,
+            base + 48);
+    xml_text(f, xlabel);
+    fputs("</text>\n</g>\n", f);
+}
+
+static void draw_curves(FILE *f, const plot_layout *L, size_t p, const plot_line *lines)
+{
+    const plot_panel *P = &L->panel[p];
+    for (size_t k = 0; k < P->nlines; k++) {
+        size_t l = P->line[k];
+        fprintf(f, "<polyline class=\"curve\" data-panel=\"%zu\" fill=\"none\" stroke-width=\"1.5\" ", p);
+        line_style(f, l);
+        fputs(" points=\"", f);
+        for (size_t i = 0; i < lines[l].n; i++)
+            fprintf(f, "%s%.2f,%.2f", i ? " " : "", plot_layout_px(L, P, lines[l].x[i]),
+                    plot_layout_py(P, lines[l].y[i]));
+        fputs("\"><title>", f);
+        xml_text(f, lines[l].label);
+        fputs("</title></polyline>\n", f);
+        if (lines[l].n == 1) { /* a polyline of one point draws nothing */
+            fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
+                    plot_layout_px(L, P, lines[l].x[0]), plot_layout_py(P, lines[l].y[0]), colors[l % NCOLORS]);
+        }
+    }
+}
+
+static void draw_legend(FILE *f, size_t p, const plot_panel *P, const plot_line *lines)
+{
+    const plot_box *b = &P->legend;
+    if (P->nlines == 0)
+        return;
+    fprintf(f, "<rect class=\"legend\" id=\"legend-%zu\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" "
+               "height=\"%.2f\" fill=\"white\" stroke=\"#999\"/>\n",
+            p, b->x, b->y, b->w, b->h);
+    for (size_t k = 0; k < P->nlines; k++) {
+        size_t l = P->line[k];
+        double yy = b->y + 13 + 18.0 * (double)k;
+        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke-width=\"2\" ", b->x + 6, yy,
+                b->x + 31, yy);
+        line_style(f, l);
+        fprintf(f, "/>\n<text x=\"%.2f\" y=\"%.2f\">", b->x + 38, yy + 4);
+        legend_text(f, lines[l].label);
+        fputs("</text>\n", f);
+    }
 }
 
 int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t nlines)
 {
-    double x0 = INFINITY, x1 = -INFINITY, y0 = INFINITY, y1 = -INFINITY;
-    for (size_t l = 0; l < nlines; l++)
-        for (size_t i = 0; i < lines[l].n; i++) {
-            x0 = fmin(x0, lines[l].x[i]);
-            x1 = fmax(x1, lines[l].x[i]);
-            y0 = fmin(y0, lines[l].y[i]);
-            y1 = fmax(y1, lines[l].y[i]);
-        }
-    if (!isfinite(x0)) {
-        x0 = y0 = 0;
-        x1 = y1 = 1;
-    }
-    double xs = axis_range(&x0, &x1), ys = axis_range(&y0, &y1);
-    double pw = W - ML - MR, ph = H - MT - MB;
-#define PX(v) (ML + ((v) - x0) / (x1 - x0) * pw)
-#define PY(v) (MT + ph - ((v) - y0) / (y1 - y0) * ph)
-
+    plot_layout L;
+    int rc = plot_layout_make(&L, lines, nlines, ax->log_y, ax->title != NULL);
+    if (rc != 0)
+        return rc;
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
                "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",
-            W, H, W, H);
-    fprintf(f, "<rect x=\"0\" y=\"0\" width=\"%.0f\" height=\"%.0f\" fill=\"white\"/>\n", W, H);
+            L.width, L.height, L.width, L.height);
+    fprintf(f, "<rect x=\"0\" y=\"0\" width=\"%.0f\" height=\"%.0f\" fill=\"white\"/>\n", L.width, L.height);
     if (ax->title) {
-        fprintf(f, "<text x=\"%.1f\" y=\"24\" text-anchor=\"middle\" font-size=\"15\">", ML + pw / 2);
+        const plot_box *b = &L.panel[0].frame;
+        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\" font-size=\"15\">", b->x + b->w / 2,
+                L.title_y);
         xml_text(f, ax->title);
         fputs("</text>\n", f);
     }
-    /* grid and ticks */
-    fputs("<g stroke=\"#e0e0e0\" stroke-width=\"1\">\n", f);
-    for (int k_ = 0, nk_ = nticks(x0, x1, xs); k_ <= nk_; k_++)
-        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", PX(x0 + k_ * xs), MT, PX(x0 + k_ * xs), MT + ph);
-    for (int k_ = 0, nk_ = nticks(y0, y1, ys); k_ <= nk_; k_++)
-        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\"/>\n", ML, PY(y0 + k_ * ys), ML + pw, PY(y0 + k_ * ys));
-    fputs("</g>\n<g fill=\"black\">\n", f);
-    char b[64];
-    for (int k_ = 0, nk_ = nticks(x0, x1, xs); k_ <= nk_; k_++) {
-        double v = x0 + k_ * xs;
-        fmt_tick(b, sizeof b, v, xs);
-        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">%s</text>\n", PX(v), MT + ph + 18, b);
+    for (size_t p = 0; p < L.npanels; p++) {
+        const plot_panel *P = &L.panel[p];
+        draw_grid(f, &L, P);
+        draw_y_axis(f, P);
+        fprintf(f, "<rect class=\"frame\" id=\"frame-%zu\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" "
+                   "height=\"%.2f\" fill=\"none\" stroke=\"black\"/>\n",
+                p, P->frame.x, P->frame.y, P->frame.w, P->frame.h);
+        draw_curves(f, &L, p, lines);
+        draw_legend(f, p, P, lines);
     }
-    for (int k_ = 0, nk_ = nticks(y0, y1, ys); k_ <= nk_; k_++) {
-        double v = y0 + k_ * ys;
-        fmt_tick(b, sizeof b, v, ys);
-        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"end\">%s</text>\n", ML - 6, PY(v) + 4, b);
-    }
-    fputs("</g>\n", f);
-    fprintf(f, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"none\" stroke=\"black\"/>\n",
-            ML, MT, pw, ph);
-    fprintf(f, "<text x=\"%.2f\" y=\"%.2f\" text-anchor=\"middle\">", ML + pw / 2, H - 15);
-    xml_text(f, ax->xlabel);
-    fprintf(f, "</text>\n<text transform=\"translate(18 %.2f) rotate(-90)\" text-anchor=\"middle\">",
-            MT + ph / 2);
-    xml_text(f, ax->ylabel);
-    fputs("</text>\n", f);
-
-    /* data */
-    for (size_t l = 0; l < nlines; l++) {
-        fprintf(f, "<polyline fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" points=\"",
-                colors[l % (sizeof colors / sizeof *colors)]);
-        for (size_t i = 0; i < lines[l].n; i++)
-            fprintf(f, "%s%.2f,%.2f", i ? " " : "", PX(lines[l].x[i]), PY(lines[l].y[i]));
-        fputs("\"><title>", f);
-        xml_text(f, lines[l].label);
-        fputs("</title></polyline>\n", f);
-    }
-    /* legend, top right inside the frame */
-    double lw = 0;
-    for (size_t l = 0; l < nlines; l++)
-        lw = fmax(lw, 7.0 * (double)strlen(lines[l].label ? lines[l].label : ""));
-    double lx = ML + pw - lw - 45, ly = MT + 10;
-    fprintf(f, "<rect x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" height=\"%.2f\" fill=\"white\" "
-               "fill-opacity=\"0.85\" stroke=\"#999\"/>\n",
-            lx - 5, ly - 4, lw + 45, 18.0 * (double)nlines + 6);
-    for (size_t l = 0; l < nlines; l++) {
-        double yy = ly + 18.0 * (double)l + 9;
-        fprintf(f, "<line x1=\"%.2f\" y1=\"%.2f\" x2=\"%.2f\" y2=\"%.2f\" stroke=\"%s\" stroke-width=\"2\"/>\n",
-                lx, yy, lx + 25, yy, colors[l % (sizeof colors / sizeof *colors)]);
-        fprintf(f, "<text x=\"%.2f\" y=\"%.2f\">", lx + 32, yy + 4);
-        xml_text(f, lines[l].label);
-        fputs("</text>\n", f);
-    }
+    draw_x_axis(f, &L, &L.panel[L.npanels - 1], ax->xlabel);
     fputs("</svg>\n", f);
-#undef PX
-#undef PY
+    plot_layout_free(&L);
     return ferror(f) ? -1 : 0;
 }

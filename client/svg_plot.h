@@ -1,24 +1,26 @@
-/* A dependency-free SVG line plot: axes with ticks, labels, legend. */
+/* A dependency-free SVG line plot: panels over one x axis (plot_layout.h), each
+ * with its ticks, its y label naming the quantity and unit, and its legend
+ * beside the curves. */
 #ifndef TLSPH_CLIENT_SVG_PLOT_H
 #define TLSPH_CLIENT_SVG_PLOT_H
 
 #include <stddef.h>
 #include <stdio.h>
 
-typedef struct {
-    const char *label; /* legend text */
-    size_t n;          /* points */
-    const double *x, *y;
-} plot_line;
+#include "plot_layout.h"
 
 typedef struct {
     const char *title;  /* may be NULL */
     const char *xlabel; /* e.g. "time [s]" */
-    const char *ylabel;
+    int log_y;          /* log10 y axes */
 } plot_axes;
 
-/* Writes a complete SVG document with one <polyline> per line (exactly n points
- * each; all values must be finite).  Returns 0, or -1 on a write error. */
+/* Writes a complete SVG document.  For tests and tools it marks what it draws:
+ * each panel's frame is <rect class="frame" id="frame-P">, its legend box
+ * <rect class="legend" id="legend-P">, and each line one
+ * <polyline class="curve" data-panel="P"> with exactly n points.  Returns 0;
+ * -1 on a write error or when out of memory; -2 when the lines need more than
+ * PLOT_MAX_PANELS panels (plot_layout_make). */
 int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t nlines);
 
 #endif

@@ -46,3 +46,16 @@ char *url_escape(const char *s, int keep_slash)
     *o = '\0';
     return out;
 }
+
+char *url_series_path(const char *id, const char *name, int csv)
+{
+    char *esc = url_escape(name, 1);
+    if (!esc)
+        return NULL;
+    size_t n = strlen(esc) + 96;
+    char *p = malloc(n);
+    if (p)
+        snprintf(p, n, "/jobs/%s/results/series/%s%s", id, esc, csv ? "?format=csv" : "");
+    free(esc);
+    return p;
+}

@@ -11,5 +11,8 @@ int id_check(const char *id);
 /* Percent-encodes s, keeping unreserved characters and (if keep_slash) '/'.
  * Returns a malloc'd string or NULL on allocation failure. */
 char *url_escape(const char *s, int keep_slash);
+/* "/jobs/ID/results/series/NAME[?format=csv]", NAME percent-encoded keeping its
+ * '/'.  Returns a malloc'd string or NULL on allocation failure. */
+char *url_series_path(const char *id, const char *name, int csv);
 
 #endif

@@ -10,6 +10,7 @@ PACKAGES=(
   libmicrohttpd-dev libsqlite3-dev libgnutls28-dev libcurl4-openssl-dev
   python3 python3-h5py python3-numpy python3-jsonschema python3-yaml
   curl procps valgrind
+  librsvg2-bin bsdutils
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
