@@ -32,9 +32,13 @@ scene = {"name": "slow-validation", "dimension": 3, "time": {"end": 1e-6},
 json.dump(scene, open(sys.argv[1], "w"))
 PYEOF
 
-# true once process $1 catches SIGTERM (bit 15 of SigCgt)
+# true once process $1 is tlsph-run and catches SIGTERM (bit 15 of SigCgt).
+# The name matters: between fork and exec, $1 is still a copy of this shell,
+# whose EXIT trap makes it catch SIGTERM too (a signal sent then killed the
+# copy before its redirections: exit 143 and no .err file, seen under load).
 catches_term() {
   local mask
+  [ "$(cat "/proc/$1/comm" 2>/dev/null)" = tlsph-run ] || return 1
   mask=$(awk '/^SigCgt:/ {print $2}' "/proc/$1/status" 2>/dev/null) || return 1
   [ -n "$mask" ] && [ $(( (0x$mask >> 14) & 1 )) -eq 1 ]
 }
