@@ -1,6 +1,7 @@
 /* RFC 9457 problem details, see problem.h. */
 #include "problem.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -34,6 +35,34 @@ static const struct {
     [PROBLEM_UNAVAILABLE] = {503, "urn:tlsph:problem:unavailable", "Service unavailable"},
     [PROBLEM_NO_STORAGE] = {507, "urn:tlsph:problem:insufficient-storage", "Insufficient storage"},
 };
+
+enum problem_kind problem_of_errno(int err)
+{
+    switch (err) {
+    case ENOSPC:
+    case EDQUOT:
+    case EFBIG:
+    case EROFS:
+        return PROBLEM_NO_STORAGE;
+    case EIO:
+    case EMFILE:
+    case ENFILE:
+    case ENOMEM:
+    case EAGAIN:
+    case EBUSY:
+    case EINTR:
+    case ENOBUFS:
+    case ETXTBSY:
+    case ESTALE:
+        return PROBLEM_UNAVAILABLE;
+    case ENOENT:
+    case ENOTDIR:
+    case ELOOP:
+        return PROBLEM_NOT_FOUND;
+    default:
+        return PROBLEM_INTERNAL;
+    }
+}
 
 unsigned problem_status(enum problem_kind kind)
 {

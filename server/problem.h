@@ -36,6 +36,13 @@ enum problem_kind {
     PROBLEM_KIND_COUNT
 };
 
+/* The kind for a system error met on the data directory's disk: 507 when
+ * the disk cannot take what is written (ENOSPC, EDQUOT, EFBIG, EROFS), 503
+ * when it or the process is failing for now (EIO, EMFILE, ENFILE, ENOMEM,
+ * EAGAIN, EBUSY, ...; answered with Retry-After), 404 for a file that is not
+ * there (ENOENT, ENOTDIR, ELOOP: O_NOFOLLOW met a link), 500 otherwise. */
+enum problem_kind problem_of_errno(int err);
+
 /* HTTP status of a kind. */
 unsigned problem_status(enum problem_kind kind);
 /* A new problem object (detail may be NULL; instance is the request path). */

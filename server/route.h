@@ -79,6 +79,11 @@ void route_add_link(json_t *links, const char *rel, const char *type, const char
                     const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* Integer query value in [lo, hi]: 0 parsed, 1 absent (out untouched), -1 bad. */
 int route_query_long(const char *s, long lo, long hi, long *out);
+/* Answers a system error err met while doing `what` on the data directory
+ * (problem_of_errno: 507, 503 with Retry-After, or 500; a missing file is
+ * answered with missing, e.g. PROBLEM_NO_SUCH_RESULT).  The detail names
+ * what failed and the system's words, never a path. */
+void route_reply_fault(struct hreq *r, int err, enum problem_kind missing, const char *what);
 /* A JSON text from the queue (NULL or "" -> NULL). */
 json_t *route_json_or_null(const char *text);
 

@@ -229,7 +229,19 @@ static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
         prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
         break;
     case JOBS_NO_DIRECTORY:
-        prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
+    case JOBS_NOT_QUEUED:
+        if (sub->errnum && problem_of_errno(sub->errnum) != PROBLEM_INTERNAL &&
+            problem_of_errno(sub->errnum) != PROBLEM_NOT_FOUND) {
+            if (sub->why[0])
+                tlog("%s", sub->why);
+            route_reply_fault(r, sub->errnum, PROBLEM_INTERNAL,
+                              "cannot write the job's files in the data directory");
+            return;
+        }
+        prob = rc == JOBS_NOT_QUEUED
+                   ? problem_new(PROBLEM_UNAVAILABLE,
+                                 study ? "cannot queue the study" : "cannot queue the job", r->path)
+                   : problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
         break;
     case JOBS_OVER_QUOTA:
         prob = problem_new(PROBLEM_OUTPUT_QUOTA, sub->detail, r->path);
