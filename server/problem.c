@@ -22,7 +22,7 @@ static const struct {
     [PROBLEM_NO_SUCH_RESULT] = {404, "urn:tlsph:problem:no-such-result", "No such result"},
     [PROBLEM_METHOD] = {405, "urn:tlsph:problem:method-not-allowed", "Method not allowed"},
     [PROBLEM_NOT_ACCEPTABLE] = {406, "urn:tlsph:problem:not-acceptable", "Not acceptable"},
-    [PROBLEM_RESULT_NOT_READY] = {409, OGC_EXC "result-not-ready", "Result not ready"},
+    [PROBLEM_RESULT_NOT_READY] = {404, OGC_EXC "result-not-ready", "Result not ready"},
     [PROBLEM_CONFLICT] = {409, "urn:tlsph:problem:conflict", "Conflict"},
     [PROBLEM_TOO_LARGE] = {413, "urn:tlsph:problem:payload-too-large", "Request body too large"},
     [PROBLEM_OUTPUT_QUOTA] = {413, "urn:tlsph:problem:output-quota",

@@ -33,36 +33,63 @@ static void job_file(char *out, size_t n, const struct tapp *a, const char *id,
         out[0] = '\0';
 }
 
+/* The results of a successful job (OGC API - Processes 1.0, response
+ * "document"): the map of its declared outputs, each by reference. */
 static void results_doc(struct hreq *r, const struct tq_job *j)
 {
-    json_t *o = json_object();
-    json_object_set_new(o, "jobID", json_string(j->id));
-    json_object_set_new(o, "status", json_string(j->status));
+    const struct output_decl *out = route_process_output(j->process);
+    char href[128];
+    snprintf(href, sizeof href, "/jobs/%s/results/%s", j->id, out->path);
+    http_reply_json(r, 200,
+                    json_pack("{s:{s:s,s:s,s:s,s:s}}", out->id, "href", href, "rel", out->rel,
+                              "type", out->media_type, "title", out->title));
+}
+
+/* The status of the exception for a failed job, by what made it fail
+ * (OGC 1.0 /req/core/job-results-failed: a 4xx or 5xx reflecting the
+ * failure): the input's (422), the disk's (507), else the server's (500). */
+static unsigned failed_status(const char *outcome)
+{
+    if (!strcmp(outcome, "invalid") || !strcmp(outcome, "unstable") ||
+        !strcmp(outcome, "timed_out"))
+        return 422;
+    if (!strcmp(outcome, "io_error"))
+        return 507;
+    return 500;
+}
+
+/* The results of a failed or dismissed job: an exception naming why, with
+ * the job's message and links to what it left (a run's partial result file
+ * and its log: docs/api.md). */
+static void results_exception(struct hreq *r, const struct tq_job *j)
+{
+    const bool failed = !strcmp(j->status, TQ_FAILED);
+    const char *outcome = j->outcome[0] ? j->outcome : failed ? "failed" : "cancelled";
+    char type[96];
+    snprintf(type, sizeof type, "urn:tlsph:problem:job-%s", failed ? outcome : "dismissed");
+    json_t *p = json_object();
+    json_object_set_new(p, "type", json_string(type));
+    json_object_set_new(p, "title",
+                        json_string(failed ? "The job failed: it has no results"
+                                           : "The job was dismissed: it has no results"));
+    json_object_set_new(p, "status", json_integer(failed ? failed_status(outcome) : 404));
+    json_t *msg = json_string(j->message && *j->message ? j->message : outcome);
+    json_object_set_new(p, "detail", msg ? msg : json_string(outcome));
+    json_object_set_new(p, "instance", json_string(r->path));
+    json_object_set_new(p, "outcome", json_string(outcome));
     json_t *links = json_array();
-    route_add_link(links, "self", "application/json", "this document", "/jobs/%s/results", j->id);
     route_add_link(links, "up", "application/json", "the job", "/jobs/%s", j->id);
-    if (!strcmp(j->process, "study")) {
-        route_add_link(links, "summary", "application/json", "summary table",
-                 "/jobs/%s/results/summary", j->id);
-        route_add_link(links, "summary", "text/csv", "summary table (CSV)",
-                 "/jobs/%s/results/summary?format=csv", j->id);
-        route_add_link(links, REL_JOBLIST, "application/json", "children", "/jobs?study=%s", j->id);
-    } else {
-        route_add_link(links, "enclosure", "application/x-hdf5", "result file (HDF5, H5MD layout)",
-                 "/jobs/%s/results/result.h5", j->id);
-        route_add_link(links, "alternate", "text/xml", "XDMF sidecar for ParaView",
-                 "/jobs/%s/results/result.xmf", j->id);
-        route_add_link(links, "series", "application/json", "time series", "/jobs/%s/results/series",
-                 j->id);
-        route_add_link(links, "frames", "application/json", "field frames", "/jobs/%s/results/frames",
-                 j->id);
-        route_add_link(links, "fields", "application/octet-stream",
-                 "one field at one frame: /results/fields/{field}?frame=k",
-                 "/jobs/%s/results/fields/position?frame=-1", j->id);
+    if (strcmp(j->process, "study")) {
+        route_add_link(links, "enclosure", "application/x-hdf5",
+                       "the partial result file, if the engine wrote one",
+                       "/jobs/%s/results/result.h5", j->id);
         route_add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
+    } else {
+        route_add_link(links, "summary", "application/json", "the children's table",
+                       "/jobs/%s/results/summary", j->id);
     }
-    json_object_set_new(o, "links", links);
-    http_reply_json(r, 200, o);
+    json_object_set_new(p, "links", links);
+    http_reply_problem_json(r, p);
 }
 
 /* A decimal number of a byte range; a value past UINT64_MAX saturates (it
@@ -511,9 +538,16 @@ void result_log(struct hreq *r, struct route_call *c)
 void result_doc(struct hreq *r, struct route_call *c)
 {
     struct tq_job j;
-    if (result_job(r, c, &j) != 0)
+    if (route_load_job(r, c->app->q, c->id, &j) != 0)
         return;
-    results_doc(r, &j);
+    if (!strcmp(j.status, TQ_SUCCESSFUL))
+        results_doc(r, &j);
+    else if (tq_status_final(j.status))
+        results_exception(r, &j);
+    else
+        http_reply_problem(r, PROBLEM_RESULT_NOT_READY,
+                           "the job is not finished: poll GET /jobs/{jobId}?wait=S; its series "
+                           "and fields can be read while it runs");
     tq_job_free(&j);
 }
 

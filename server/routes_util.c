@@ -50,7 +50,7 @@ int route_load_job(struct hreq *r, struct tq *q, const char *id, struct tq_job *
 void route_add_link(json_t *links, const char *rel, const char *type, const char *title,
                     const char *fmt, ...)
 {
-    char href[512];
+    char href[1024];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(href, sizeof href, fmt, ap);
