@@ -36,7 +36,8 @@ void meta_conformance(struct hreq *r, struct route_call *c)
 {
     (void)c;
     const char *base = "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/";
-    const char *cls[] = {"core", "json", "job-list", "dismiss", "oas30"};
+    /* not oas30: the API definition is OpenAPI 3.1 (OGC 1.0 defines no class for it) */
+    const char *cls[] = {"core", "json", "job-list", "dismiss"};
     json_t *arr = json_array();
     for (size_t i = 0; i < sizeof cls / sizeof cls[0]; i++) {
         char buf[128];
