@@ -25,6 +25,7 @@ serves no such file.  The served document is therefore one file:
 
 --check: exit 1 unless DST is what SRC makes (tests/daemon/api_openapi.sh).
 Standard library only."""
+import argparse
 import copy
 import json
 import os
@@ -128,22 +129,24 @@ def bundle(src_path):
 
 
 def main(argv):
-    check = "--check" in argv
-    args = [a for a in argv if a != "--check"]
     here = os.path.dirname(os.path.abspath(__file__))
-    src = args[0] if args else os.path.join(here, "openapi.src.json")
-    dst = args[1] if len(args) > 1 else os.path.join(os.path.dirname(src), "openapi.json")
-    text = json.dumps(bundle(src), indent=2, ensure_ascii=False) + "\n"
-    if check:
-        with open(dst, encoding="utf-8") as f:
-            if f.read() != text:
-                print(f"{dst} is not what {src} makes: run python3 schemas/bundle_openapi.py",
-                      file=sys.stderr)
-                return 1
+    parser = argparse.ArgumentParser(description="Makes schemas/openapi.json from its source.")
+    parser.add_argument("--check", action="store_true", help="exit 1 unless DST is up to date")
+    parser.add_argument("src", nargs="?", default=os.path.join(here, "openapi.src.json"))
+    parser.add_argument("dst", nargs="?")
+    opts = parser.parse_args(argv)
+    dst = opts.dst or os.path.join(os.path.dirname(opts.src), "openapi.json")
+    text = json.dumps(bundle(opts.src), indent=2, ensure_ascii=False) + "\n"
+    if not opts.check:
+        with open(dst, "w", encoding="utf-8") as f:
+            f.write(text)
         return 0
-    with open(dst, "w", encoding="utf-8") as f:
-        f.write(text)
-    return 0
+    with open(dst, encoding="utf-8") as f:
+        if f.read() == text:
+            return 0
+    print(f"{dst} is not what {opts.src} makes: run python3 schemas/bundle_openapi.py",
+          file=sys.stderr)
+    return 1
 
 
 if __name__ == "__main__":

@@ -23,7 +23,7 @@ enum problem_kind {
     PROBLEM_NO_SUCH_RESULT,    /* 404: unknown series / field / frame */
     PROBLEM_METHOD,            /* 405 */
     PROBLEM_NOT_ACCEPTABLE,    /* 406 */
-    PROBLEM_RESULT_NOT_READY,  /* 404 (OGC type URI, OGC 1.0 /req/core/job-results-exception/results-not-ready) */
+    PROBLEM_RESULT_NOT_READY,  /* 404 (OGC type URI; OGC 1.0 asks 404) */
     PROBLEM_CONFLICT,          /* 409 */
     PROBLEM_TOO_LARGE,         /* 413 */
     PROBLEM_OUTPUT_QUOTA,      /* 413: a job's estimated result file is above the quota */

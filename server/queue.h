@@ -129,9 +129,9 @@ struct tq_filter {
     size_t nstatus;
     const char *study_id, *process;
     bool has_created_min, has_created_max;
-    double created_min, created_max;          /* Unix s, inclusive */
+    double created_min, created_max; /* Unix s, inclusive */
     bool has_min_duration, has_max_duration;
-    double min_duration, max_duration;        /* s, inclusive */
+    double min_duration, max_duration; /* s, inclusive */
 };
 /* tq_list with every filter of f (newest first, limit 1..TQ_LIST_MAX).
  * TQ_OK or TQ_ERROR. */

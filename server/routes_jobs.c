@@ -183,8 +183,8 @@ static void add_problem(struct hreq *r, json_t **prob, const char *pointer, cons
  * or "raw" (both give the same asynchronous job; see docs/api.md), and a
  * subscriber is refused: this server does not call back (no callback
  * conformance class); poll GET /jobs/{id}?wait=S instead. */
-static void check_execute_options(struct hreq *r, const json_t *root, const struct output_decl *output,
-                                  json_t **prob)
+static void check_execute_options(struct hreq *r, const json_t *root,
+                                  const struct output_decl *output, json_t **prob)
 {
     const json_t *resp = json_object_get(root, "response");
     if (resp && !(json_is_string(resp) && (!strcmp(json_string_value(resp), "document") ||
@@ -231,7 +231,8 @@ static void check_execute_options(struct hreq *r, const json_t *root, const stru
         if (fmt && !json_is_object(fmt)) {
             snprintf(q, sizeof q, "%s/format", p);
             add_problem(r, prob, q, "must be an object {mediaType}");
-        } else if (mt && !(json_is_string(mt) && !strcmp(json_string_value(mt), output->media_type))) {
+        } else if (mt &&
+                   !(json_is_string(mt) && !strcmp(json_string_value(mt), output->media_type))) {
             snprintf(d, sizeof d, "the output is %s", output->media_type);
             add_problem(r, prob, q, d);
         }
@@ -273,8 +274,8 @@ static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs,
                     prob = problem_new(PROBLEM_VALIDATION, "unknown member", r->path);
                 char p[300];
                 tlsph_pointer_join(p, sizeof p, "", k);
-                problem_add_error(prob, p,
-                                  "unknown member (accepted: inputs, outputs, response, subscriber)");
+                problem_add_error(
+                    prob, p, "unknown member (accepted: inputs, outputs, response, subscriber)");
             }
         }
         check_execute_options(r, root, output, &prob);

@@ -51,8 +51,8 @@ const struct output_decl *route_process_output(const char *process)
 {
     static const struct output_decl run = {"result", "HDF5 result file (H5MD layout)",
                                            "application/x-hdf5", "result.h5", "enclosure"};
-    static const struct output_decl study = {"summary", "study summary table",
-                                             "application/json", "summary", "summary"};
+    static const struct output_decl study = {"summary", "study summary table", "application/json",
+                                             "summary", "summary"};
     return !strcmp(process, "run") ? &run : !strcmp(process, "study") ? &study : NULL;
 }
 

@@ -52,40 +52,40 @@ typedef int openat_fn(int, const char *, int, ...);
 typedef int mkdir_fn(const char *, mode_t);
 typedef int mkdirat_fn(int, const char *, mode_t);
 
-static mode_t mode_arg(int flags, va_list ap)
+/* -1 with errno set when a rule makes this call fail, else 0. */
+static int injected(const char *op, const char *path)
 {
-    return (flags & O_CREAT) || (flags & O_TMPFILE) == O_TMPFILE ? va_arg(ap, mode_t) : 0;
+    const int e = fault_for(op, path);
+    if (e)
+        errno = e;
+    return e ? -1 : 0;
 }
 
-#define OPEN_WRAPPER(name)                                          \
-    int name(const char *path, int flags, ...)                      \
-    {                                                               \
-        va_list ap;                                                 \
-        va_start(ap, flags);                                        \
-        mode_t mode = mode_arg(flags, ap);                          \
-        va_end(ap);                                                 \
-        int e = fault_for("open", path);                            \
-        if (e) {                                                    \
-            errno = e;                                              \
-            return -1;                                              \
-        }                                                           \
-        open_fn *real = (open_fn *)dlsym(RTLD_NEXT, #name);         \
-        return real(path, flags, mode);                             \
+/* The optional mode argument of an open call. */
+#define MODE_OF(flags, mode)                                                                   \
+    do {                                                                                       \
+        va_list ap;                                                                            \
+        va_start(ap, flags);                                                                   \
+        mode = ((flags)&O_CREAT) || ((flags)&O_TMPFILE) == O_TMPFILE ? va_arg(ap, mode_t) : 0; \
+        va_end(ap);                                                                            \
+    } while (0)
+
+#define OPEN_WRAPPER(name)                                                                       \
+    int name(const char *path, int flags, ...)                                                   \
+    {                                                                                            \
+        mode_t mode;                                                                             \
+        MODE_OF(flags, mode);                                                                    \
+        return injected("open", path) ? -1                                                       \
+                                      : ((open_fn *)dlsym(RTLD_NEXT, #name))(path, flags, mode); \
     }
-#define OPENAT_WRAPPER(name)                                        \
-    int name(int dfd, const char *path, int flags, ...)             \
-    {                                                               \
-        va_list ap;                                                 \
-        va_start(ap, flags);                                        \
-        mode_t mode = mode_arg(flags, ap);                          \
-        va_end(ap);                                                 \
-        int e = fault_for("open", path);                            \
-        if (e) {                                                    \
-            errno = e;                                              \
-            return -1;                                              \
-        }                                                           \
-        openat_fn *real = (openat_fn *)dlsym(RTLD_NEXT, #name);     \
-        return real(dfd, path, flags, mode);                        \
+#define OPENAT_WRAPPER(name)                                                         \
+    int name(int dfd, const char *path, int flags, ...)                              \
+    {                                                                                \
+        mode_t mode;                                                                 \
+        MODE_OF(flags, mode);                                                        \
+        return injected("open", path)                                                \
+                   ? -1                                                              \
+                   : ((openat_fn *)dlsym(RTLD_NEXT, #name))(dfd, path, flags, mode); \
     }
 
 OPEN_WRAPPER(open)
@@ -95,22 +95,11 @@ OPENAT_WRAPPER(openat64)
 
 int mkdir(const char *path, mode_t mode)
 {
-    int e = fault_for("mkdir", path);
-    if (e) {
-        errno = e;
-        return -1;
-    }
-    mkdir_fn *real = (mkdir_fn *)dlsym(RTLD_NEXT, "mkdir");
-    return real(path, mode);
+    return injected("mkdir", path) ? -1 : ((mkdir_fn *)dlsym(RTLD_NEXT, "mkdir"))(path, mode);
 }
 
 int mkdirat(int dfd, const char *path, mode_t mode)
 {
-    int e = fault_for("mkdir", path);
-    if (e) {
-        errno = e;
-        return -1;
-    }
-    mkdirat_fn *real = (mkdirat_fn *)dlsym(RTLD_NEXT, "mkdirat");
-    return real(dfd, path, mode);
+    return injected("mkdir", path) ? -1
+                                   : ((mkdirat_fn *)dlsym(RTLD_NEXT, "mkdirat"))(dfd, path, mode);
 }
