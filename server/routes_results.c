@@ -51,7 +51,7 @@ static void results_doc(struct hreq *r, const struct tq_job *j)
 static unsigned failed_status(const char *outcome)
 {
     if (!strcmp(outcome, "invalid") || !strcmp(outcome, "unstable") ||
-        !strcmp(outcome, "timed_out"))
+        !strcmp(outcome, "timed_out") || !strcmp(outcome, "children_failed"))
         return 422;
     if (!strcmp(outcome, "io_error"))
         return 507;
@@ -64,7 +64,11 @@ static unsigned failed_status(const char *outcome)
 static void results_exception(struct hreq *r, const struct tq_job *j)
 {
     const bool failed = !strcmp(j->status, TQ_FAILED);
-    const char *outcome = j->outcome[0] ? j->outcome : failed ? "failed" : "cancelled";
+    /* a study fails when some of its children did (its message counts them) */
+    const char *outcome = j->outcome[0]                     ? j->outcome
+                          : failed && !strcmp(j->process, "study") ? "children_failed"
+                          : failed                                 ? "failed"
+                                                                   : "cancelled";
     char type[96];
     snprintf(type, sizeof type, "urn:tlsph:problem:job-%s", failed ? outcome : "dismissed");
     json_t *p = json_object();
@@ -185,7 +189,10 @@ static void serve_file(struct hreq *r, const char *path, const char *ctype, cons
         const int e = errno;
         if (fd >= 0)
             close(fd);
-        route_reply_fault(r, e, PROBLEM_NO_SUCH_RESULT, "cannot read the result file");
+        if (e == ENOENT)
+            http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no such file");
+        else
+            route_reply_fault(r, e, PROBLEM_NO_SUCH_RESULT, "cannot read the result file");
         return;
     }
     if (!S_ISREG(st.st_mode)) {

@@ -89,6 +89,19 @@ check "  links to the partial result and the log" \
     [ "$(jget "$BODY" "sorted(l['rel'] for l in d['links'])")" = "['enclosure', 'log', 'up']" ]
 check "  problem valid" valid error
 
+"$PY" -c "
+import json, sys
+s = json.load(open(sys.argv[1]))
+print(json.dumps({'inputs': {'base': s, 'sweep': {'parameters': [{'pointer': '/output/series_every', 'values': [1, 2]}]}}}))" \
+    "$top_srcdir/tests/scenes/good/unstable.json" >"$TMP/bad_study.json"
+req POST "$D_URL/processes/study/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/bad_study.json"
+BAD_STUDY=$(jget "$BODY" "d.get('jobID', '')")
+wait_status "$D_URL" "$BAD_STUDY" '^failed$' || fail "study of unstable children did not fail"
+req GET "$D_URL/jobs/$BAD_STUDY/results"
+check "results of a failed study: 422 job-children_failed, linking its summary" \
+    [ "$STATUS:$(jget "$BODY" "d['type'] + ' ' + ','.join(l['rel'] for l in d['links'])")" = "422:urn:tlsph:problem:job-children_failed up,summary" ]
+req DELETE "$D_URL/jobs/$BAD_STUDY"
+
 # ---------------------------------------------------------- /jobs filters
 
 wait_until bash -c "[ \"\$(curl -s '$D_URL/jobs?status=accepted,running' | '$PY' -c 'import json,sys; print(len(json.load(sys.stdin)[\"jobs\"]))')\" = 0 ]"
