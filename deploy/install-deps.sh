@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages tlsph needs to build, test and run.
-# Idempotent; uses sudo when not run as root.
+# Idempotent; uses sudo when not run as root.  --test-tools: also the tools
+# only the test suite uses (see below).
 set -euo pipefail
 SUDO=""
 if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
@@ -21,5 +22,27 @@ if [ ${#missing[@]} -gt 0 ]; then
   export DEBIAN_FRONTEND=noninteractive
   $SUDO apt-get update -qq
   $SUDO apt-get install -y -qq "${missing[@]}" >/dev/null
+fi
+# --test-tools (deploy/test.sh): also the independent OpenAPI 3.1 validator of
+# tests/daemon/api_openapi.sh, pinned (npm; the test skips that check, saying
+# so, without it).  Not needed to build or run tlsph.  TLSPH_TEST_TOOLS moves it.
+if [ "${1:-}" = --test-tools ]; then
+  TOOLS=${TLSPH_TEST_TOOLS:-/opt/tlsph-test-tools}
+  OAS_VALIDATOR="@seriousme/openapi-schema-validator@2.11.0"
+  # Debian's nodejs and npm, unless a nodejs with its own npm is installed (they conflict)
+  if ! command -v npm >/dev/null 2>&1; then
+    export DEBIAN_FRONTEND=noninteractive
+    { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq nodejs npm >/dev/null; } ||
+      echo "install-deps: warning: nodejs/npm could not be installed" >&2
+  fi
+  if command -v npm >/dev/null 2>&1 &&
+    ! grep -qs '"version": "2.11.0"' "$TOOLS/node_modules/@seriousme/openapi-schema-validator/package.json"; then
+    echo "install-deps: installing $OAS_VALIDATOR in $TOOLS"
+    $SUDO mkdir -p "$TOOLS"
+    # bounded: a registry that cannot be reached costs minutes at most, not the CI run
+    timeout 300 $SUDO npm install --no-audit --no-fund --silent --fetch-retries=1 \
+      --fetch-timeout=60000 --prefix "$TOOLS" "$OAS_VALIDATOR" >/dev/null ||
+      echo "install-deps: warning: $OAS_VALIDATOR could not be installed; api_openapi.sh will skip that check" >&2
+  fi
 fi
 echo "install-deps: all dependencies present"

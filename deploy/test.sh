@@ -13,7 +13,7 @@
 set -uo pipefail
 cd "$(dirname "$0")/.."
 top=$(pwd)
-bash deploy/install-deps.sh || exit 1
+bash deploy/install-deps.sh --test-tools || exit 1
 bash deploy/build.sh || exit 1
 
 pass=0

@@ -223,6 +223,7 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
     const char *ids[] = {j.id};
     if (intent_begin(&intent, env->cfg->jobs_dir, ids, 1, out->why, sizeof out->why) != 0 ||
         jobdir_create(env->cfg->jobs_dir, j.id, text, out->why, sizeof out->why) != 0) {
+        out->errnum = errno;
         rc = write_failure(env, false, JOBS_NO_DIRECTORY, out);
         goto done;
     }
@@ -374,12 +375,15 @@ static enum jobs_rc queue_study(const struct jobs_env *env, json_t *inputs,
         ids[i + 1] = rows[i].id;
     }
     if (intent_begin(&intent, env->cfg->jobs_dir, ids, nk + 1, out->why, sizeof out->why) != 0) {
+        out->errnum = errno;
         rc = write_failure(env, false, JOBS_NOT_QUEUED, out);
         goto done;
     }
     while (made < nk && jobdir_create(env->cfg->jobs_dir, rows[made].id, rows[made].input,
                                       out->why, sizeof out->why) == 0)
         made++;
+    if (made < nk)
+        out->errnum = errno;
     const bool queued = made == nk && tq_insert_study(env->q, &study, rows, nk) == TQ_OK;
     if (!queued) {
         const bool full = made == nk && tq_disk_full(env->q);

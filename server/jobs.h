@@ -61,6 +61,8 @@ struct jobs_submitted {
                                  * estimate */
     double output_bytes;        /* the estimated result files, B (all children of a study) */
     char why[256];              /* other failures: one line for the log */
+    int errnum;                 /* JOBS_NO_DIRECTORY, JOBS_NOT_QUEUED: the system error of a
+                                 * failed file write (errno), 0 when none */
 };
 void jobs_submitted_init(struct jobs_submitted *s);
 void jobs_submitted_free(struct jobs_submitted *s);

@@ -1,6 +1,7 @@
 /* RFC 9457 problem details, see problem.h. */
 #include "problem.h"
 
+#include <errno.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -21,7 +22,7 @@ static const struct {
     [PROBLEM_NO_SUCH_RESULT] = {404, "urn:tlsph:problem:no-such-result", "No such result"},
     [PROBLEM_METHOD] = {405, "urn:tlsph:problem:method-not-allowed", "Method not allowed"},
     [PROBLEM_NOT_ACCEPTABLE] = {406, "urn:tlsph:problem:not-acceptable", "Not acceptable"},
-    [PROBLEM_RESULT_NOT_READY] = {409, OGC_EXC "result-not-ready", "Result not ready"},
+    [PROBLEM_RESULT_NOT_READY] = {404, OGC_EXC "result-not-ready", "Result not ready"},
     [PROBLEM_CONFLICT] = {409, "urn:tlsph:problem:conflict", "Conflict"},
     [PROBLEM_TOO_LARGE] = {413, "urn:tlsph:problem:payload-too-large", "Request body too large"},
     [PROBLEM_OUTPUT_QUOTA] = {413, "urn:tlsph:problem:output-quota",
@@ -34,6 +35,34 @@ static const struct {
     [PROBLEM_UNAVAILABLE] = {503, "urn:tlsph:problem:unavailable", "Service unavailable"},
     [PROBLEM_NO_STORAGE] = {507, "urn:tlsph:problem:insufficient-storage", "Insufficient storage"},
 };
+
+enum problem_kind problem_of_errno(int err)
+{
+    switch (err) {
+    case ENOSPC:
+    case EDQUOT:
+    case EFBIG:
+    case EROFS:
+        return PROBLEM_NO_STORAGE;
+    case EIO:
+    case EMFILE:
+    case ENFILE:
+    case ENOMEM:
+    case EAGAIN:
+    case EBUSY:
+    case EINTR:
+    case ENOBUFS:
+    case ETXTBSY:
+    case ESTALE:
+        return PROBLEM_UNAVAILABLE;
+    case ENOENT:
+    case ENOTDIR:
+    case ELOOP:
+        return PROBLEM_NOT_FOUND;
+    default:
+        return PROBLEM_INTERNAL;
+    }
+}
 
 unsigned problem_status(enum problem_kind kind)
 {

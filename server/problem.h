@@ -23,7 +23,7 @@ enum problem_kind {
     PROBLEM_NO_SUCH_RESULT,    /* 404: unknown series / field / frame */
     PROBLEM_METHOD,            /* 405 */
     PROBLEM_NOT_ACCEPTABLE,    /* 406 */
-    PROBLEM_RESULT_NOT_READY,  /* 409 (OGC type URI) */
+    PROBLEM_RESULT_NOT_READY,  /* 404 (OGC type URI; OGC 1.0 asks 404) */
     PROBLEM_CONFLICT,          /* 409 */
     PROBLEM_TOO_LARGE,         /* 413 */
     PROBLEM_OUTPUT_QUOTA,      /* 413: a job's estimated result file is above the quota */
@@ -35,6 +35,13 @@ enum problem_kind {
     PROBLEM_NO_STORAGE,        /* 507: the data directory's disk cannot take it */
     PROBLEM_KIND_COUNT
 };
+
+/* The kind for a system error met on the data directory's disk: 507 when
+ * the disk cannot take what is written (ENOSPC, EDQUOT, EFBIG, EROFS), 503
+ * when it or the process is failing for now (EIO, EMFILE, ENFILE, ENOMEM,
+ * EAGAIN, EBUSY, ...; answered with Retry-After), 404 for a file that is not
+ * there (ENOENT, ENOTDIR, ELOOP: O_NOFOLLOW met a link), 500 otherwise. */
+enum problem_kind problem_of_errno(int err);
 
 /* HTTP status of a kind. */
 unsigned problem_status(enum problem_kind kind);

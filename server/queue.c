@@ -7,8 +7,8 @@
  * - Schema versioned with PRAGMA user_version; migrations[] applied in order in
  *   one BEGIN IMMEDIATE transaction; a newer database is refused.
  * - Every statement is prepared once (struct tq caches them) and every value is
- *   bound; the only SQL text assembled at run time is the tq_list variants,
- *   built from constant fragments.
+ *   bound; the only SQL text assembled at run time is the tq_list variants
+ *   and tq_list_filtered's statement, built from constant fragments.
  * - Every write runs inside BEGIN IMMEDIATE ... COMMIT (ROLLBACK on error), and
  *   every statement is stepped to completion and reset so no read snapshot is
  *   left open (it would block WAL checkpoints). */
@@ -567,6 +567,85 @@ fail:
     if (!sqlite3_get_autocommit(db))
         sqlite3_exec(db, "ROLLBACK", NULL, NULL, NULL);
     return -1;
+}
+
+enum tq_rc tq_list_filtered(struct tq *q, const struct tq_filter *f, long limit, long offset,
+                            struct tq_job **out, size_t *n)
+{
+    if (!q || !f || !out || !n || limit < 1 || limit > TQ_LIST_MAX || offset < 0 ||
+        f->nstatus > TQ_FILTER_STATUS_MAX) {
+        if (q)
+            tqi_set_err(q, "tq_list_filtered: bad argument");
+        return TQ_ERROR;
+    }
+    *out = NULL;
+    *n = 0;
+    /* Constant fragments, every value bound (parameters numbered in order). */
+    char sql[1024];
+    int np = 0;
+    size_t len = (size_t)snprintf(sql, sizeof sql, "SELECT " JOB_COLS " FROM jobs WHERE 1");
+#define ADD(text) len += (size_t)snprintf(sql + len, sizeof sql - len, "%s", text)
+    if (f->nstatus) {
+        ADD(" AND status IN (?");
+        for (size_t i = 1; i < f->nstatus; i++)
+            ADD(",?");
+        ADD(")");
+    }
+    if (f->study_id && *f->study_id)
+        ADD(" AND study_id = ?");
+    if (f->process && *f->process)
+        ADD(" AND process = ?");
+    if (f->has_created_min)
+        ADD(" AND created >= ?");
+    if (f->has_created_max)
+        ADD(" AND created <= ?");
+    const char *duration = "(CASE WHEN finished > 0 THEN finished ELSE ? END - started)";
+    if (f->has_min_duration) {
+        ADD(" AND started > 0 AND ");
+        ADD(duration);
+        ADD(" >= ?");
+    }
+    if (f->has_max_duration) {
+        ADD(" AND started > 0 AND ");
+        ADD(duration);
+        ADD(" <= ?");
+    }
+    ADD(" ORDER BY created DESC, rowid DESC LIMIT ? OFFSET ?");
+#undef ADD
+    const double now = tqi_now_seconds();
+    sqlite3_stmt *st = NULL;
+    if (len >= sizeof sql || sqlite3_prepare_v2(q->db, sql, -1, &st, NULL) != SQLITE_OK) {
+        tqi_set_err(q, "tq_list_filtered: %s", sqlite3_errmsg(q->db));
+        return TQ_ERROR;
+    }
+    for (size_t i = 0; i < f->nstatus; i++)
+        tqi_bind_text(st, ++np, f->status[i]);
+    if (f->study_id && *f->study_id)
+        tqi_bind_text(st, ++np, f->study_id);
+    if (f->process && *f->process)
+        tqi_bind_text(st, ++np, f->process);
+    if (f->has_created_min)
+        sqlite3_bind_double(st, ++np, f->created_min);
+    if (f->has_created_max)
+        sqlite3_bind_double(st, ++np, f->created_max);
+    if (f->has_min_duration) {
+        sqlite3_bind_double(st, ++np, now);
+        sqlite3_bind_double(st, ++np, f->min_duration);
+    }
+    if (f->has_max_duration) {
+        sqlite3_bind_double(st, ++np, now);
+        sqlite3_bind_double(st, ++np, f->max_duration);
+    }
+    sqlite3_bind_int64(st, ++np, limit);
+    sqlite3_bind_int64(st, ++np, offset);
+    void *rows;
+    int rc = tqi_read_all(q, st, "tq_list_filtered", sizeof **out, tqi_read_job_row,
+                          tqi_free_job_row, &rows, n);
+    sqlite3_finalize(st);
+    if (rc < 0)
+        return TQ_ERROR;
+    *out = rows;
+    return TQ_OK;
 }
 
 static const char *const list_where[3] = {"status = ?1", "study_id = ?2", "process = ?3"};

@@ -118,6 +118,25 @@ enum tq_rc tq_get(struct tq *q, const char *id, struct tq_job *out);
  * *out is an array of *n jobs (tq_jobs_free).  TQ_OK or TQ_ERROR. */
 enum tq_rc tq_list(struct tq *q, const char *status, const char *study_id, const char *process,
                    long limit, long offset, struct tq_job **out, size_t *n);
+/* The filters of GET /jobs (OGC API - Processes 1.0 job list).  Every
+ * member is optional: nstatus 0, NULL/"" strings and unset bounds do not
+ * filter.  A job's duration is finished - started (now - started while it
+ * runs); a job that has not started has none and is left out by a duration
+ * bound. */
+#define TQ_FILTER_STATUS_MAX 5
+struct tq_filter {
+    const char *status[TQ_FILTER_STATUS_MAX]; /* any of these */
+    size_t nstatus;
+    const char *study_id, *process;
+    bool has_created_min, has_created_max;
+    double created_min, created_max; /* Unix s, inclusive */
+    bool has_min_duration, has_max_duration;
+    double min_duration, max_duration; /* s, inclusive */
+};
+/* tq_list with every filter of f (newest first, limit 1..TQ_LIST_MAX).
+ * TQ_OK or TQ_ERROR. */
+enum tq_rc tq_list_filtered(struct tq *q, const struct tq_filter *f, long limit, long offset,
+                            struct tq_job **out, size_t *n);
 /* Atomically moves the oldest accepted job (not a study parent) to running
  * (attempts+1, started = now, outcome "") and returns it: TQ_OK claimed,
  * TQ_NOT_FOUND none queued, TQ_ERROR. */

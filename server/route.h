@@ -59,6 +59,16 @@ struct route_call {
     int nseg;
 };
 
+/* The one output a process declares (routes_meta.c): "result" of a run (the
+ * HDF5 file), "summary" of a study (its table). */
+struct output_decl {
+    const char *id, *title, *media_type;
+    const char *path; /* under /jobs/{id}/results/ */
+    const char *rel;  /* of its link in the results */
+};
+/* The output of process "run" or "study" (NULL for another). */
+const struct output_decl *route_process_output(const char *process);
+
 /* The handlers, by resource. */
 route_handler meta_landing, meta_conformance, meta_openapi, meta_healthz, meta_schema,
     meta_processes, meta_process;
@@ -79,6 +89,23 @@ void route_add_link(json_t *links, const char *rel, const char *type, const char
                     const char *fmt, ...) __attribute__((format(printf, 5, 6)));
 /* Integer query value in [lo, hi]: 0 parsed, 1 absent (out untouched), -1 bad. */
 int route_query_long(const char *s, long lo, long hi, long *out);
+/* Answers a system error err met while doing `what` on the data directory
+ * (problem_of_errno: 507, 503 with Retry-After, or 500; a missing file is
+ * answered with missing, e.g. PROBLEM_NO_SUCH_RESULT).  The detail names
+ * what failed and the system's words, never a path. */
+void route_reply_fault(struct hreq *r, int err, enum problem_kind missing, const char *what);
+/* routes_filter.c */
+
+/* Calls fn with every value of query parameter name, in order (a repeated
+ * parameter gives several). */
+void route_query_each(struct hreq *r, const char *name, void (*fn)(const char *value, void *ctx),
+                      void *ctx);
+/* The job-list filter of GET /jobs's query: 0, or -1 with detail (a 400).
+ * *none: the query can match no job (a type other than "process"). */
+int route_job_filter(struct hreq *r, struct tq_filter *f, bool *none, char *detail, size_t size);
+/* "&status=...&datetime=..." of the filter, for the list's self and next links. */
+void route_job_filter_query(struct hreq *r, const struct tq_filter *f, char *out, size_t size);
+
 /* A JSON text from the queue (NULL or "" -> NULL). */
 json_t *route_json_or_null(const char *text);
 

@@ -84,6 +84,14 @@ static json_t *status_info(const struct tapp *a, struct tq *q, const struct tq_j
     rfc3339(o, "created", j->created);
     rfc3339(o, "started", started);
     rfc3339(o, "finished", j->finished);
+    /* when the status last changed: the latest of these (progress is in
+     * "progress" and "simulation"); for a study, also its children's starts */
+    double updated = j->created;
+    if (started > updated)
+        updated = started;
+    if (j->finished > updated)
+        updated = j->finished;
+    rfc3339(o, "updated", updated);
     long p = (long)floor(progress);
     if (!strcmp(status, TQ_SUCCESSFUL))
         p = 100;
@@ -108,10 +116,30 @@ static json_t *status_info(const struct tapp *a, struct tq *q, const struct tq_j
         json_decref(cost);
     json_t *links = json_array();
     route_add_link(links, "self", "application/json", "this job", "/jobs/%s", j->id);
-    if (tq_status_final(status) || !strcmp(status, TQ_RUNNING))
+    /* OGC 1.0: the results (the map of outputs) exist once the job succeeded;
+     * a run's series, frames and fields can be read from its start on */
+    if (!strcmp(status, TQ_SUCCESSFUL))
         route_add_link(links, REL_RESULTS, "application/json", "results", "/jobs/%s/results", j->id);
-    if (!study && strcmp(status, TQ_ACCEPTED))
+    if (!study && strcmp(status, TQ_ACCEPTED)) {
         route_add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
+        route_add_link(links, "series", "application/json", "time series",
+                       "/jobs/%s/results/series", j->id);
+        route_add_link(links, "frames", "application/json", "field frames",
+                       "/jobs/%s/results/frames", j->id);
+        route_add_link(links, "fields", "application/octet-stream",
+                       "one field at one frame: /results/fields/{field}?frame=k",
+                       "/jobs/%s/results/fields/position?frame=-1", j->id);
+        if (tq_status_final(status)) {
+            route_add_link(links, "enclosure", "application/x-hdf5",
+                           "result file (HDF5, H5MD layout; partial when the job failed)",
+                           "/jobs/%s/results/result.h5", j->id);
+            route_add_link(links, "alternate", "text/xml", "XDMF sidecar for ParaView",
+                           "/jobs/%s/results/result.xmf", j->id);
+        }
+    }
+    if (study && strcmp(status, TQ_ACCEPTED))
+        route_add_link(links, "summary", "application/json", "summary table",
+                       "/jobs/%s/results/summary", j->id);
     if (j->study_id[0])
         route_add_link(links, "up", "application/json", "the study", "/jobs/%s", j->study_id);
     if (study) {
@@ -141,7 +169,87 @@ static int require_json_content(struct hreq *r)
     }
     return 0;
 }
-static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs, json_t **inputs)
+/* Appends one validation error to *prob (made on the first). */
+static void add_problem(struct hreq *r, json_t **prob, const char *pointer, const char *detail)
+{
+    if (!*prob)
+        *prob = problem_new(PROBLEM_VALIDATION, detail, r->path);
+    problem_add_error(*prob, pointer, detail);
+}
+
+/* The execute request's options besides inputs (OGC API - Processes 1.0,
+ * execute.yaml): outputs may name the process's one output (output, sent by
+ * reference: transmissionMode "value" is refused), response is "document"
+ * or "raw" (both give the same asynchronous job; see docs/api.md), and a
+ * subscriber is refused: this server does not call back (no callback
+ * conformance class); poll GET /jobs/{id}?wait=S instead. */
+static void check_execute_options(struct hreq *r, const json_t *root,
+                                  const struct output_decl *output, json_t **prob)
+{
+    const json_t *resp = json_object_get(root, "response");
+    if (resp && !(json_is_string(resp) && (!strcmp(json_string_value(resp), "document") ||
+                                           !strcmp(json_string_value(resp), "raw"))))
+        add_problem(r, prob, "/response", "must be \"document\" or \"raw\"");
+    if (json_object_get(root, "subscriber"))
+        add_problem(r, prob, "/subscriber",
+                    "callbacks are not supported by this server (no callback conformance "
+                    "class): leave out subscriber and poll GET /jobs/{jobId}?wait=S");
+    const json_t *outs = json_object_get(root, "outputs");
+    if (!outs)
+        return;
+    if (!json_is_object(outs)) {
+        add_problem(r, prob, "/outputs", "must be an object {output id: {transmissionMode}}");
+        return;
+    }
+    const char *k;
+    const json_t *v;
+    char p[300], q[340], d[200];
+    json_object_foreach((json_t *)outs, k, v)
+    {
+        tlsph_pointer_join(p, sizeof p, "/outputs", k);
+        if (strcmp(k, output->id)) {
+            snprintf(d, sizeof d, "unknown output (this process has one: %s)", output->id);
+            add_problem(r, prob, p, d);
+            continue;
+        }
+        if (!json_is_object(v)) {
+            add_problem(r, prob, p, "must be an object");
+            continue;
+        }
+        const json_t *mode = json_object_get(v, "transmissionMode");
+        snprintf(q, sizeof q, "%s/transmissionMode", p);
+        if (mode && !(json_is_string(mode) && (!strcmp(json_string_value(mode), "reference") ||
+                                               !strcmp(json_string_value(mode), "value"))))
+            add_problem(r, prob, q, "must be \"value\" or \"reference\"");
+        else if (mode && !strcmp(json_string_value(mode), "value"))
+            add_problem(r, prob, q,
+                        "only \"reference\" is supported: the output is a file served at its "
+                        "own URL");
+        const json_t *fmt = json_object_get(v, "format");
+        const json_t *mt = json_object_get(fmt, "mediaType");
+        snprintf(q, sizeof q, "%s/format/mediaType", p);
+        if (fmt && !json_is_object(fmt)) {
+            snprintf(q, sizeof q, "%s/format", p);
+            add_problem(r, prob, q, "must be an object {mediaType}");
+        } else if (mt &&
+                   !(json_is_string(mt) && !strcmp(json_string_value(mt), output->media_type))) {
+            snprintf(d, sizeof d, "the output is %s", output->media_type);
+            add_problem(r, prob, q, d);
+        }
+        const char *m;
+        const json_t *mv;
+        json_object_foreach((json_t *)v, m, mv)
+        {
+            if (strcmp(m, "transmissionMode") && strcmp(m, "format")) {
+                tlsph_pointer_join(q, sizeof q, p, m);
+                add_problem(r, prob, q, "unknown member (accepted: transmissionMode, format)");
+            }
+        }
+    }
+}
+
+static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs,
+                          const struct output_decl *output, json_t **inputs)
 {
     json_error_t e;
     json_t *root = json_loadb(r->body.p ? r->body.p : "", r->body.len, JSON_REJECT_DUPLICATES, &e);
@@ -160,14 +268,17 @@ static json_t *parse_body(struct hreq *r, const char *const *allowed_inputs, jso
         json_t *v;
         json_object_foreach(root, k, v)
         {
-            if (strcmp(k, "inputs")) { /* schemas/execute.schema.json */
+            if (strcmp(k, "inputs") && strcmp(k, "outputs") && strcmp(k, "response") &&
+                strcmp(k, "subscriber")) { /* schemas/execute.schema.json */
                 if (!prob)
                     prob = problem_new(PROBLEM_VALIDATION, "unknown member", r->path);
                 char p[300];
                 tlsph_pointer_join(p, sizeof p, "", k);
-                problem_add_error(prob, p, "unknown member (accepted: inputs)");
+                problem_add_error(
+                    prob, p, "unknown member (accepted: inputs, outputs, response, subscriber)");
             }
         }
+        check_execute_options(r, root, output, &prob);
         json_t *in = json_object_get(root, "inputs");
         if (!json_is_object(in)) {
             if (!prob)
@@ -229,7 +340,19 @@ static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
         prob = problem_new(PROBLEM_INTERNAL, "out of memory", r->path);
         break;
     case JOBS_NO_DIRECTORY:
-        prob = problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
+    case JOBS_NOT_QUEUED:
+        if (sub->errnum && problem_of_errno(sub->errnum) != PROBLEM_INTERNAL &&
+            problem_of_errno(sub->errnum) != PROBLEM_NOT_FOUND) {
+            if (sub->why[0])
+                tlog("%s", sub->why);
+            route_reply_fault(r, sub->errnum, PROBLEM_INTERNAL,
+                              "cannot write the job's files in the data directory");
+            return;
+        }
+        prob = rc == JOBS_NOT_QUEUED
+                   ? problem_new(PROBLEM_UNAVAILABLE,
+                                 study ? "cannot queue the study" : "cannot queue the job", r->path)
+                   : problem_new(PROBLEM_INTERNAL, "cannot create the job directory", r->path);
         break;
     case JOBS_OVER_QUOTA:
         prob = problem_new(PROBLEM_OUTPUT_QUOTA, sub->detail, r->path);
@@ -253,7 +376,8 @@ static void submit(struct hreq *r, const struct route_call *c, struct tq *q, boo
     static const char *const run_inputs[] = {"scene", NULL};
     static const char *const study_inputs[] = {"base", "sweep", "outputs", NULL};
     json_t *inputs = NULL;
-    json_t *root = parse_body(r, study ? study_inputs : run_inputs, &inputs);
+    json_t *root = parse_body(r, study ? study_inputs : run_inputs,
+                              route_process_output(study ? "study" : "run"), &inputs);
     if (!root)
         return;
     const struct jobs_env env = route_jobs_env(c->app, q);
@@ -298,23 +422,12 @@ void job_execute(struct hreq *r, struct route_call *c)
 void job_list(struct hreq *r, struct route_call *c)
 {
     const struct tapp *a = c->app;
-    const char *status = http_query(r, "status");
-    const char *study = http_query(r, "study");
-    const char *process = http_query(r, "processID");
-    if (!process)
-        process = http_query(r, "process");
     long limit = 100, offset = 0;
-    if (status && *status && !tq_status_valid(status)) {
-        http_reply_problem(r, PROBLEM_BAD_REQUEST,
-                           "status must be accepted, running, successful, failed or dismissed");
-        return;
-    }
-    if (study && *study && !job_id_valid(study)) {
-        http_reply_problem(r, PROBLEM_BAD_REQUEST, "study must be a job id (32 hex digits)");
-        return;
-    }
-    if (process && *process && strcmp(process, "run") && strcmp(process, "study")) {
-        http_reply_problem(r, PROBLEM_BAD_REQUEST, "processID must be run or study");
+    struct tq_filter f;
+    bool none;
+    char detail[256];
+    if (route_job_filter(r, &f, &none, detail, sizeof detail) != 0) {
+        http_reply_problem(r, PROBLEM_BAD_REQUEST, detail);
         return;
     }
     if (route_query_long(http_query(r, "limit"), 1, TQ_LIST_MAX, &limit) < 0) {
@@ -327,7 +440,7 @@ void job_list(struct hreq *r, struct route_call *c)
     }
     struct tq_job *jobs = NULL;
     size_t n = 0;
-    if (tq_list(a->q, status, study, process, limit, offset, &jobs, &n) != TQ_OK) {
+    if (!none && tq_list_filtered(a->q, &f, limit, offset, &jobs, &n) != TQ_OK) {
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "database busy, retry");
         http_add_header(r, "Retry-After", "1");
         return;
@@ -337,8 +450,7 @@ void job_list(struct hreq *r, struct route_call *c)
     if ((long)n == limit) {
         struct tq_job *peek = NULL;
         size_t np = 0;
-        more = tq_list(a->q, status, study, process, 1, offset + limit, &peek, &np) != TQ_OK ||
-               np > 0;
+        more = tq_list_filtered(a->q, &f, 1, offset + limit, &peek, &np) != TQ_OK || np > 0;
         tq_jobs_free(peek, np);
     }
     json_t *arr = json_array();
@@ -346,16 +458,13 @@ void job_list(struct hreq *r, struct route_call *c)
         json_array_append_new(arr, status_info(a, a->q, &jobs[i], false));
     tq_jobs_free(jobs, n);
     json_t *links = json_array();
-    char q[256];
-    snprintf(q, sizeof q, "%s%s%s%s%s%s", status && *status ? "&status=" : "",
-             status && *status ? status : "", study && *study ? "&study=" : "",
-             study && *study ? study : "", process && *process ? "&processID=" : "",
-             process && *process ? process : "");
+    char q[600];
+    route_job_filter_query(r, &f, q, sizeof q);
     route_add_link(links, "self", "application/json", NULL, "/jobs?limit=%ld&offset=%ld%s", limit,
-             offset, q);
+                   offset, q);
     if (more)
-        route_add_link(links, "next", "application/json", NULL, "/jobs?limit=%ld&offset=%ld%s", limit,
-                 offset + limit, q);
+        route_add_link(links, "next", "application/json", NULL, "/jobs?limit=%ld&offset=%ld%s",
+                       limit, offset + limit, q);
     http_reply_json(r, 200, json_pack("{s:o,s:o}", "jobs", arr, "links", links));
 }
 

@@ -36,7 +36,8 @@ void meta_conformance(struct hreq *r, struct route_call *c)
 {
     (void)c;
     const char *base = "http://www.opengis.net/spec/ogcapi-processes-1/1.0/conf/";
-    const char *cls[] = {"core", "json", "job-list", "dismiss", "oas30"};
+    /* not oas30: the API definition is OpenAPI 3.1 (OGC 1.0 defines no class for it) */
+    const char *cls[] = {"core", "json", "job-list", "dismiss"};
     json_t *arr = json_array();
     for (size_t i = 0; i < sizeof cls / sizeof cls[0]; i++) {
         char buf[128];
@@ -44,6 +45,15 @@ void meta_conformance(struct hreq *r, struct route_call *c)
         json_array_append_new(arr, json_string(buf));
     }
     http_reply_json(r, 200, json_pack("{s:o}", "conformsTo", arr));
+}
+
+const struct output_decl *route_process_output(const char *process)
+{
+    static const struct output_decl run = {"result", "HDF5 result file (H5MD layout)",
+                                           "application/x-hdf5", "result.h5", "enclosure"};
+    static const struct output_decl study = {"summary", "study summary table", "application/json",
+                                             "summary", "summary"};
+    return !strcmp(process, "run") ? &run : !strcmp(process, "study") ? &study : NULL;
 }
 
 /* A process description (full: with its inputs and outputs). */
@@ -84,15 +94,15 @@ static json_t *process_desc(const char *id, bool full)
         }
         json_object_set_new(o, "inputs", inputs);
         json_t *outputs = json_object();
+        const struct output_decl *out = route_process_output(id);
         if (run)
-            json_object_set_new(outputs, "result",
-                                json_pack("{s:s,s:{s:s,s:s}}", "title", "HDF5 result file",
-                                          "schema", "type", "string", "contentMediaType",
-                                          "application/x-hdf5"));
+            json_object_set_new(outputs, out->id,
+                                json_pack("{s:s,s:{s:s,s:s}}", "title", out->title, "schema",
+                                          "type", "string", "contentMediaType", out->media_type));
         else
-            json_object_set_new(outputs, "summary",
-                                json_pack("{s:s,s:{s:s}}", "title", "study summary table",
-                                          "schema", "type", "object"));
+            json_object_set_new(outputs, out->id,
+                                json_pack("{s:s,s:{s:s,s:s}}", "title", out->title, "schema",
+                                          "type", "object", "contentMediaType", out->media_type));
         json_object_set_new(o, "outputs", outputs);
     }
     return o;

@@ -12,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -32,89 +33,151 @@ static void job_file(char *out, size_t n, const struct tapp *a, const char *id,
         out[0] = '\0';
 }
 
+/* The results of a successful job (OGC API - Processes 1.0, response
+ * "document"): the map of its declared outputs, each by reference. */
 static void results_doc(struct hreq *r, const struct tq_job *j)
 {
-    json_t *o = json_object();
-    json_object_set_new(o, "jobID", json_string(j->id));
-    json_object_set_new(o, "status", json_string(j->status));
-    json_t *links = json_array();
-    route_add_link(links, "self", "application/json", "this document", "/jobs/%s/results", j->id);
-    route_add_link(links, "up", "application/json", "the job", "/jobs/%s", j->id);
-    if (!strcmp(j->process, "study")) {
-        route_add_link(links, "summary", "application/json", "summary table",
-                 "/jobs/%s/results/summary", j->id);
-        route_add_link(links, "summary", "text/csv", "summary table (CSV)",
-                 "/jobs/%s/results/summary?format=csv", j->id);
-        route_add_link(links, REL_JOBLIST, "application/json", "children", "/jobs?study=%s", j->id);
-    } else {
-        route_add_link(links, "enclosure", "application/x-hdf5", "result file (HDF5, H5MD layout)",
-                 "/jobs/%s/results/result.h5", j->id);
-        route_add_link(links, "alternate", "text/xml", "XDMF sidecar for ParaView",
-                 "/jobs/%s/results/result.xmf", j->id);
-        route_add_link(links, "series", "application/json", "time series", "/jobs/%s/results/series",
-                 j->id);
-        route_add_link(links, "frames", "application/json", "field frames", "/jobs/%s/results/frames",
-                 j->id);
-        route_add_link(links, "fields", "application/octet-stream",
-                 "one field at one frame: /results/fields/{field}?frame=k",
-                 "/jobs/%s/results/fields/position?frame=-1", j->id);
-        route_add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
-    }
-    json_object_set_new(o, "links", links);
-    http_reply_json(r, 200, o);
+    const struct output_decl *out = route_process_output(j->process);
+    char href[128];
+    snprintf(href, sizeof href, "/jobs/%s/results/%s", j->id, out->path);
+    http_reply_json(r, 200,
+                    json_pack("{s:{s:s,s:s,s:s,s:s}}", out->id, "href", href, "rel", out->rel,
+                              "type", out->media_type, "title", out->title));
 }
 
-/* Range header → [*off, *off + *len) of size; 0 none/ignored (whole file),
- * 1 satisfiable single range, -1 unsatisfiable/invalid. */
-static int parse_range(const char *h, uint64_t size, uint64_t *off, uint64_t *len)
+/* The status of the exception for a failed job, by what made it fail
+ * (OGC 1.0 /req/core/job-results-failed: a 4xx or 5xx reflecting the
+ * failure): the input's (422), the disk's (507), else the server's (500). */
+static unsigned failed_status(const char *outcome)
 {
-    if (!h)
+    if (!strcmp(outcome, "invalid") || !strcmp(outcome, "unstable") ||
+        !strcmp(outcome, "timed_out") || !strcmp(outcome, "children_failed"))
+        return 422;
+    if (!strcmp(outcome, "io_error"))
+        return 507;
+    return 500;
+}
+
+/* The results of a failed or dismissed job: an exception naming why, with
+ * the job's message and links to what it left (a run's partial result file
+ * and its log: docs/api.md). */
+static void results_exception(struct hreq *r, const struct tq_job *j)
+{
+    const bool failed = !strcmp(j->status, TQ_FAILED);
+    /* a study fails when some of its children did (its message counts them) */
+    const char *outcome = j->outcome[0]                     ? j->outcome
+                          : failed && !strcmp(j->process, "study") ? "children_failed"
+                          : failed                                 ? "failed"
+                                                                   : "cancelled";
+    char type[96];
+    snprintf(type, sizeof type, "urn:tlsph:problem:job-%s", failed ? outcome : "dismissed");
+    json_t *p = json_object();
+    json_object_set_new(p, "type", json_string(type));
+    json_object_set_new(p, "title",
+                        json_string(failed ? "The job failed: it has no results"
+                                           : "The job was dismissed: it has no results"));
+    json_object_set_new(p, "status", json_integer(failed ? failed_status(outcome) : 404));
+    json_t *msg = json_string(j->message && *j->message ? j->message : outcome);
+    json_object_set_new(p, "detail", msg ? msg : json_string(outcome));
+    json_object_set_new(p, "instance", json_string(r->path));
+    json_object_set_new(p, "outcome", json_string(outcome));
+    json_t *links = json_array();
+    route_add_link(links, "up", "application/json", "the job", "/jobs/%s", j->id);
+    if (strcmp(j->process, "study")) {
+        route_add_link(links, "enclosure", "application/x-hdf5",
+                       "the partial result file, if the engine wrote one",
+                       "/jobs/%s/results/result.h5", j->id);
+        route_add_link(links, "log", "text/plain", "engine log", "/jobs/%s/log", j->id);
+    } else {
+        route_add_link(links, "summary", "application/json", "the children's table",
+                       "/jobs/%s/results/summary", j->id);
+    }
+    json_object_set_new(p, "links", links);
+    http_reply_problem_json(r, p);
+}
+
+/* A decimal number of a byte range; a value past UINT64_MAX saturates (it
+ * is only ever compared with the file's size).  NULL when there is none. */
+static const char *range_number(const char *h, uint64_t *v)
+{
+    if (!isdigit((unsigned char)*h))
+        return NULL;
+    *v = 0;
+    for (; isdigit((unsigned char)*h); h++) {
+        const unsigned d = (unsigned)(*h - '0');
+        *v = *v > (UINT64_MAX - d) / 10 ? UINT64_MAX : *v * 10 + d;
+    }
+    return h;
+}
+
+/* The Range header of a GET (RFC 9110 section 14) → [*off, *off + *len) of
+ * size: 0 none or ignored (the whole file: another method, a unit other than
+ * bytes, several ranges), 1 one satisfiable range (a last position past the
+ * end is clamped to the end), -1 unsatisfiable or malformed (416). */
+static int parse_range(const char *method, const char *h, uint64_t size, uint64_t *off,
+                       uint64_t *len)
+{
+    if (!h || strcmp(method, "GET") != 0) /* range handling is defined for GET only */
         return 0;
-    while (*h == ' ')
+    while (*h == ' ' || *h == '\t')
         h++;
-    if (strncmp(h, "bytes=", 6) != 0)
-        return -1;
+    if (strncasecmp(h, "bytes=", 6) != 0)
+        return 0; /* a range unit we do not know is ignored */
     h += 6;
     if (strchr(h, ','))
         return 0; /* multiple ranges: serve the whole file */
-    char *end;
     uint64_t a, b;
-    if (*h == '-') {
-        if (!isdigit((unsigned char)h[1]))
+    if (*h == '-') { /* the last n bytes */
+        h = range_number(h + 1, &b);
+        if (!h || *h || b == 0 || size == 0)
             return -1;
-        errno = 0;
-        uint64_t n = strtoull(h + 1, &end, 10);
-        if (errno || *end || n == 0 || size == 0)
-            return -1;
-        if (n > size)
-            n = size;
-        *off = size - n;
-        *len = n;
+        *len = b > size ? size : b;
+        *off = size - *len;
         return 1;
     }
-    if (!isdigit((unsigned char)*h))
+    h = range_number(h, &a);
+    if (!h || *h != '-')
         return -1;
-    errno = 0;
-    a = strtoull(h, &end, 10);
-    if (errno || *end != '-')
-        return -1;
-    h = end + 1;
+    h++;
     if (*h == '\0') {
-        b = size ? size - 1 : 0;
+        b = UINT64_MAX;
     } else {
-        if (!isdigit((unsigned char)*h))
+        h = range_number(h, &b);
+        if (!h || *h || b < a)
             return -1;
-        b = strtoull(h, &end, 10);
-        if (errno || *end || b < a)
-            return -1;
-        if (b >= size)
-            b = size ? size - 1 : 0;
     }
     if (a >= size)
         return -1;
+    if (b >= size)
+        b = size - 1;
     *off = a;
     *len = b - a + 1;
     return 1;
+}
+
+/* Does an If-None-Match value match etag?  "*" matches any current file;
+ * otherwise a list of entity tags compared weakly (RFC 9110 section 13.1.2:
+ * W/ prefixes are ignored). */
+static bool none_match_hits(const char *inm, const char *etag)
+{
+    const char *tag = etag + (strncmp(etag, "W/", 2) ? 0 : 2);
+    const size_t tlen = strlen(tag);
+    for (const char *p = inm;;) {
+        while (*p == ' ' || *p == '\t' || *p == ',')
+            p++;
+        if (!*p)
+            return false;
+        if (*p == '*')
+            return true;
+        if (!strncmp(p, "W/", 2))
+            p += 2;
+        const char *q = *p == '"' ? strchr(p + 1, '"') : NULL;
+        if (!q)
+            return false; /* not an entity tag: nothing after it can be trusted */
+        if ((size_t)(q + 1 - p) == tlen && !strncmp(p, tag, tlen))
+            return true;
+        p = q + 1;
+    }
 }
 
 static void serve_file(struct hreq *r, const char *path, const char *ctype, const char *id,
@@ -122,9 +185,18 @@ static void serve_file(struct hreq *r, const char *path, const char *ctype, cons
 {
     int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
     struct stat st;
-    if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (fd < 0 || fstat(fd, &st) != 0) {
+        const int e = errno;
         if (fd >= 0)
             close(fd);
+        if (e == ENOENT)
+            http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no such file");
+        else
+            route_reply_fault(r, e, PROBLEM_NO_SUCH_RESULT, "cannot read the result file");
+        return;
+    }
+    if (!S_ISREG(st.st_mode)) {
+        close(fd);
         http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no such file");
         return;
     }
@@ -132,11 +204,21 @@ static void serve_file(struct hreq *r, const char *path, const char *ctype, cons
     char etag[96], buf[128];
     snprintf(etag, sizeof etag, "\"%" PRIx64 "-%lx.%lx-%.8s\"", size, (long)st.st_mtim.tv_sec,
              (long)st.st_mtim.tv_nsec, id);
+    /* RFC 9110 section 13.2.2: If-None-Match before Range */
+    const char *inm = http_header(r, "If-None-Match");
+    if (inm && none_match_hits(inm, etag)) {
+        close(fd);
+        http_reply_buf(r, 304, NULL, NULL, 0);
+        http_add_header(r, "ETag", etag);
+        return;
+    }
     uint64_t off = 0, len = size;
     int rr = 0;
     if (ranges) {
+        /* If-Range compares strongly: a weak tag or a date never matches */
         const char *ifr = http_header(r, "If-Range");
-        rr = (ifr && strcmp(ifr, etag)) ? 0 : parse_range(http_header(r, "Range"), size, &off, &len);
+        if (!ifr || !strcmp(ifr, etag))
+            rr = parse_range(r->method, http_header(r, "Range"), size, &off, &len);
     }
     if (rr < 0) {
         close(fd);
@@ -144,11 +226,7 @@ static void serve_file(struct hreq *r, const char *path, const char *ctype, cons
         snprintf(buf, sizeof buf, "bytes */%" PRIu64, size);
         http_add_header(r, "Content-Range", buf);
     } else {
-        const char *inm = http_header(r, "If-None-Match");
-        if (inm && !strcmp(inm, etag) && rr == 0) {
-            close(fd);
-            http_reply_buf(r, 304, NULL, NULL, 0);
-        } else if (len == 0) {
+        if (len == 0) {
             close(fd);
             http_reply_buf(r, 200, ctype, NULL, 0);
         } else {
@@ -176,6 +254,10 @@ static void serve_log(struct hreq *r, const struct tapp *a, const struct tq_job 
     job_file(path, sizeof path, a, j->id, JOBDIR_LOG);
     int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
     struct stat st;
+    if (fd < 0 && errno != ENOENT) { /* no log yet is an empty one; a failing disk is not */
+        route_reply_fault(r, errno, PROBLEM_NO_SUCH_RESULT, "cannot read the engine log");
+        return;
+    }
     if (fd < 0 || fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
         if (fd >= 0)
             close(fd);
@@ -192,6 +274,23 @@ static void serve_log(struct hreq *r, const struct tapp *a, const struct tq_job 
     http_reply_fd(r, 200, "text/plain; charset=utf-8", fd, off, size - off);
 }
 
+/* A result read failed with otherwise (err: HDF5's words): when the file
+ * itself cannot be opened or read, the disk is the cause and is answered as
+ * one (route_reply_fault: 503 or 507, not 500); otherwise otherwise. */
+static void reply_read_failure(struct hreq *r, const char *path, enum problem_kind otherwise,
+                               const char *err)
+{
+    char probe[8];
+    int fd = open(path, O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    const int e = fd < 0 ? errno : pread(fd, probe, sizeof probe, 0) < 0 ? errno : 0;
+    if (fd >= 0)
+        close(fd);
+    if (e && problem_of_errno(e) != PROBLEM_INTERNAL)
+        route_reply_fault(r, e, PROBLEM_NO_SUCH_RESULT, "cannot read the result file");
+    else
+        http_reply_problem(r, otherwise, err);
+}
+
 static void task_series_list(struct hreq *r, struct route_call *c, struct tq *q)
 {
     char path[1200], err[256] = "";
@@ -199,7 +298,7 @@ static void task_series_list(struct hreq *r, struct route_call *c, struct tq *q)
     job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
     json_t *list = tres_series_list(path, err, sizeof err);
     if (!list) {
-        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
+        reply_read_failure(r, path, PROBLEM_NO_SUCH_RESULT, err);
         return;
     }
     json_t *links = json_array();
@@ -217,15 +316,19 @@ static void task_series(struct hreq *r, struct route_call *c, struct tq *q)
         char *csv = tres_series_csv(path, c->series, &not_found, err, sizeof err);
         if (csv)
             http_reply_buf(r, 200, "text/csv; charset=utf-8", csv, strlen(csv));
+        else if (not_found)
+            http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
         else
-            http_reply_problem(r, not_found ? PROBLEM_NO_SUCH_RESULT : PROBLEM_INTERNAL, err);
+            reply_read_failure(r, path, PROBLEM_INTERNAL, err);
         return;
     }
     json_t *s = tres_series(path, c->series, &not_found, err, sizeof err);
     if (s)
         http_reply_json(r, 200, s);
+    else if (not_found)
+        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
     else
-        http_reply_problem(r, not_found ? PROBLEM_NO_SUCH_RESULT : PROBLEM_INTERNAL, err);
+        reply_read_failure(r, path, PROBLEM_INTERNAL, err);
 }
 
 static void task_frames(struct hreq *r, struct route_call *c, struct tq *q)
@@ -235,7 +338,7 @@ static void task_frames(struct hreq *r, struct route_call *c, struct tq *q)
     job_file(path, sizeof path, c->app, c->id, JOBDIR_RESULT);
     json_t *f = tres_frames(path, err, sizeof err);
     if (!f) {
-        http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, err);
+        reply_read_failure(r, path, PROBLEM_NO_SUCH_RESULT, err);
         return;
     }
     http_reply_json(r, 200, json_pack("{s:o,s:I}", "frames", f, "count",
@@ -256,7 +359,7 @@ static void task_field(struct hreq *r, struct route_call *c, struct tq *q)
         return;
     }
     if (rc != TRES_OK) {
-        http_reply_problem(r, PROBLEM_INTERNAL, err);
+        reply_read_failure(r, path, PROBLEM_INTERNAL, err);
         return;
     }
     const size_t count = f.n_rows * (size_t)f.ncomp;
@@ -415,7 +518,9 @@ static void defer_result_task(struct hreq *r, struct route_call *c, const struct
     char path[1200];
     job_file(path, sizeof path, c->app, j->id, JOBDIR_RESULT);
     if (access(path, R_OK) != 0) {
-        if (tq_status_final(j->status))
+        if (errno != ENOENT)
+            route_reply_fault(r, errno, PROBLEM_NO_SUCH_RESULT, "cannot read the result file");
+        else if (tq_status_final(j->status))
             http_reply_problem(r, PROBLEM_NO_SUCH_RESULT, "the job produced no result file");
         else
             http_reply_problem(r, PROBLEM_RESULT_NOT_READY, "no result file yet");
@@ -440,9 +545,16 @@ void result_log(struct hreq *r, struct route_call *c)
 void result_doc(struct hreq *r, struct route_call *c)
 {
     struct tq_job j;
-    if (result_job(r, c, &j) != 0)
+    if (route_load_job(r, c->app->q, c->id, &j) != 0)
         return;
-    results_doc(r, &j);
+    if (!strcmp(j.status, TQ_SUCCESSFUL))
+        results_doc(r, &j);
+    else if (tq_status_final(j.status))
+        results_exception(r, &j);
+    else
+        http_reply_problem(r, PROBLEM_RESULT_NOT_READY,
+                           "the job is not finished: poll GET /jobs/{jobId}?wait=S; its series "
+                           "and fields can be read while it runs");
     tq_job_free(&j);
 }
 

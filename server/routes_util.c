@@ -50,7 +50,7 @@ int route_load_job(struct hreq *r, struct tq *q, const char *id, struct tq_job *
 void route_add_link(json_t *links, const char *rel, const char *type, const char *title,
                     const char *fmt, ...)
 {
-    char href[512];
+    char href[1024];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(href, sizeof href, fmt, ap);
@@ -76,6 +76,16 @@ int route_query_long(const char *s, long lo, long hi, long *out)
         return -1;
     *out = v;
     return 0;
+}
+
+void route_reply_fault(struct hreq *r, int err, enum problem_kind missing, const char *what)
+{
+    enum problem_kind kind = problem_of_errno(err);
+    char detail[256];
+    snprintf(detail, sizeof detail, "%s: %s", what, strerror(err));
+    http_reply_problem(r, kind == PROBLEM_NOT_FOUND ? missing : kind, detail);
+    if (kind == PROBLEM_UNAVAILABLE)
+        http_add_header(r, "Retry-After", "5");
 }
 
 json_t *route_json_or_null(const char *text)

@@ -133,8 +133,8 @@ check "job still running" [ "$(job_status "$B" "$LID")" = running ]
 req GET "$B/jobs/$LID"
 check "running statusInfo valid" valid job
 req GET "$B/jobs/$LID/results/result.h5"
-check "result.h5 of a running job: 409" [ "$STATUS" = 409 ]
-check "409 problem valid" valid error
+check "result.h5 of a running job: 404 result-not-ready" [ "$STATUS" = 404 ]
+check "result-not-ready problem valid" valid error
 check "engine process exists" pgrep -f "$DATA/jobs/$LID" >/dev/null
 req DELETE "$B/jobs/$LID"
 check "DELETE running job: 200" [ "$STATUS" = 200 ]

@@ -33,7 +33,7 @@ strip_scene 2e-2 100 | "$PY" -c "import json,sys; print(json.dumps({'inputs':{'s
 # a finished job (for Range / series / field errors)
 FID=$(submit "$B" "$TMP/tiny.json")
 wait_status "$B" "$FID" '^successful$'
-# a running job and a queued one (max-jobs 1) for 409s
+# a running job and a queued one (max-jobs 1) for result-not-ready (404)
 RID=$(submit "$B" "$TMP/long.json")
 QID=$(submit "$B" "$TMP/long.json")
 wait_status "$B" "$RID" '^running$'
@@ -139,11 +139,11 @@ check "  Allow: POST" [ "$(header Allow)" = POST ]
 expect 405 "PATCH result.h5" PATCH "$B/jobs/$FID/results/result.h5"
 
 # ------------------------------------------------------------ state and ranges
-expect 409 "results of a queued job" GET "$B/jobs/$QID/results"
-expect 409 "result.h5 of a running job" GET "$B/jobs/$RID/results/result.h5"
+expect 404 "results of a queued job" GET "$B/jobs/$QID/results"
+expect 404 "result.h5 of a running job" GET "$B/jobs/$RID/results/result.h5"
 expect 416 "bad Range (garbage)" GET "$B/jobs/$FID/results/result.h5" -H 'Range: bytes=abc'
 expect 416 "bad Range (b < a)" GET "$B/jobs/$FID/results/result.h5" -H 'Range: bytes=500-100'
-expect 416 "bad Range (unit)" GET "$B/jobs/$FID/results/result.h5" -H 'Range: lines=1-2'
+# a Range unit other than bytes is ignored (RFC 9110 14.2): api_rfc9110.sh
 
 # ------------------------------------------------------------ query parameters
 expect 400 "limit=-1" GET "$B/jobs?limit=-1"

@@ -146,7 +146,7 @@ MUTATIONS = [
     ("summary.json", ["columns", 0], "index", "first column not seq"),
     ("summary.json", ["extra"], 1, "unknown summary key"),
     ("execute_run.json", ["inputs", "scene", "dimension"], 1, "bad scene in run"),
-    ("execute_run.json", ["outputs"], {}, "unknown execute key"),
+    ("execute_run.json", ["callback"], {}, "unknown execute key"),
     ("execute_run.json", ["inputs", "extra"], 1, "unknown input"),
     ("execute_study.json", ["inputs", "sweep"], DELETE, "study without sweep"),
 ]
