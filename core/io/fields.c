@@ -303,6 +303,15 @@ static const struct tlsph_series_column section_columns[] = {
     {"damage", 1, "1", "mean damage over the section's particles", has_damage, NULL},
 };
 
+/* Rigid surfaces (walls): the reaction is the momentum their stops give the
+ * bodies over a step, divided by the step (core/bc/wall.c). */
+static const struct tlsph_series_column wall_columns[] = {
+    {"reaction_force", 3, "N",
+     "force exerted by the wall on the bodies: the momentum its stops gave them during the "
+     "last step / the step", NULL, NULL},
+    {"torque", 3, "N m", "torque of that force about the wall's point", NULL, NULL},
+};
+
 static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
 static size_t gauge_count(const struct tlsph_model *m) { return m->scene.ngauges; }
 static size_t section_count(const struct tlsph_model *m) { return m->scene.nsections; }
@@ -311,6 +320,11 @@ static size_t section_count(const struct tlsph_model *m) { return m->scene.nsect
 static const char *group_item(const struct tlsph_model *m, size_t k)
 {
     return m->scene.bcs[k].kind->carries_load ? m->scene.bcs[k].name : NULL;
+}
+
+static const char *wall_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.bcs[k].kind->reports_torque ? m->scene.bcs[k].name : NULL;
 }
 
 static const char *gauge_item(const struct tlsph_model *m, size_t k)
@@ -329,6 +343,15 @@ static void group_values(const struct tlsph_model *m, size_t k, double *out)
     for (int c = 0; c < 3; c++) {
         out[c] = g->reaction[c];
         out[3 + c] = g->displacement[c];
+    }
+}
+
+static void wall_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_group *g = &m->groups[k];
+    for (int c = 0; c < 3; c++) {
+        out[c] = g->reaction[c];
+        out[3 + c] = g->torque[c];
     }
 }
 
@@ -351,6 +374,8 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_SECTIONS] = {"sections", 0, section_columns,
                                sizeof section_columns / sizeof *section_columns, section_count,
                                section_item, section_values},
+    [TLSPH_FAMILY_WALLS] = {"walls", 0, wall_columns, sizeof wall_columns / sizeof *wall_columns,
+                            group_count, wall_item, wall_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

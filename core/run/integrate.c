@@ -155,8 +155,10 @@ void tlsph_start(struct tlsph_model *m)
 {
     /* constraints first: they define the initial state, their impulses are no work */
     tlsph_boundary_constrain(m, 0.0, 0.0);
-    for (size_t k = 0; k < m->scene.nbcs; k++)
+    for (size_t k = 0; k < m->scene.nbcs; k++) {
         memset(m->groups[k].impulse, 0, sizeof m->groups[k].impulse);
+        memset(m->groups[k].torque_impulse, 0, sizeof m->groups[k].torque_impulse);
+    }
     m->energy.external_work = 0.0;
     tlsph_evaluate(m, 0.0); /* the forces of the first half kick */
     struct tlsph_energy *e = &m->energy;

@@ -82,6 +82,11 @@ struct tlsph_group {
     int32_t *index;           /* particle indices */
     double impulse[3];        /* constraint impulse accumulated during the current step, N s */
     double reaction[3];       /* force exerted by the support on the group (last step), N */
+    /* Walls (kinds with reports_torque): the angular impulse about the condition's
+     * point collected during the current step, N m s, and its rate over the last
+     * step, the torque the support exerts about that point, N m. */
+    double torque_impulse[3];
+    double torque[3];
     double displacement[3];   /* mean displacement of the group, m */
     double mass;              /* kg */
 };
