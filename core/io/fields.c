@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bc/kind.h"
+#include "contact/contact.h"
 #include "util/mat3.h"
 
 static void ex_id(const struct tlsph_model *m, void *out)
@@ -228,6 +229,13 @@ static void sv_initiated(const struct tlsph_model *m, double *o)
 
 static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
+static int has_contact(const struct tlsph_model *m) { return m->contact != NULL; }
+static void sv_contact(const struct tlsph_model *m, double *o) { o[0] = m->energy.contact; }
+static void sv_contact_pairs(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)tlsph_contact_active(m);
+}
+
 static void sv_balance(const struct tlsph_model *m, double *o)
 {
     o[0] = tlsph_energy_balance(&m->energy);
@@ -276,6 +284,12 @@ const struct tlsph_series_column tlsph_global_series[] = {
      "energy dissipated by damage: stored energy released as D grows, sum over particles of "
      "psi_eff dD V0 (part of internal_energy)",
      has_damage, sv_damage_work},
+    {"contact_energy", 1, "J",
+     "work done against contact forces: energy stored in the overlaps plus what contact "
+     "dissipated; enters energy_balance like hourglass_energy",
+     has_contact, sv_contact},
+    {"contact_pairs", 1, "1", "number of particle pairs in contact (overlapping)", has_contact,
+     sv_contact_pairs},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 

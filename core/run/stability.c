@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "contact/contact.h"
 #include "material/eos/eos.h"
 #include "run/integrate.h"
 #include "run/model.h"
@@ -153,6 +154,12 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
         add_id(d, m->first_return_failure_id);
         return fail(m, d, "return_mapping", (double)m->return_failures, 0.0, NULL, NULL);
     }
+
+    /* without its candidates the contact forces are missing: the bodies would
+     * pass through each other */
+    if (m->contact && tlsph_contact_failed(m))
+        return fail(m, d, "contact_search", 0.0, 0.0,
+                    "the contact search ran out of memory", NULL);
 
     const double vmax = m->scene.speed_limit_factor * m->max_wave_speed;
     double worst = 0.0;

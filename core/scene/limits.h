@@ -65,5 +65,6 @@
 #define TLSPH_DEFAULT_FRAMES                20L
 #define TLSPH_DEFAULT_SERIES_EVERY          10L /* steps */
 #define TLSPH_DEFAULT_TAYLOR_QUINNEY        0.9
+#define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
 
 #endif

@@ -32,6 +32,7 @@ SEMANTIC_ONLY = {
     "unknown_material",
     "selector_unknown_body",
     "duplicate_body_names",
+    "contact_one_body",       # a contact block needs two bodies
     # geometry and vector consistency
     "wall_normal_zero",
     "notch_root_too_large",

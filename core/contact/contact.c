@@ -1,0 +1,70 @@
+/* Setup and teardown of the contact phase (contact.h), and what it reports. */
+#include <math.h>
+#include <stdlib.h>
+
+#include "contact/state.h"
+#include "run/model.h"
+
+int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const size_t n = m->p.n;
+    struct tlsph_contact *c = calloc(1, sizeof *c);
+    if (!c) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    m->contact = c;
+    m->bytes_allocated += sizeof *c;
+    c->law = s->contact.law;
+    for (int k = 0; k < 4; k++)
+        c->params[k] = s->contact.params[k];
+    c->bodies = tlsph_alloc(m, s->nbodies, sizeof *c->bodies);
+    c->start = tlsph_alloc(m, n + 1, sizeof *c->start);
+    c->x_search = tlsph_alloc(m, 3 * n, sizeof *c->x_search);
+    c->key = tlsph_alloc(m, n, sizeof *c->key);
+    c->order = tlsph_alloc(m, n, sizeof *c->order);
+    c->f_old = tlsph_alloc(m, 3 * n, sizeof *c->f_old);
+    if (!c->bodies || !c->start || !c->x_search || !c->key || !c->order || !c->f_old) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    double spacing = 0.0;
+    for (size_t b = 0; b < s->nbodies; b++) {
+        c->law->body(s, b, &c->bodies[b]);
+        c->max_radius = fmax(c->max_radius, c->bodies[b].radius);
+        spacing = fmax(spacing, s->bodies[b].spacing);
+    }
+    c->skin = s->contact.skin * spacing;
+    if (tlsph_contact_search(m, c, 1) != 0) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    return 0;
+}
+
+void tlsph_contact_free(struct tlsph_model *m)
+{
+    struct tlsph_contact *c = m->contact;
+    if (!c)
+        return;
+    free(c->bodies);
+    free(c->start);
+    free(c->j);
+    free(c->x_search);
+    free(c->key);
+    free(c->order);
+    free(c->cell_start);
+    free(c->f_old);
+    free(c);
+    m->contact = NULL;
+}
+
+size_t tlsph_contact_active(const struct tlsph_model *m) { return m->contact->active; }
+long tlsph_contact_searches(const struct tlsph_model *m) { return m->contact->searches; }
+int tlsph_contact_failed(const struct tlsph_model *m) { return m->contact->failed; }
+
+size_t tlsph_contact_candidates(const struct tlsph_model *m)
+{
+    return (size_t)m->contact->start[m->p.n];
+}
