@@ -13,7 +13,7 @@ static const struct tlsph_key keys[] = {
      .description = "k: each particle's contact ball has radius k h, h the smoothing length "
                     "(support radius / 2 = support_factor x spacing / 2)"},
     {.name = "scale_factor", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
-     .range = {0.0, 100.0, JC_OPEN, JC_CLOSED}, .unit = "1", .def = 1.0,
+     .range = {0.0, 1e6, JC_OPEN, JC_CLOSED}, .unit = "1", .def = 1.0,
      .offset = TLSPH_PARAM(TLSPH_PINBALL_SCALE_FACTOR),
      .description = "K_p, the paper's scale factor on the contact force (eq. 32)"},
 };
