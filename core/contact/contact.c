@@ -60,6 +60,12 @@ void tlsph_contact_free(struct tlsph_model *m)
     m->contact = NULL;
 }
 
+struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m)
+{
+    const struct tlsph_contact *c = m->contact;
+    return (struct tlsph_contact_cost){c->searches, c->search_seconds, c->phase_seconds};
+}
+
 size_t tlsph_contact_active(const struct tlsph_model *m) { return m->contact->active; }
 long tlsph_contact_searches(const struct tlsph_model *m) { return m->contact->searches; }
 int tlsph_contact_failed(const struct tlsph_model *m) { return m->contact->failed; }

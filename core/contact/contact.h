@@ -94,6 +94,14 @@ void tlsph_contact_free(struct tlsph_model *m);
  * caller books -dt x power into m->energy.contact. */
 double tlsph_contact_forces(struct tlsph_model *m, double dt);
 
+/* What the contact phase cost so far (wall-clock, s). */
+struct tlsph_contact_cost {
+    long searches;         /* searches made (the first at setup included) */
+    double search_seconds; /* in the searches */
+    double phase_seconds;  /* in the contact phase of the steps, searches included */
+};
+struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m);
+
 /* Pairs in contact (overlapping) in the last evaluation. */
 size_t tlsph_contact_active(const struct tlsph_model *m);
 /* Searches made so far (the first at setup included). */

@@ -8,6 +8,7 @@
 #include "contact/pinball.h"
 #include "contact/state.h"
 #include "run/model.h"
+#include "util/clock.h"
 #include "util/parallel.h"
 
 /* What one loop returns, summed over its particles. */
@@ -106,6 +107,7 @@ static const contact_loop loops[TLSPH_CONTACT_VARIANTS][2] = {
 double tlsph_contact_forces(struct tlsph_model *m, double dt)
 {
     struct tlsph_contact *c = m->contact;
+    const double t0 = tlsph_monotonic_seconds();
     if (tlsph_contact_search(m, c, 0) != 0)
         c->failed = 1;
     const struct contact_sums s =
@@ -115,5 +117,6 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
         const double dtc = sqrt(s.dt2);
         m->dt_cfl = dtc < m->dt_cfl ? dtc : m->dt_cfl;
     }
+    c->phase_seconds += tlsph_monotonic_seconds() - t0;
     return s.power;
 }

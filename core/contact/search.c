@@ -20,6 +20,7 @@
 
 #include "contact/state.h"
 #include "run/model.h"
+#include "util/clock.h"
 #include "util/parallel.h"
 
 /* May i and j touch?  Today: particles of different bodies.  Contact between
@@ -127,6 +128,7 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     const double *x = m->p.x;
     if (!force && c->searches > 0 && moved(m, c) <= 0.25 * c->skin * c->skin)
         return 0;
+    const double t0 = tlsph_monotonic_seconds();
     struct grid g = {.dim = m->dim};
     double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
     for (int d = 0; d < 3; d++)
@@ -175,5 +177,6 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
         scan(m, c, &g, i, c->j + start[i]);
     memcpy(c->x_search, x, 3 * n * sizeof *x);
     c->searches++;
+    c->search_seconds += tlsph_monotonic_seconds() - t0;
     return 0;
 }

@@ -31,6 +31,7 @@ struct tlsph_contact {
     double *f_old; /* contact force of the last evaluation, N [3n] (trapezoidal work) */
 
     long searches;
+    double search_seconds, phase_seconds; /* wall-clock, s (contact.h) */
     size_t active; /* pairs in contact in the last evaluation (each counted once) */
     int failed;    /* a search ran out of memory */
 };
