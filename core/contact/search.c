@@ -40,13 +40,17 @@ struct grid {
 
 /* Cells along each axis for the bounds lo..hi: the particles' cells plus one
  * on each side, so the 3 x 3 x 3 block around any particle's cell exists. */
-static double grid_layout(struct grid *g, const double hi[3], double cell)
+static double grid_layout(struct grid *g, const double hi[3], double cell, double limit)
 {
-    double total = 1.0;
-    g->cell = cell;
+    double dims[3], total = 1.0;
     for (int d = 0; d < 3; d++) {
-        g->dims[d] = d < g->dim ? (int64_t)floor((hi[d] - g->lo[d]) / cell) + 3 : 1;
-        total *= (double)g->dims[d];
+        dims[d] = d < g->dim ? floor((hi[d] - g->lo[d]) / cell) + 3.0 : 1.0;
+        total *= dims[d];
+    }
+    if (total <= limit) { /* only then do the counts fit the integers */
+        g->cell = cell;
+        for (int d = 0; d < 3; d++)
+            g->dims[d] = (int64_t)dims[d];
     }
     return total;
 }
@@ -135,11 +139,16 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
         g.lo[d] = INFINITY;
     for (size_t i = 0; i < n; i++)
         for (int d = 0; d < 3; d++) {
+            /* a run gone unstable: no cell for such a particle; the previous
+             * candidates stay until the stability contract stops the run
+             * (non_finite) */
+            if (!isfinite(x[3 * i + d]))
+                return 0;
             g.lo[d] = fmin(g.lo[d], x[3 * i + d]);
             hi[d] = fmax(hi[d], x[3 * i + d]);
         }
     double cell = 2.0 * c->max_radius + c->skin;
-    while (grid_layout(&g, hi, cell) > 4.0 * (double)n + 64.0)
+    while (grid_layout(&g, hi, cell, 4.0 * (double)n + 64.0) > 4.0 * (double)n + 64.0)
         cell *= 2.0;
     const size_t cells = (size_t)(g.dims[0] * g.dims[1] * g.dims[2]);
     if (reserve(m, (void **)&c->cell_start, &c->cell_cap, cells + 1, sizeof *c->cell_start) != 0)

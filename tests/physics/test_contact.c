@@ -24,8 +24,10 @@
  *   momentum to round-off in all three components, the balance within 1e-3 of
  *   KE0, and the damping dissipates (contact_energy > 0 after they part).
  * - The search against brute force (all pairs of different bodies closer than
- *   R_i + R_j + skin) on a scrambled configuration, and its skin rule: no new
- *   search until a particle has moved more than half the skin.
+ *   R_i + R_j + skin) on a scrambled configuration and with a particle 1 km
+ *   away (the grid coarsens, stays within 4n + 64 cells, lists stay exact),
+ *   and its skin rule: no new search until a particle has moved more than
+ *   half the skin.
  * - The contact stiffness in the stable step: two single-particle bodies
  *   overlapping at t = 0 with a stiff pin-ball law; the step estimate is
  *   sqrt(m* / k) of the pair, by hand, to 1e-12.
@@ -185,23 +187,11 @@ static int cmp_int32(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-START_TEST(search_matches_brute_force)
+/* Compares every particle's candidates with all pairs of different bodies
+ * closer than R_i + R_j + skin; returns the number of candidate entries. */
+static size_t compare_with_brute_force(const struct tlsph_model *m, const struct tlsph_contact *c)
 {
-    struct tlsph_model *m = build_example("two-bars", 0.0);
-    struct tlsph_contact *c = m->contact;
     const size_t n = m->p.n;
-    /* scramble: squeeze the bars together by 3 spacings and jitter every
-     * particle by up to 0.4 spacing (a fixed linear congruential sequence) */
-    unsigned long long s = 12345;
-    for (size_t i = 0; i < n; i++)
-        for (int d = 0; d < 2; d++) {
-            s = s * 6364136223846793005ULL + 1442695040888963407ULL;
-            const double u = (double)(s >> 11) / 9007199254740992.0 - 0.5;
-            m->p.x[3 * i + d] += 0.0008 * u - (d == 0 && m->p.body[i] == 1 ? 0.003 : 0.0);
-        }
-    const long before = c->searches;
-    ck_assert_int_eq(tlsph_contact_search(m, c, 1), 0);
-    ck_assert_int_eq(c->searches, before + 1);
     size_t total = 0;
     int32_t *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
     ck_assert(want && got);
@@ -226,6 +216,29 @@ START_TEST(search_matches_brute_force)
         ck_assert(memcmp(got, want, k * sizeof *got) == 0);
         total += k;
     }
+    free(want);
+    free(got);
+    return total;
+}
+
+START_TEST(search_matches_brute_force)
+{
+    struct tlsph_model *m = build_example("two-bars", 0.0);
+    struct tlsph_contact *c = m->contact;
+    const size_t n = m->p.n;
+    /* scramble: squeeze the bars together by 3 spacings and jitter every
+     * particle by up to 0.4 spacing (a fixed linear congruential sequence) */
+    unsigned long long s = 12345;
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 2; d++) {
+            s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+            const double u = (double)(s >> 11) / 9007199254740992.0 - 0.5;
+            m->p.x[3 * i + d] += 0.0008 * u - (d == 0 && m->p.body[i] == 1 ? 0.003 : 0.0);
+        }
+    const long before = c->searches;
+    ck_assert_int_eq(tlsph_contact_search(m, c, 1), 0);
+    ck_assert_int_eq(c->searches, before + 1);
+    const size_t total = compare_with_brute_force(m, c);
     fprintf(stderr, "search: %zu candidate entries, brute force agrees\n", total);
     ck_assert(total > 200); /* the squeeze made many */
     /* the skin rule: less than half the skin moved -> no search; more -> one */
@@ -235,8 +248,12 @@ START_TEST(search_matches_brute_force)
     m->p.x[0] += 0.02 * c->skin;
     ck_assert_int_eq(tlsph_contact_search(m, c, 0), 0);
     ck_assert_int_eq(c->searches, before + 2);
-    free(want);
-    free(got);
+    /* a fragment flown 1 km away: the cells grow so the grid stays within
+     * 4 n + 64 cells, and the lists are still exact */
+    m->p.x[3 * (n - 1)] = 1000.0;
+    ck_assert_int_eq(tlsph_contact_search(m, c, 1), 0);
+    ck_assert(c->cell_cap <= 2 * (4 * n + 64));
+    compare_with_brute_force(m, c);
     tlsph_model_free(m);
 }
 END_TEST
