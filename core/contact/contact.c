@@ -66,6 +66,15 @@ struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m)
     return (struct tlsph_contact_cost){c->searches, c->search_seconds, c->phase_seconds};
 }
 
+void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[3])
+{
+    const double *f = m->contact->f_old; /* the last evaluation's contact forces */
+    out[0] = out[1] = out[2] = 0.0;
+    for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
+        for (int c = 0; c < 3; c++)
+            out[c] += f[3 * i + c];
+}
+
 size_t tlsph_contact_active(const struct tlsph_model *m) { return m->contact->active; }
 long tlsph_contact_searches(const struct tlsph_model *m) { return m->contact->searches; }
 int tlsph_contact_failed(const struct tlsph_model *m) { return m->contact->failed; }

@@ -102,6 +102,10 @@ struct tlsph_contact_cost {
 };
 struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m);
 
+/* The contact force on body b from the other bodies in the last evaluation,
+ * N (N/m in 2-D) [3]: the sum of its particles' contact forces. */
+void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[3]);
+
 /* Pairs in contact (overlapping) in the last evaluation. */
 size_t tlsph_contact_active(const struct tlsph_model *m);
 /* Searches made so far (the first at setup included). */

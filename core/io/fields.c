@@ -326,7 +326,24 @@ static const struct tlsph_series_column wall_columns[] = {
     {"torque", 3, "N m", "torque of that force about the wall's point", NULL, NULL},
 };
 
+static const struct tlsph_series_column contact_columns[] = {
+    {"force", 3, "N", "contact force on the body from the other bodies (last force evaluation)",
+     NULL, NULL},
+};
+
 static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
+static size_t contact_count(const struct tlsph_model *m)
+{
+    return m->contact ? m->scene.nbodies : 0;
+}
+static const char *contact_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.bodies[k].name;
+}
+static void contact_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    tlsph_contact_body_force(m, k, out);
+}
 static size_t gauge_count(const struct tlsph_model *m) { return m->scene.ngauges; }
 static size_t section_count(const struct tlsph_model *m) { return m->scene.nsections; }
 
@@ -390,6 +407,9 @@ const struct tlsph_series_family tlsph_series_families[] = {
                                section_item, section_values},
     [TLSPH_FAMILY_WALLS] = {"walls", 0, wall_columns, sizeof wall_columns / sizeof *wall_columns,
                             group_count, wall_item, wall_values},
+    [TLSPH_FAMILY_CONTACTS] = {"contacts", 0, contact_columns,
+                               sizeof contact_columns / sizeof *contact_columns, contact_count,
+                               contact_item, contact_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

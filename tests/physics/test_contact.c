@@ -31,6 +31,9 @@
  * - The contact stiffness in the stable step: two single-particle bodies
  *   overlapping at t = 0 with a stiff pin-ball law; the step estimate is
  *   sqrt(m* / k) of the pair, by hand, to 1e-12.
+ * - The body contact-force series (core/io/fields.c "contacts"): its
+ *   trapezoid over the steps is the target bar's momentum change, to 1e-12
+ *   (the kicks apply exactly dt/2 (F_n + F_n+1)).
  * - A scene with two bodies and no contact block allocates no contact state
  *   and lists no contact module. */
 #include <check.h>
@@ -44,14 +47,23 @@
 #include "support/check_main.h"
 #include "support/scene_builder.h"
 
+/* x momentum of body b, kg m/s (per metre in 2-D), and its mass, kg. */
+static double body_momentum(const struct tlsph_model *m, size_t b, double *mass)
+{
+    double p = 0.0;
+    *mass = 0.0;
+    for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
+        p += m->p.mass[i] * m->p.v[3 * i];
+        *mass += m->p.mass[i];
+    }
+    return p;
+}
+
 /* Mean x velocity of body b, m/s. */
 static double body_velocity(const struct tlsph_model *m, size_t b)
 {
-    double p = 0.0, mass = 0.0;
-    for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
-        p += m->p.mass[i] * m->p.v[3 * i];
-        mass += m->p.mass[i];
-    }
+    double mass;
+    const double p = body_momentum(m, b, &mass);
     return p / mass;
 }
 
@@ -84,6 +96,41 @@ static struct run_record run_recorded(struct tlsph_model *m)
     }
     return r;
 }
+
+/* The target's momentum from the body contact-force series
+ * (tlsph_contact_body_force): the kicks give it dt/2 (F_n + F_n+1) per step,
+ * and its own pair forces cancel, so the trapezoid of the series over the
+ * steps is its momentum change to round-off. */
+static double target_impulse_check(struct tlsph_model *m, double *momentum_change)
+{
+    double f_prev[3], f[3], impulse = 0.0, mass;
+    const double p0 = body_momentum(m, 1, &mass);
+    tlsph_contact_body_force(m, 1, f_prev);
+    struct tlsph_diagnostic d;
+    while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
+        tlsph_model_step(m);
+        ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+        tlsph_contact_body_force(m, 1, f);
+        impulse += 0.5 * m->dt * (f_prev[0] + f[0]);
+        f_prev[0] = f[0];
+    }
+    *momentum_change = body_momentum(m, 1, &mass) - p0;
+    return impulse;
+}
+
+START_TEST(contact_force_series_is_the_impulse)
+{
+    struct tlsph_model *m = build_example("two-bars", 0.0);
+    double dp;
+    const double impulse = target_impulse_check(m, &dp);
+    fprintf(stderr, "target: contact impulse %.12g N s, momentum change %.12g kg m/s\n", impulse,
+            dp);
+    ck_assert(dp > 7.0);
+    ck_assert_msg(fabs(impulse - dp) < 1e-12 * dp, "impulse %.15g, momentum change %.15g",
+                  impulse, dp);
+    tlsph_model_free(m);
+}
+END_TEST
 
 START_TEST(bars_exchange_velocities)
 {
@@ -308,6 +355,7 @@ START_TEST(no_contact_block_no_contact_state)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("contact", 300, bars_exchange_velocities, bars_with_the_pinball_law,
+TLSPH_CHECK_MAIN("contact", 300, bars_exchange_velocities, contact_force_series_is_the_impulse,
+                 bars_with_the_pinball_law,
                  damped_oblique_impact_in_3d, search_matches_brute_force,
                  contact_stiffness_limits_the_step, no_contact_block_no_contact_state)
