@@ -77,6 +77,35 @@ void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[
 
 size_t tlsph_contact_active(const struct tlsph_model *m) { return m->contact->active; }
 long tlsph_contact_searches(const struct tlsph_model *m) { return m->contact->searches; }
+double tlsph_contact_take_overlap(struct tlsph_model *m)
+{
+    const double seen = m->contact->max_overlap;
+    m->contact->max_overlap = 0.0;
+    return seen;
+}
+
+void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2])
+{
+    const struct tlsph_contact *c = m->contact;
+    ids[0] = ids[1] = -1;
+    double deepest = 0.0;
+    const double *x = m->p.x;
+    for (size_t i = 0; i < m->p.n; i++)
+        for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
+            const size_t j = (size_t)c->j[k];
+            const double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            double r2 = 0.0;
+            for (int d = 0; d < 3; d++)
+                r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
+            const double depth = (reach - sqrt(r2)) / reach;
+            if (depth > deepest) {
+                deepest = depth;
+                ids[0] = m->p.id[i];
+                ids[1] = m->p.id[j];
+            }
+        }
+}
+
 int tlsph_contact_failed(const struct tlsph_model *m) { return m->contact->failed; }
 
 size_t tlsph_contact_candidates(const struct tlsph_model *m)

@@ -112,6 +112,15 @@ size_t tlsph_contact_active(const struct tlsph_model *m);
 long tlsph_contact_searches(const struct tlsph_model *m);
 /* Candidate pairs of the current search (each pair counted from both sides). */
 size_t tlsph_contact_candidates(const struct tlsph_model *m);
+/* The deepest overlap of a pair relative to its contact distance,
+ * (R_i + R_j - r) / (R_i + R_j), reached in any evaluation since the last
+ * call, which starts the next watch.  The stability contract stops a run
+ * whose overlap passed TLSPH_CONTACT_MAX_OVERLAP (scene/limits.h): particles
+ * that deep are about to pass through each other. */
+double tlsph_contact_take_overlap(struct tlsph_model *m);
+/* The ids of the pair of candidates overlapping most now (-1 when none). */
+void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2]);
+
 /* 1 when a search ran out of memory (the run must stop: the stability
  * contract reports it as "contact_search"), else 0. */
 int tlsph_contact_failed(const struct tlsph_model *m);

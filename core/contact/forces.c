@@ -15,6 +15,7 @@
 struct contact_sums {
     double power;    /* trapezoidal power of the contact forces, W */
     double dt2;      /* smallest m* / k over the pairs in contact, s^2 */
+    double overlap;  /* largest overlap / (R_i + R_j), 1 */
     size_t active;   /* pairs in contact, each counted from both sides */
 };
 
@@ -32,7 +33,7 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
     const double mi = mass[i];
-    double f0 = 0.0, f1 = 0.0, f2 = 0.0, dt2 = INFINITY;
+    double f0 = 0.0, f1 = 0.0, f2 = 0.0, dt2 = INFINITY, deepest = 0.0;
     size_t active = 0;
     for (int64_t k = start[i]; k < start[i + 1]; k++) {
         const size_t j = (size_t)cand[k];
@@ -54,6 +55,8 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
             p = tlsph_pinball_pair(bi, bj, reach - r, closing < 0.0,
                                    sqrt(w0 * w0 + w1 * w1 + w2 * w2), inv_dt,
                                    c->params[TLSPH_PINBALL_SCALE_FACTOR]);
+        const double depth = (reach - r) / reach;
+        deepest = depth > deepest ? depth : deepest;
         const double s = p.force / r;
         f0 -= s * d0;
         f1 -= s * d1;
@@ -73,6 +76,7 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
     o[1] = f1;
     o[2] = f2;
     sum->dt2 = dt2 < sum->dt2 ? dt2 : sum->dt2;
+    sum->overlap = deepest > sum->overlap ? deepest : sum->overlap;
     sum->active += active;
 }
 
@@ -83,17 +87,18 @@ typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct t
                                     double inv_dt)                                                \
     {                                                                                             \
         const size_t n = m->p.n;                                                                  \
-        double power = 0.0, dt2 = INFINITY;                                                       \
+        double power = 0.0, dt2 = INFINITY, overlap = 0.0;                                        \
         size_t active = 0;                                                                        \
-        _Pragma("omp parallel for schedule(static) reduction(+ : power, active) reduction(min : dt2) if (n >= TLSPH_PARALLEL_MIN_ITEMS)") \
+        _Pragma("omp parallel for schedule(static) reduction(+ : power, active) reduction(min : dt2) reduction(max : overlap) if (n >= TLSPH_PARALLEL_MIN_ITEMS)") \
         for (size_t i = 0; i < n; i++) {                                                          \
-            struct contact_sums s = {0.0, INFINITY, 0};                                           \
+            struct contact_sums s = {0.0, INFINITY, 0.0, 0};                                      \
             contact_particle(m, c, i, LAW, DIM, inv_dt, &s);                                      \
             power += s.power;                                                                     \
             dt2 = s.dt2 < dt2 ? s.dt2 : dt2;                                                      \
+            overlap = s.overlap > overlap ? s.overlap : overlap;                                  \
             active += s.active;                                                                   \
         }                                                                                         \
-        return (struct contact_sums){power, dt2, active};                                         \
+        return (struct contact_sums){power, dt2, overlap, active};                                \
     }
 CONTACT_LOOP(penalty_2d, TLSPH_CONTACT_PENALTY, 2)
 CONTACT_LOOP(penalty_3d, TLSPH_CONTACT_PENALTY, 3)
@@ -113,6 +118,7 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
     const struct contact_sums s =
         loops[c->law->variant][m->dim == 3](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
     c->active = s.active / 2;
+    c->max_overlap = s.overlap > c->max_overlap ? s.overlap : c->max_overlap;
     if (s.dt2 < INFINITY) {
         const double dtc = sqrt(s.dt2);
         m->dt_cfl = dtc < m->dt_cfl ? dtc : m->dt_cfl;

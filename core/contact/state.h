@@ -33,6 +33,9 @@ struct tlsph_contact {
     long searches;
     double search_seconds, phase_seconds; /* wall-clock, s (contact.h) */
     size_t active; /* pairs in contact in the last evaluation (each counted once) */
+    /* deepest overlap / (R_i + R_j) of any pair since the stability contract
+     * last looked (tlsph_contact_take_overlap) */
+    double max_overlap;
     int failed;    /* a search ran out of memory */
 };
 

@@ -160,6 +160,18 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
     if (m->contact && tlsph_contact_failed(m))
         return fail(m, d, "contact_search", 0.0, 0.0,
                     "the contact search ran out of memory", NULL);
+    if (m->contact) {
+        const double overlap = tlsph_contact_take_overlap(m);
+        if (overlap > TLSPH_CONTACT_MAX_OVERLAP) {
+            int64_t ids[2];
+            tlsph_contact_deepest_pair(m, ids);
+            for (int k = 0; k < 2; k++)
+                if (ids[k] >= 0)
+                    add_id(d, ids[k]);
+            return fail(m, d, "contact_penetration", overlap, TLSPH_CONTACT_MAX_OVERLAP, NULL,
+                        "(deepest pair now)");
+        }
+    }
 
     const double vmax = m->scene.speed_limit_factor * m->max_wave_speed;
     double worst = 0.0;

@@ -14,6 +14,8 @@
  *   every step (1e-12 of the momentum scale: f_ij = -f_ji exactly); energy
  *   balance within 1e-3 of the initial kinetic energy every step (measured
  *   6e-5; the engine's own limit is 5 % of the energy scale).
+ * - The bars at 2500 m/s: the stability contract stops the run
+ *   (contact_penetration) before particles pass through each other.
  * - The same bars with the pin-ball law (paper 001 eqs. 31-35): the law is not
  *   conservative (the momentum-stopping estimate F1 damps), so only what the
  *   engine promises is checked: momentum to round-off, the energy balance
@@ -173,6 +175,39 @@ static struct tlsph_model *bars_with(const char *contact)
     free(text);
     return m;
 }
+
+/* The bars at 2500 m/s, half the wave speed: the penalty overlap grows as
+ * v / (0.78 c) of a spacing (docs/contact.md), so the particles at the
+ * interface would pass through each other; the run must stop as unstable
+ * (contact_penetration, overlap > TLSPH_CONTACT_MAX_OVERLAP of the contact
+ * distance) naming a pair of the two bars, never go on silently wrong. */
+START_TEST(high_speed_penetration_is_reported)
+{
+    const char *top = getenv("top_srcdir");
+    char path[4096];
+    snprintf(path, sizeof path, "%s/examples/two-bars.json", top ? top : ".");
+    json_error_t jerr;
+    json_t *root = json_load_file(path, 0, &jerr);
+    ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
+    json_object_set_new(json_object_get(root, "parameters"), "v0", json_real(2500.0));
+    char *text = json_dumps(root, JSON_COMPACT);
+    json_decref(root);
+    struct tlsph_model *m = build_model(text);
+    free(text);
+    struct tlsph_diagnostic d;
+    int stopped = 0;
+    while (!stopped && m->t < m->scene.end_time * (1.0 - 1e-12)) {
+        tlsph_model_step(m);
+        if (m->step % m->scene.check_every == 0)
+            stopped = tlsph_model_check(m, &d) != 0;
+    }
+    ck_assert_msg(stopped, "a 2500 m/s impact ran to the end");
+    fprintf(stderr, "2500 m/s: %s\n", d.message);
+    ck_assert_str_eq(d.quantity, "contact_penetration");
+    ck_assert(d.value > TLSPH_CONTACT_MAX_OVERLAP && d.nids == 2);
+    tlsph_model_free(m);
+}
+END_TEST
 
 START_TEST(bars_with_the_pinball_law)
 {
@@ -356,6 +391,6 @@ START_TEST(no_contact_block_no_contact_state)
 END_TEST
 
 TLSPH_CHECK_MAIN("contact", 300, bars_exchange_velocities, contact_force_series_is_the_impulse,
-                 bars_with_the_pinball_law,
+                 high_speed_penetration_is_reported, bars_with_the_pinball_law,
                  damped_oblique_impact_in_3d, search_matches_brute_force,
                  contact_stiffness_limits_the_step, no_contact_block_no_contact_state)
