@@ -1,9 +1,59 @@
 /* Setup and teardown of the contact phase (contact.h), and what it reports. */
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "contact/state.h"
 #include "run/model.h"
+
+/* At t = 0 no two bodies may overlap: the lattice cells of two particles of
+ * different bodies (edge s_i, s_j) may touch but not interpenetrate, i.e.
+ * r >= (s_i + s_j)/2 up to round-off.  Overlapping bodies would start with a
+ * contact force that no motion caused, an explosion of their overlap's
+ * energy.  Looks at the candidate pairs (closer than R_i + R_j + skin), which
+ * hold every such pair unless a law's radius is far below half the spacing. */
+static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
+{
+    const struct tlsph_contact *c = m->contact;
+    const struct tlsph_scene *s = &m->scene;
+    const double *x = m->p.x;
+    size_t pairs = 0, bi = 0, bj = 0, at = 0;
+    double worst = 0.0, gap = 0.0;
+    for (size_t i = 0; i < m->p.n; i++)
+        for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
+            const size_t j = (size_t)c->j[k];
+            const size_t a = (size_t)m->p.body[i], b = (size_t)m->p.body[j];
+            if (a > b)
+                continue; /* each pair once */
+            const double touch = 0.5 * (s->bodies[a].spacing + s->bodies[b].spacing);
+            double r2 = 0.0;
+            for (int d = 0; d < 3; d++)
+                r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
+            const double depth = (touch - sqrt(r2)) / touch;
+            if (depth <= 1e-9)
+                continue;
+            if (pairs++ == 0 || depth > worst) {
+                worst = depth;
+                gap = sqrt(r2);
+                bi = a;
+                bj = b;
+                at = i;
+            }
+        }
+    if (pairs == 0)
+        return 0;
+    char ptr[64];
+    snprintf(ptr, sizeof ptr, "/bodies/%zu", bj);
+    const double *X = x + 3 * at;
+    tlsph_errors_add(err, ptr,
+                     "body '%s' overlaps body '%s' at t = 0: %zu pairs of their particles are "
+                     "closer than their lattice cells allow (the closest %.3g m apart, %.3g "
+                     "spacings, near (%g, %g, %g) m); with contact the bodies must start apart "
+                     "or touching",
+                     s->bodies[bj].name, s->bodies[bi].name, pairs, gap,
+                     gap / s->bodies[bj].spacing, X[0], X[1], X[2]);
+    return -1;
+}
 
 int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
 {
@@ -40,7 +90,7 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
         tlsph_errors_add(err, "/contact", "out of memory for the contact search");
         return -1;
     }
-    return 0;
+    return check_start(m, err);
 }
 
 void tlsph_contact_free(struct tlsph_model *m)

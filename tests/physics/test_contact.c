@@ -31,7 +31,8 @@
  *   and its skin rule: no new search until a particle has moved more than
  *   half the skin.
  * - The contact stiffness in the stable step: two single-particle bodies
- *   overlapping at t = 0 with a stiff pin-ball law; the step estimate is
+ *   touching at t = 0 with a stiff pin-ball law (balls slightly larger than
+ *   the cells); the step estimate is
  *   sqrt(m* / k) of the pair, by hand, to 1e-12.
  * - The body contact-force series (core/io/fields.c "contacts"): its
  *   trapezoid over the steps is the target bar's momentum change, to 1e-12
@@ -342,21 +343,21 @@ END_TEST
 
 START_TEST(contact_stiffness_limits_the_step)
 {
-    /* two single-particle steel bodies 0.9 mm apart (balls of R = 0.5 x 1.005
-     * = 0.5025 mm: overlap p = 0.105 mm), K_p = 1e4 */
+    /* two single-particle steel bodies touching, 1 mm apart (balls of
+     * R = 0.5 x 1.005 = 0.5025 mm: overlap p = 5 um), K_p = 1e4 */
     const char *json =
         "{\"dimension\":3,\"time\":{\"end\":1e-6},"
         "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
         "\"poisson_ratio\":0.3}},"
         "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
         "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.001,0.001,0.001]}}},"
-        "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,\"origin\":[0.0009,0,0],"
-        "\"geometry\":{\"box\":{\"min\":[0.0009,0,0],\"max\":[0.0019,0.001,0.001]}}}],"
+        "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,\"origin\":[0.001,0,0],"
+        "\"geometry\":{\"box\":{\"min\":[0.001,0,0],\"max\":[0.002,0.001,0.001]}}}],"
         "\"contact\":{\"law\":{\"type\":\"pinball\",\"radius_factor\":0.5,\"scale_factor\":1e4}}}";
     struct tlsph_model *m = build_model(json);
     ck_assert_uint_eq(m->p.n, 2);
     const struct tlsph_material *mat = &m->scene.materials[0];
-    const double R = 0.5 * 0.5 * 2.01 * 0.001, p = 2.0 * R - 0.0009;
+    const double R = 0.5 * 0.5 * 2.01 * 0.001, p = 2.0 * R - 0.001;
     const double mu = mat->shear_modulus, mass = m->p.mass[0];
     const double k = 1e4 * 1.5 * (mu / 2.0) * sqrt(R / 2.0) * sqrt(p);
     const double expect = sqrt(0.5 * mass / k);
