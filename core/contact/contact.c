@@ -69,6 +69,7 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
     c->law = s->contact.law;
     for (int k = 0; k < 4; k++)
         c->params[k] = s->contact.params[k];
+    c->variant = c->law->variant(s);
     c->bodies = tlsph_alloc(m, s->nbodies, sizeof *c->bodies);
     c->start = tlsph_alloc(m, n + 1, sizeof *c->start);
     c->x_search = tlsph_alloc(m, 3 * n, sizeof *c->x_search);

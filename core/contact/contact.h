@@ -48,7 +48,8 @@ struct tlsph_model; /* run/model.h */
 
 /* Which compiled pair loop a law uses (core/contact/forces.c). */
 enum tlsph_contact_variant {
-    TLSPH_CONTACT_PENALTY,
+    TLSPH_CONTACT_PENALTY_LINE,
+    TLSPH_CONTACT_PENALTY_POINT,
     TLSPH_CONTACT_PINBALL,
     TLSPH_CONTACT_VARIANTS
 };
@@ -62,7 +63,8 @@ struct tlsph_contact_body {
 struct tlsph_contact_law {
     const char *name;   /* as written in the scene: "contact": {"law": {"type": name}} */
     const char *module; /* its entry in the result's module list */
-    enum tlsph_contact_variant variant;
+    /* the pair loop for this scene's settings (s->contact) */
+    enum tlsph_contact_variant (*variant)(const struct tlsph_scene *s);
     /* its parameters, at "/contact/law" with the law's name as model: a
      * TLSPH_KEY_MODEL_TYPE row, then one row per parameter into params */
     const struct tlsph_key_table *keys;

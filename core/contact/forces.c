@@ -21,7 +21,7 @@ struct contact_sums {
 
 static inline __attribute__((always_inline)) void
 contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
-                 const enum tlsph_contact_variant law, const int dim, double inv_dt,
+                 const enum tlsph_contact_variant law, double inv_dt,
                  struct contact_sums *sum)
 {
     const double *restrict x = m->p.x, *restrict v = m->p.v, *restrict mass = m->p.mass;
@@ -48,9 +48,9 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
         const double w0 = v[3 * j] - vi0, w1 = v[3 * j + 1] - vi1, w2 = v[3 * j + 2] - vi2;
         const double closing = w0 * d0 + w1 * d1 + w2 * d2; /* < 0: approaching */
         struct tlsph_contact_pair p;
-        if (law == TLSPH_CONTACT_PENALTY)
-            p = tlsph_penalty_pair(dim, bi, bj, mi, mass[j], reach - r, -closing / r,
-                                   c->params[TLSPH_PENALTY_DAMPING]);
+        if (law != TLSPH_CONTACT_PINBALL)
+            p = tlsph_penalty_pair(law == TLSPH_CONTACT_PENALTY_POINT, bi, bj, mi, mass[j],
+                                   reach - r, -closing / r, c->params[TLSPH_PENALTY_DAMPING]);
         else
             p = tlsph_pinball_pair(bi, bj, reach - r, closing < 0.0,
                                    sqrt(w0 * w0 + w1 * w1 + w2 * w2), inv_dt,
@@ -82,7 +82,7 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
 
 typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct tlsph_contact *,
                                             double);
-#define CONTACT_LOOP(NAME, LAW, DIM)                                                              \
+#define CONTACT_LOOP(NAME, LAW)                                                              \
     static struct contact_sums NAME(struct tlsph_model *m, const struct tlsph_contact *c,         \
                                     double inv_dt)                                                \
     {                                                                                             \
@@ -92,7 +92,7 @@ typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct t
         _Pragma("omp parallel for schedule(static) reduction(+ : power, active) reduction(min : dt2) reduction(max : overlap) if (n >= TLSPH_PARALLEL_MIN_ITEMS)") \
         for (size_t i = 0; i < n; i++) {                                                          \
             struct contact_sums s = {0.0, INFINITY, 0.0, 0};                                      \
-            contact_particle(m, c, i, LAW, DIM, inv_dt, &s);                                      \
+            contact_particle(m, c, i, LAW, inv_dt, &s);                                      \
             power += s.power;                                                                     \
             dt2 = s.dt2 < dt2 ? s.dt2 : dt2;                                                      \
             overlap = s.overlap > overlap ? s.overlap : overlap;                                  \
@@ -100,13 +100,13 @@ typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct t
         }                                                                                         \
         return (struct contact_sums){power, dt2, overlap, active};                                \
     }
-CONTACT_LOOP(penalty_2d, TLSPH_CONTACT_PENALTY, 2)
-CONTACT_LOOP(penalty_3d, TLSPH_CONTACT_PENALTY, 3)
-CONTACT_LOOP(pinball_any, TLSPH_CONTACT_PINBALL, 3)
-/* [law][dimension == 3] */
-static const contact_loop loops[TLSPH_CONTACT_VARIANTS][2] = {
-    [TLSPH_CONTACT_PENALTY] = {penalty_2d, penalty_3d},
-    [TLSPH_CONTACT_PINBALL] = {pinball_any, pinball_any},
+CONTACT_LOOP(penalty_line, TLSPH_CONTACT_PENALTY_LINE)
+CONTACT_LOOP(penalty_point, TLSPH_CONTACT_PENALTY_POINT)
+CONTACT_LOOP(pinball, TLSPH_CONTACT_PINBALL)
+static const contact_loop loops[TLSPH_CONTACT_VARIANTS] = {
+    [TLSPH_CONTACT_PENALTY_LINE] = penalty_line,
+    [TLSPH_CONTACT_PENALTY_POINT] = penalty_point,
+    [TLSPH_CONTACT_PINBALL] = pinball,
 };
 
 double tlsph_contact_forces(struct tlsph_model *m, double dt)
@@ -116,7 +116,7 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
     if (tlsph_contact_search(m, c, 0) != 0)
         c->failed = 1;
     const struct contact_sums s =
-        loops[c->law->variant][m->dim == 3](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
+        loops[c->variant](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
     c->active = s.active / 2;
     c->max_overlap = s.overlap > c->max_overlap ? s.overlap : c->max_overlap;
     if (s.dt2 < INFINITY) {

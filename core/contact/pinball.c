@@ -38,10 +38,16 @@ static void body(const struct tlsph_scene *s, size_t b, struct tlsph_contact_bod
     out->b = mat->shear_modulus;
 }
 
+static enum tlsph_contact_variant variant(const struct tlsph_scene *s)
+{
+    (void)s;
+    return TLSPH_CONTACT_PINBALL;
+}
+
 const struct tlsph_contact_law tlsph_contact_pinball = {
     .name = "pinball",
     .module = "contact:pinball",
-    .variant = TLSPH_CONTACT_PINBALL,
+    .variant = variant,
     .keys = &table,
     .parse = parse,
     .body = body,

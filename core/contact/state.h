@@ -12,6 +12,7 @@ struct tlsph_contact {
     const struct tlsph_contact_law *law;
     struct tlsph_contact_body *bodies; /* [nbodies] */
     double params[4];                  /* the law's parameters (scene) */
+    enum tlsph_contact_variant variant; /* the pair loop (law->variant) */
     double skin;                       /* m */
     double max_radius;                 /* largest contact radius, m */
 

@@ -169,6 +169,8 @@ struct tlsph_section {
 struct tlsph_contact_settings {
     const struct tlsph_contact_law *law; /* NULL: no contact */
     double params[4];             /* the law's parameters, meaning fixed by the law */
+    int choice;                   /* the law's choice key, meaning fixed by the law
+                                     (penalty: its form, enum tlsph_penalty_form) */
     double skin;                  /* search skin / largest body spacing, 1 */
 };
 
