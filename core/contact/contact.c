@@ -126,8 +126,14 @@ void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[
             out[c] += f[3 * i + c];
 }
 
-size_t tlsph_contact_active(const struct tlsph_model *m) { return m->contact->active; }
-long tlsph_contact_searches(const struct tlsph_model *m) { return m->contact->searches; }
+size_t tlsph_contact_active(const struct tlsph_model *m)
+{
+    return m->contact->active;
+}
+long tlsph_contact_searches(const struct tlsph_model *m)
+{
+    return m->contact->searches;
+}
 double tlsph_contact_take_overlap(struct tlsph_model *m)
 {
     const double seen = m->contact->max_overlap;
@@ -157,7 +163,10 @@ void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2])
         }
 }
 
-int tlsph_contact_failed(const struct tlsph_model *m) { return m->contact->failed; }
+int tlsph_contact_failed(const struct tlsph_model *m)
+{
+    return m->contact->failed;
+}
 
 size_t tlsph_contact_candidates(const struct tlsph_model *m)
 {

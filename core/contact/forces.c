@@ -1,6 +1,7 @@
 /* The contact phase (contact.h): search when needed, then one pair loop per
- * law, compiled from one always_inline body with the law (and the dimension)
- * as constants, so no pair dispatches on the scene's choices.  Gather form:
+ * law variant (the penalty's two forms, the pin-ball), compiled from one
+ * always_inline body with the variant as a constant, so no pair dispatches on
+ * the scene's choices; the loop is picked once per evaluation.  Gather form:
  * each particle sums the forces of its own candidates, no atomics. */
 #include <math.h>
 
@@ -13,16 +14,15 @@
 
 /* What one loop returns, summed over its particles. */
 struct contact_sums {
-    double power;    /* trapezoidal power of the contact forces, W */
-    double dt2;      /* smallest m* / k over the pairs in contact, s^2 */
-    double overlap;  /* largest overlap / (R_i + R_j), 1 */
-    size_t active;   /* pairs in contact, each counted from both sides */
+    double power;   /* trapezoidal power of the contact forces, W */
+    double dt2;     /* smallest m* / k over the pairs in contact, s^2 */
+    double overlap; /* largest overlap / (R_i + R_j), 1 */
+    size_t active;  /* pairs in contact, each counted from both sides */
 };
 
 static inline __attribute__((always_inline)) void
 contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
-                 const enum tlsph_contact_variant law, double inv_dt,
-                 struct contact_sums *sum)
+                 const enum tlsph_contact_variant law, double inv_dt, struct contact_sums *sum)
 {
     const double *restrict x = m->p.x, *restrict v = m->p.v, *restrict mass = m->p.mass;
     const int32_t *restrict body = m->p.body;
@@ -82,7 +82,8 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
 
 typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct tlsph_contact *,
                                             double);
-#define CONTACT_LOOP(NAME, LAW)                                                              \
+/* clang-format off */
+#define CONTACT_LOOP(NAME, LAW)                                                                   \
     static struct contact_sums NAME(struct tlsph_model *m, const struct tlsph_contact *c,         \
                                     double inv_dt)                                                \
     {                                                                                             \
@@ -92,7 +93,7 @@ typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct t
         _Pragma("omp parallel for schedule(static) reduction(+ : power, active) reduction(min : dt2) reduction(max : overlap) if (n >= TLSPH_PARALLEL_MIN_ITEMS)") \
         for (size_t i = 0; i < n; i++) {                                                          \
             struct contact_sums s = {0.0, INFINITY, 0.0, 0};                                      \
-            contact_particle(m, c, i, LAW, inv_dt, &s);                                      \
+            contact_particle(m, c, i, LAW, inv_dt, &s);                                           \
             power += s.power;                                                                     \
             dt2 = s.dt2 < dt2 ? s.dt2 : dt2;                                                      \
             overlap = s.overlap > overlap ? s.overlap : overlap;                                  \
@@ -100,6 +101,7 @@ typedef struct contact_sums (*contact_loop)(struct tlsph_model *, const struct t
         }                                                                                         \
         return (struct contact_sums){power, dt2, overlap, active};                                \
     }
+/* clang-format on */
 CONTACT_LOOP(penalty_line, TLSPH_CONTACT_PENALTY_LINE)
 CONTACT_LOOP(penalty_point, TLSPH_CONTACT_PENALTY_POINT)
 CONTACT_LOOP(pinball, TLSPH_CONTACT_PINBALL)
@@ -115,8 +117,7 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
     const double t0 = tlsph_monotonic_seconds();
     if (tlsph_contact_search(m, c, 0) != 0)
         c->failed = 1;
-    const struct contact_sums s =
-        loops[c->variant](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
+    const struct contact_sums s = loops[c->variant](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
     c->active = s.active / 2;
     c->max_overlap = s.overlap > c->max_overlap ? s.overlap : c->max_overlap;
     if (s.dt2 < INFINITY) {

@@ -35,7 +35,7 @@
 
 #include "contact/contact.h"
 
-enum { TLSPH_PENALTY_DAMPING }; /* params[] */
+enum { TLSPH_PENALTY_DAMPING };                                      /* params[] */
 enum tlsph_penalty_form { TLSPH_PENALTY_LINE, TLSPH_PENALTY_POINT }; /* choice */
 
 struct tlsph_contact_pair {

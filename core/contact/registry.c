@@ -13,7 +13,10 @@ CONTACT_LAWS(DECLARE)
 static const struct tlsph_contact_law *const laws[] = {CONTACT_LAWS(ENTRY)};
 
 /* "penalty, pinball" */
-const char *tlsph_contact_names(void) { return CONTACT_LAWS(TLSPH_LISTED) + 2; }
+const char *tlsph_contact_names(void)
+{
+    return CONTACT_LAWS(TLSPH_LISTED) + 2;
+}
 
 const struct tlsph_contact_law *tlsph_contact_find(const char *name)
 {
@@ -21,4 +24,7 @@ const struct tlsph_contact_law *tlsph_contact_find(const char *name)
     return k < 0 ? NULL : laws[k];
 }
 
-const struct tlsph_contact_law *tlsph_contact_default(void) { return laws[0]; }
+const struct tlsph_contact_law *tlsph_contact_default(void)
+{
+    return laws[0];
+}

@@ -64,8 +64,8 @@ static int64_t grid_key(const struct grid *g, const double *x)
 }
 
 /* Candidates of particle i: counted (out NULL) or written to out. */
-static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c,
-                   const struct grid *g, size_t i, int32_t *out)
+static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, const struct grid *g,
+                   size_t i, int32_t *out)
 {
     const double *x = m->p.x;
     const int32_t *body = m->p.body;

@@ -10,11 +10,11 @@
 
 struct tlsph_contact {
     const struct tlsph_contact_law *law;
-    struct tlsph_contact_body *bodies; /* [nbodies] */
-    double params[4];                  /* the law's parameters (scene) */
+    struct tlsph_contact_body *bodies;  /* [nbodies] */
+    double params[4];                   /* the law's parameters (scene) */
     enum tlsph_contact_variant variant; /* the pair loop (law->variant) */
-    double skin;                       /* m */
-    double max_radius;                 /* largest contact radius, m */
+    double skin;                        /* m */
+    double max_radius;                  /* largest contact radius, m */
 
     /* Candidates: the pairs of i are j[start[i] .. start[i+1]-1], every pair
      * listed from both sides (gather form: each particle sums its own). */
@@ -37,7 +37,7 @@ struct tlsph_contact {
     /* deepest overlap / (R_i + R_j) of any pair since the stability contract
      * last looked (tlsph_contact_take_overlap) */
     double max_overlap;
-    int failed;    /* a search ran out of memory */
+    int failed; /* a search ran out of memory */
 };
 
 /* A search at the current positions when some particle moved more than half

@@ -132,8 +132,8 @@ START_TEST(contact_force_series_is_the_impulse)
     fprintf(stderr, "target: contact impulse %.12g N s, momentum change %.12g kg m/s\n", impulse,
             dp);
     ck_assert(dp > 7.0);
-    ck_assert_msg(fabs(impulse - dp) < 1e-12 * dp, "impulse %.15g, momentum change %.15g",
-                  impulse, dp);
+    ck_assert_msg(fabs(impulse - dp) < 1e-12 * dp, "impulse %.15g, momentum change %.15g", impulse,
+                  dp);
     tlsph_model_free(m);
 }
 END_TEST
@@ -404,25 +404,24 @@ START_TEST(contact_stiffness_limits_the_step)
     const double k = 1e4 * 1.5 * (mu / 2.0) * sqrt(R / 2.0) * sqrt(p);
     const double expect = sqrt(0.5 * mass / k);
     const double material = 0.001 / mat->wave_speed;
-    fprintf(stderr, "step estimate %.6e s: contact sqrt(m*/k) %.6e s, material %.6e s\n",
-            m->dt_cfl, expect, material);
+    fprintf(stderr, "step estimate %.6e s: contact sqrt(m*/k) %.6e s, material %.6e s\n", m->dt_cfl,
+            expect, material);
     ck_assert(expect < material);
-    ck_assert_msg(fabs(m->dt_cfl / expect - 1.0) < 1e-12, "dt_cfl %.15g, expected %.15g",
-                  m->dt_cfl, expect);
+    ck_assert_msg(fabs(m->dt_cfl / expect - 1.0) < 1e-12, "dt_cfl %.15g, expected %.15g", m->dt_cfl,
+                  expect);
     tlsph_model_free(m);
 }
 END_TEST
 
 START_TEST(no_contact_block_no_contact_state)
 {
-    const char *json =
-        "{\"dimension\":2,\"time\":{\"end\":1e-6},"
-        "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
-        "\"poisson_ratio\":0.3}},"
-        "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
-        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}},"
-        "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
-        "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}]}";
+    const char *json = "{\"dimension\":2,\"time\":{\"end\":1e-6},"
+                       "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
+                       "\"poisson_ratio\":0.3}},"
+                       "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
+                       "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}},"
+                       "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
+                       "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}]}";
     struct tlsph_model *m = build_model(json);
     ck_assert(m->contact == NULL);
     for (int k = 0; k < m->nmodules; k++)
@@ -434,7 +433,6 @@ START_TEST(no_contact_block_no_contact_state)
 END_TEST
 
 TLSPH_CHECK_MAIN("contact", 300, bars_exchange_velocities, bars_exchange_velocities_in_3d,
-                 contact_force_series_is_the_impulse,
-                 high_speed_penetration_is_reported, bars_with_the_pinball_law,
-                 damped_oblique_impact_in_3d, search_matches_brute_force,
+                 contact_force_series_is_the_impulse, high_speed_penetration_is_reported,
+                 bars_with_the_pinball_law, damped_oblique_impact_in_3d, search_matches_brute_force,
                  contact_stiffness_limits_the_step, no_contact_block_no_contact_state)
