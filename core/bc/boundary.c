@@ -44,6 +44,8 @@ void tlsph_boundary_end_step(struct tlsph_model *m, double dt)
         for (int c = 0; c < 3; c++) {
             g->reaction[c] = g->impulse[c] / dt;
             g->impulse[c] = 0.0;
+            g->torque[c] = g->torque_impulse[c] / dt;
+            g->torque_impulse[c] = 0.0;
         }
     }
 }

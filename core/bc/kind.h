@@ -62,6 +62,9 @@ struct tlsph_bc_kind {
     const char *module; /* its entry in the result's module list, "bc:<name>" */
     int carries_load;   /* its group's reaction is a support load: written as a time
                            series (core/io/fields.c) and usable by gauges */
+    int reports_torque; /* a rigid surface with no particle group (a wall): its reaction
+                           and its torque about bc->point (collected in g->torque_impulse
+                           by its hooks) are written as the "walls" series */
     /* Every key its scene object accepts, at "/boundary_conditions/<i>" with the
      * kind's name as model: TLSPH_BC_KEYS, then the kind's own keys, which its
      * parse reads.  "Unknown field" messages list the rows in this order. */

@@ -31,6 +31,18 @@
  * ended on it, relative to the body's spacing. */
 #define WALL_CONTACT 1e-9
 
+/* (x - point) x normal, m: the torque about the wall's point of a unit push
+ * along the normal at x.  The reaction's torque is the sum of these weighted
+ * by each particle's impulse (the wall pushes along its normal only). */
+static inline void lever(const struct tlsph_bc *bc, const double *x, double arm[3])
+{
+    const double r0 = x[0] - bc->point[0], r1 = x[1] - bc->point[1], r2 = x[2] - bc->point[2];
+    const double *n = bc->normal;
+    arm[0] = r1 * n[2] - r2 * n[1];
+    arm[1] = r2 * n[0] - r0 * n[2];
+    arm[2] = r0 * n[1] - r1 * n[0];
+}
+
 static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                  const char *pointer, struct tlsph_errors *err)
 {
@@ -47,9 +59,9 @@ static void hold_on_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
     const double *nn = bc->normal;
     /* the kick just made was half the step (0 at setup, where m->dt is still 0) */
     const double half = 0.5 * m->dt;
-    double lost = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : lost, imp0, imp1, imp2) \
-    if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
+    double lost = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0, ang0 = 0.0, ang1 = 0.0, ang2 = 0.0;
+#pragma omp parallel for schedule(static) \
+    reduction(+ : lost, imp0, imp1, imp2, ang0, ang1, ang2) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++) {
         const double tol = WALL_CONTACT * m->scene.bodies[m->p.body[i]].spacing;
         if (tlsph_plane_distance(bc, m->p.x + 3 * i) > tol)
@@ -68,10 +80,18 @@ static void hold_on_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
         imp0 -= mi * vn * nn[0];
         imp1 -= mi * vn * nn[1];
         imp2 -= mi * vn * nn[2];
+        double arm[3];
+        lever(bc, m->p.x + 3 * i, arm);
+        ang0 -= mi * vn * arm[0];
+        ang1 -= mi * vn * arm[1];
+        ang2 -= mi * vn * arm[2];
     }
     g->impulse[0] += imp0;
     g->impulse[1] += imp1;
     g->impulse[2] += imp2;
+    g->torque_impulse[0] += ang0;
+    g->torque_impulse[1] += ang1;
+    g->torque_impulse[2] += ang2;
     *work -= lost;
 }
 
@@ -81,9 +101,9 @@ static void stop_at_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
                          double dt)
 {
     const double *nn = bc->normal;
-    double work = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0;
-#pragma omp parallel for schedule(static) reduction(+ : work, imp0, imp1, imp2) \
-    if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
+    double work = 0.0, imp0 = 0.0, imp1 = 0.0, imp2 = 0.0, ang0 = 0.0, ang1 = 0.0, ang2 = 0.0;
+#pragma omp parallel for schedule(static) \
+    reduction(+ : work, imp0, imp1, imp2, ang0, ang1, ang2) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++) {
         double *v = m->p.v + 3 * i;
         const double gap = tlsph_plane_distance(bc, m->p.x + 3 * i);
@@ -103,11 +123,19 @@ static void stop_at_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
             imp0 += mi * dv * nn[0];
             imp1 += mi * dv * nn[1];
             imp2 += mi * dv * nn[2];
+            double arm[3];
+            lever(bc, m->p.x + 3 * i, arm);
+            ang0 += mi * dv * arm[0];
+            ang1 += mi * dv * arm[1];
+            ang2 += mi * dv * arm[2];
         }
     }
     g->impulse[0] += imp0;
     g->impulse[1] += imp1;
     g->impulse[2] += imp2;
+    g->torque_impulse[0] += ang0;
+    g->torque_impulse[1] += ang1;
+    g->torque_impulse[2] += ang2;
     m->energy.external_work += work;
 }
 
@@ -157,6 +185,7 @@ const struct tlsph_bc_kind tlsph_bc_wall = {
     .name = "wall",
     .module = "bc:wall",
     .carries_load = 0,
+    .reports_torque = 1,
     .keys = &table,
     .parse = parse,
     /* no select: a wall has no particle group; it stops whichever particle reaches it */

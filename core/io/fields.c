@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "bc/kind.h"
+#include "contact/contact.h"
 #include "util/mat3.h"
 
 static void ex_id(const struct tlsph_model *m, void *out)
@@ -228,6 +229,13 @@ static void sv_initiated(const struct tlsph_model *m, double *o)
 
 static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
+static int has_contact(const struct tlsph_model *m) { return m->contact != NULL; }
+static void sv_contact(const struct tlsph_model *m, double *o) { o[0] = m->energy.contact; }
+static void sv_contact_pairs(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)tlsph_contact_active(m);
+}
+
 static void sv_balance(const struct tlsph_model *m, double *o)
 {
     o[0] = tlsph_energy_balance(&m->energy);
@@ -276,6 +284,12 @@ const struct tlsph_series_column tlsph_global_series[] = {
      "energy dissipated by damage: stored energy released as D grows, sum over particles of "
      "psi_eff dD V0 (part of internal_energy)",
      has_damage, sv_damage_work},
+    {"contact_energy", 1, "J",
+     "work done against contact forces: energy stored in the overlaps plus what contact "
+     "dissipated; enters energy_balance like hourglass_energy",
+     has_contact, sv_contact},
+    {"contact_pairs", 1, "1", "number of particle pairs in contact (overlapping)", has_contact,
+     sv_contact_pairs},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
@@ -303,7 +317,33 @@ static const struct tlsph_series_column section_columns[] = {
     {"damage", 1, "1", "mean damage over the section's particles", has_damage, NULL},
 };
 
+/* Rigid surfaces (walls): the reaction is the momentum their stops give the
+ * bodies over a step, divided by the step (core/bc/wall.c). */
+static const struct tlsph_series_column wall_columns[] = {
+    {"reaction_force", 3, "N",
+     "force exerted by the wall on the bodies: the momentum its stops gave them during the "
+     "last step / the step", NULL, NULL},
+    {"torque", 3, "N m", "torque of that force about the wall's point", NULL, NULL},
+};
+
+static const struct tlsph_series_column contact_columns[] = {
+    {"force", 3, "N", "contact force on the body from the other bodies (last force evaluation)",
+     NULL, NULL},
+};
+
 static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
+static size_t contact_count(const struct tlsph_model *m)
+{
+    return m->contact ? m->scene.nbodies : 0;
+}
+static const char *contact_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.bodies[k].name;
+}
+static void contact_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    tlsph_contact_body_force(m, k, out);
+}
 static size_t gauge_count(const struct tlsph_model *m) { return m->scene.ngauges; }
 static size_t section_count(const struct tlsph_model *m) { return m->scene.nsections; }
 
@@ -311,6 +351,11 @@ static size_t section_count(const struct tlsph_model *m) { return m->scene.nsect
 static const char *group_item(const struct tlsph_model *m, size_t k)
 {
     return m->scene.bcs[k].kind->carries_load ? m->scene.bcs[k].name : NULL;
+}
+
+static const char *wall_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.bcs[k].kind->reports_torque ? m->scene.bcs[k].name : NULL;
 }
 
 static const char *gauge_item(const struct tlsph_model *m, size_t k)
@@ -329,6 +374,15 @@ static void group_values(const struct tlsph_model *m, size_t k, double *out)
     for (int c = 0; c < 3; c++) {
         out[c] = g->reaction[c];
         out[3 + c] = g->displacement[c];
+    }
+}
+
+static void wall_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_group *g = &m->groups[k];
+    for (int c = 0; c < 3; c++) {
+        out[c] = g->reaction[c];
+        out[3 + c] = g->torque[c];
     }
 }
 
@@ -351,6 +405,11 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_SECTIONS] = {"sections", 0, section_columns,
                                sizeof section_columns / sizeof *section_columns, section_count,
                                section_item, section_values},
+    [TLSPH_FAMILY_WALLS] = {"walls", 0, wall_columns, sizeof wall_columns / sizeof *wall_columns,
+                            group_count, wall_item, wall_values},
+    [TLSPH_FAMILY_CONTACTS] = {"contacts", 0, contact_columns,
+                               sizeof contact_columns / sizeof *contact_columns, contact_count,
+                               contact_item, contact_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

@@ -54,9 +54,10 @@ size_t tlsph_global_series_width(const struct tlsph_model *m);
 
 /* Columns that repeat per item of the scene, written as
  * /observables/<family>/<item>/<column>: boundary groups that carry load
- * (fixed and velocity conditions), gauges and sections. */
+ * (fixed and velocity conditions), gauges, sections, walls and, with contact,
+ * bodies. */
 enum tlsph_family_id { TLSPH_FAMILY_GROUPS, TLSPH_FAMILY_GAUGES, TLSPH_FAMILY_SECTIONS,
-                       TLSPH_NFAMILIES };
+                       TLSPH_FAMILY_WALLS, TLSPH_FAMILY_CONTACTS, TLSPH_NFAMILIES };
 
 struct tlsph_series_family {
     const char *name;

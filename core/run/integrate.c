@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "bc/boundary.h"
+#include "contact/contact.h"
 #include "material/constitutive.h"
 #include "material/failure.h"
 #include "sph/forces.h"
@@ -18,6 +19,8 @@ void tlsph_evaluate(struct tlsph_model *m, double dt)
     tlsph_constitutive(m, dt);
     tlsph_failure(m);
     const struct tlsph_force_power pw = tlsph_forces(m);
+    if (m->contact)
+        m->energy.contact -= dt * tlsph_contact_forces(m, dt);
     const double body_power = tlsph_boundary_forces(m);
     /* Work of the optional forces and body forces over the step, at the
      * half-step velocities: first order in dt, and these terms are small. */
@@ -118,6 +121,10 @@ double tlsph_internal_energy(const struct tlsph_model *m)
  *     forces      pair forces (sph/forces.h)       reads x, v, F, P_tilde, D; writes f,
  *                                                  f_hourglass, f_viscous; books the work
  *                                                  against them into hourglass, viscous
+ *     contact     only with a contact block        reads x, v; searches again when a
+ *                 (contact/contact.h)              particle moved half the skin; adds to
+ *                                                  f; lowers dt_cfl; books the work against
+ *                                                  the contact forces into contact
  *     body forces (bc/boundary.h)                  writes f; books their work into
  *                                                  external_work
  *   kick          v += dt/2 f/m                    as above
@@ -146,7 +153,7 @@ void tlsph_model_step(struct tlsph_model *m)
     e->kinetic = tlsph_kinetic_energy(m);
     e->internal = tlsph_internal_energy(m);
     const double size = fabs(e->kinetic) + fabs(e->internal) + fabs(e->external_work) +
-                        fabs(e->hourglass) + fabs(e->viscous);
+                        fabs(e->hourglass) + fabs(e->viscous) + fabs(e->contact);
     if (size > e->scale)
         e->scale = size;
 }
@@ -155,8 +162,10 @@ void tlsph_start(struct tlsph_model *m)
 {
     /* constraints first: they define the initial state, their impulses are no work */
     tlsph_boundary_constrain(m, 0.0, 0.0);
-    for (size_t k = 0; k < m->scene.nbcs; k++)
+    for (size_t k = 0; k < m->scene.nbcs; k++) {
         memset(m->groups[k].impulse, 0, sizeof m->groups[k].impulse);
+        memset(m->groups[k].torque_impulse, 0, sizeof m->groups[k].torque_impulse);
+    }
     m->energy.external_work = 0.0;
     tlsph_evaluate(m, 0.0); /* the forces of the first half kick */
     struct tlsph_energy *e = &m->energy;

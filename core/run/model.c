@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "bc/boundary.h"
+#include "contact/contact.h"
 #include "material/constitutive.h"
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
@@ -46,7 +47,8 @@ void tlsph_model_momentum(const struct tlsph_model *m, double out[3])
 
 double tlsph_energy_balance(const struct tlsph_energy *e)
 {
-    return e->kinetic + e->internal + e->hourglass + e->viscous - e->external_work - e->initial;
+    return e->kinetic + e->internal + e->hourglass + e->viscous + e->contact - e->external_work -
+           e->initial;
 }
 
 void tlsph_model_free(struct tlsph_model *m)
@@ -67,6 +69,7 @@ void tlsph_model_free(struct tlsph_model *m)
         for (size_t k = 0; k < m->scene.nbcs; k++)
             free(m->groups[k].index);
     free(m->groups);
+    tlsph_contact_free(m);
     tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
@@ -130,6 +133,8 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "hourglass:tangent_stiffness");
     if (s->viscosity)
         add_module(m, "viscosity:monaghan");
+    if (m->contact)
+        add_module(m, s->contact.law->module);
     for (size_t k = 0; k < s->nbcs; k++)
         add_module(m, s->bcs[k].kind->module);
     add_module(m, "integrator:velocity_verlet");
@@ -325,6 +330,9 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     }
     if (tlsph_boundary_select(m, err) != 0 || tlsph_boundary_check(m, err) != 0 ||
         tlsph_measures_init(m, err) != 0)
+        goto fail;
+    /* only a scene with a contact block: the others allocate and run nothing */
+    if (m->scene.contact.law && tlsph_contact_create(m, err) != 0)
         goto fail;
     select_modules(m);
 

@@ -19,6 +19,7 @@
 #include "scene/scene.h"
 
 struct tlsph_crack_model; /* sph/crack_treatment.h */
+struct tlsph_contact;     /* contact/state.h: the contact phase's state */
 
 struct tlsph_particles {
     size_t n;
@@ -82,6 +83,11 @@ struct tlsph_group {
     int32_t *index;           /* particle indices */
     double impulse[3];        /* constraint impulse accumulated during the current step, N s */
     double reaction[3];       /* force exerted by the support on the group (last step), N */
+    /* Walls (kinds with reports_torque): the angular impulse about the condition's
+     * point collected during the current step, N m s, and its rate over the last
+     * step, the torque the support exerts about that point, N m. */
+    double torque_impulse[3];
+    double torque[3];
     double displacement[3];   /* mean displacement of the group, m */
     double mass;              /* kg */
 };
@@ -92,6 +98,8 @@ struct tlsph_energy {
     double external_work;     /* work done on the body by boundary conditions and body forces, J */
     double hourglass;         /* work done against hourglass-control forces, J */
     double viscous;           /* work done against artificial-viscosity forces, J */
+    double contact;           /* work done against contact forces: stored in the overlaps
+                                 plus dissipated (0 without contact), J */
     double plastic_work;      /* plastic dissipation (part of internal), J */
     double damage_work;       /* energy released by damage growth (part of internal), J */
     double initial;           /* kinetic + internal at t = 0, J */
@@ -122,6 +130,8 @@ struct tlsph_model {
     struct tlsph_measures measures; /* gauges and sections of scene.output */
     const struct tlsph_crack_model *crack; /* how damage enters the approximation, chosen
                                               once at setup (intact without damage) */
+    struct tlsph_contact *contact;  /* contact between bodies (contact/contact.h); NULL
+                                       when the scene has none: nothing allocated or run */
 
     /* run state */
     long step;
@@ -181,7 +191,7 @@ void tlsph_refusal_diagnostic(struct tlsph_model *m, const char *dataset, double
                               const int64_t *ids, size_t nids, struct tlsph_diagnostic *d);
 /* Total linear momentum, kg m/s. */
 void tlsph_model_momentum(const struct tlsph_model *m, double out[3]);
-/* kinetic + internal + hourglass + viscous - external work - initial energy, J:
+/* kinetic + internal + hourglass + viscous + contact - external work - initial energy, J:
  * 0 when energy is conserved (the stability contract bounds it). */
 double tlsph_energy_balance(const struct tlsph_energy *e);
 

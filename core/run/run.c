@@ -6,6 +6,7 @@
 #include <time.h>
 
 #include "bc/boundary.h"
+#include "contact/contact.h"
 #include "io/output/output.h"
 #include "run/integrate.h"
 #include "run/progress.h"
@@ -243,6 +244,17 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 m->plastic_point_steps
                     ? (double)m->return_iterations / (double)m->plastic_point_steps
                     : 0.0);
+    if (o->log && m->contact) {
+        const struct tlsph_contact_cost cc = tlsph_contact_cost(m);
+        fprintf(o->log,
+                "tlsph: contact: %ld searches (%.3f s, %.1f %% of the run), contact phase %.3f s "
+                "(%.1f %%), %zu candidate pairs now\n",
+                cc.searches, cc.search_seconds,
+                cost.wall_seconds > 0 ? 100.0 * cc.search_seconds / cost.wall_seconds : 0.0,
+                cc.phase_seconds,
+                cost.wall_seconds > 0 ? 100.0 * cc.phase_seconds / cost.wall_seconds : 0.0,
+                tlsph_contact_candidates(m) / 2);
+    }
     if (o->log)
         fprintf(o->log,
                 "tlsph: %s after %ld steps, t = %.6g s, %.2f s wall, %.3g particle-steps/s, "

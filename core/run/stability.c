@@ -21,6 +21,7 @@
 #include <stdio.h>
 #include <string.h>
 
+#include "contact/contact.h"
 #include "material/eos/eos.h"
 #include "run/integrate.h"
 #include "run/model.h"
@@ -152,6 +153,24 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
     if (m->return_failures) {
         add_id(d, m->first_return_failure_id);
         return fail(m, d, "return_mapping", (double)m->return_failures, 0.0, NULL, NULL);
+    }
+
+    /* without its candidates the contact forces are missing: the bodies would
+     * pass through each other */
+    if (m->contact && tlsph_contact_failed(m))
+        return fail(m, d, "contact_search", 0.0, 0.0,
+                    "the contact search ran out of memory", NULL);
+    if (m->contact) {
+        const double overlap = tlsph_contact_take_overlap(m);
+        if (overlap > TLSPH_CONTACT_MAX_OVERLAP) {
+            int64_t ids[2];
+            tlsph_contact_deepest_pair(m, ids);
+            for (int k = 0; k < 2; k++)
+                if (ids[k] >= 0)
+                    add_id(d, ids[k]);
+            return fail(m, d, "contact_penetration", overlap, TLSPH_CONTACT_MAX_OVERLAP, NULL,
+                        "(deepest pair now)");
+        }
     }
 
     const double vmax = m->scene.speed_limit_factor * m->max_wave_speed;

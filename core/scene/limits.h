@@ -65,5 +65,10 @@
 #define TLSPH_DEFAULT_FRAMES                20L
 #define TLSPH_DEFAULT_SERIES_EVERY          10L /* steps */
 #define TLSPH_DEFAULT_TAYLOR_QUINNEY        0.9
+#define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
+/* Deepest contact overlap / (R_i + R_j) the stability contract accepts: deeper,
+ * two particles are about to pass through each other (tunnelling), so the run
+ * stops (contact_penetration) instead of going on silently wrong. */
+#define TLSPH_CONTACT_MAX_OVERLAP           0.5
 
 #endif

@@ -331,6 +331,8 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     bad |= parse_materials(root, s, err) != 0;
     const int bodies_bad = tlsph_parse_bodies(root, s, err) != 0;
     bad |= bodies_bad;
+    if (!bodies_bad)
+        bad |= tlsph_parse_contact(root, s, err) != 0;
     const int bcs_bad = tlsph_parse_bcs(root, s, err) != 0;
     bad |= bcs_bad;
     if (!bcs_bad)

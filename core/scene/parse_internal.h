@@ -16,6 +16,7 @@ extern const struct tlsph_key_table tlsph_material_keys; /* "/materials/<name>" 
 extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
+extern const struct tlsph_key_table tlsph_contact_keys;  /* "/contact" */
 
 /* parse.c: shared helpers */
 /* Compiles a number (as its %.17g text) or an expression string at pointer;
@@ -53,6 +54,9 @@ int tlsph_check_body_precision(const struct tlsph_body *b, int dimension, const 
 int tlsph_parse_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 /* Counts each body's lattice points against s->max_particles. */
 int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err);
+
+/* parse_contact.c: fills s->contact (bodies already parsed). */
+int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);

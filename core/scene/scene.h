@@ -17,6 +17,7 @@
 struct tlsph_eos_model;      /* core/material/eos/eos.h */
 struct tlsph_strength_model; /* core/material/strength/strength.h */
 struct tlsph_damage_model;   /* core/material/damage/damage.h */
+struct tlsph_contact_law;    /* core/contact/contact.h */
 
 enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
 
@@ -162,6 +163,17 @@ struct tlsph_section {
     double thickness;             /* m */
 };
 
+/* Contact between bodies ("contact" block, core/contact/): present when
+ * law != NULL, which needs at least two bodies.  Without the block, bodies
+ * pass through each other. */
+struct tlsph_contact_settings {
+    const struct tlsph_contact_law *law; /* NULL: no contact */
+    double params[4];             /* the law's parameters, meaning fixed by the law */
+    int choice;                   /* the law's choice key, meaning fixed by the law
+                                     (penalty: its form, enum tlsph_penalty_form) */
+    double skin;                  /* search skin / largest body spacing, 1 */
+};
+
 struct tlsph_scene {
     int dimension;                /* 2 (plane strain, x-y, unit thickness) or 3 */
     char name[TLSPH_NAME_MAX];
@@ -205,6 +217,7 @@ struct tlsph_scene {
     struct tlsph_material *materials; size_t nmaterials;
     struct tlsph_body *bodies;    size_t nbodies;
     struct tlsph_bc *bcs;         size_t nbcs;
+    struct tlsph_contact_settings contact;
 
     char *json_text;              /* the scene as submitted, compact JSON, for the output file */
 };

@@ -262,6 +262,21 @@ static const struct tlsph_key body_keys[] = {
 };
 const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL, body_keys);
 
+/* ------------------------------------------------------------------ contact */
+
+static const struct tlsph_key contact_keys[] = {
+    {.name = "law", .kind = TLSPH_KEY_OBJECT, .flags = CALLER,
+     .description = "the contact law: {\"type\": name, ...parameters}; absent = penalty with "
+                    "its defaults"},
+    {.name = "skin", .kind = NUMBER, .flags = DEFAULT,
+     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1",
+     .said = "(relative to the largest body spacing)", .def = TLSPH_DEFAULT_CONTACT_SKIN,
+     .offset = AT(contact.skin),
+     .description = "search skin relative to the largest body spacing: the search runs again "
+                    "when a particle has moved half of it"},
+};
+const struct tlsph_key_table tlsph_contact_keys = TLSPH_KEY_TABLE("/contact", NULL, contact_keys);
+
 /* ------------------------------------------------------------------ root */
 
 static const struct tlsph_key scene_keys[] = {
@@ -291,6 +306,8 @@ static const struct tlsph_key scene_keys[] = {
      .table = &tlsph_body_keys, .description = "bodies of particles"},
     {.name = "boundary_conditions", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
      .description = "supports and loads"},
+    {.name = "contact", .kind = TLSPH_KEY_OBJECT, .flags = CALLER, .table = &tlsph_contact_keys,
+     .description = "contact between bodies; absent = bodies pass through each other"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 

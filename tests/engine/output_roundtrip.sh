@@ -163,6 +163,27 @@ with Result(sys.argv[2]) as r:
         gstress.max() / 1e6, inside.sum(), sec["damage/value"][k]))
 EOF
 
+# contact output (docs/output.md, docs/contact.md): the contact series only with a
+# contact block, and the module named; the bars of examples/two-bars.json touch
+# and part.
+CSCENE=$top_srcdir/examples/two-bars.json
+echo "== contact scene $CSCENE"
+"$RUN" "$CSCENE" -o "$TMP/contact" --quiet || fail "tlsph-run on the contact scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/contact" "$CSCENE" || fail "final checks (contact scene)"
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$TMP/out/result.h5" "$TMP/contact/result.h5" <<'EOF' || fail "contact output"
+import sys
+from tlsph_result import Result
+with Result(sys.argv[1]) as r:
+    for name in ("contact_energy", "contact_pairs"):
+        assert not r.has_series(name), "run without contact wrote %s" % name
+with Result(sys.argv[2]) as r:
+    pairs = r.series("contact_pairs")[1]
+    work = r.series("contact_energy")[1]
+    assert pairs.max() > 0 and pairs[-1] == 0, "the bars did not touch and part"
+    assert work.max() > 0, "no contact work booked"
+    print("contact output: up to %d pairs, peak contact work %.3g J" % (pairs.max(), work.max()))
+EOF
+
 factor=8
 while [ "$live_rc" = 3 ]; do
     [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"

@@ -17,6 +17,7 @@
 #include <string.h>
 
 #include "bc/kind.h"
+#include "contact/contact.h"
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
@@ -69,6 +70,7 @@ static struct tables all_tables(void)
     ADD_FAMILY(&all, tlsph_strength_names, tlsph_strength_find);
     ADD_FAMILY(&all, tlsph_damage_names, tlsph_damage_find);
     ADD_FAMILY(&all, bc_names, tlsph_bc_find);
+    ADD_FAMILY(&all, tlsph_contact_names, tlsph_contact_find);
     return all;
 }
 

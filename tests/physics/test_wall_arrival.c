@@ -22,7 +22,9 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
+#include "bc/kind.h"
 #include "support/scene_builder.h"
 #include "support/check_main.h"
 
@@ -93,5 +95,58 @@ START_TEST(cube_books_its_first_layer_as_wall_loss)
 }
 END_TEST
 
+/* The wall's reaction series (core/io/fields.c, "walls"): the cube of 10^3
+ * particles lands on the wall and the wall stops its first layer, then holds
+ * the body while it rebounds elastically.  The wall is the only external
+ * force, so its impulse over the run, sum of reaction x step, is the change of
+ * the body's momentum (impulse balance; the pair forces cancel to round-off):
+ * tolerance 1e-10 of the initial momentum.  Its torque about the wall's point
+ * q = 0: the stops act along the normal z, symmetrically under the cube's
+ * mirror planes x = y = 5 mm, so the angular impulse is (c - q) x impulse with
+ * c the cube's centre: tolerance 1e-8 of |c| |impulse| (the mirror symmetry
+ * holds to the round-off of the pair sums). */
+START_TEST(wall_reaction_is_the_momentum_it_gives)
+{
+    struct tlsph_model *m = cube_above_wall(10);
+    ck_assert(strcmp(m->scene.bcs[0].kind->name, "wall") == 0);
+    double p0[3], p1[3], impulse[3] = {0, 0, 0}, angular[3] = {0, 0, 0};
+    tlsph_model_momentum(m, p0);
+    struct tlsph_diagnostic d;
+    double peak = 0.0;
+    while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
+        tlsph_model_step(m);
+        ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+        const struct tlsph_group *g = &m->groups[0];
+        for (int c = 0; c < 3; c++) {
+            impulse[c] += g->reaction[c] * m->dt;
+            angular[c] += g->torque[c] * m->dt;
+        }
+        peak = fmax(peak, g->reaction[2]);
+    }
+    tlsph_model_momentum(m, p1);
+    const double scale = fabs(p0[2]);
+    const double centre[3] = {0.005, 0.005, 0.005};
+    const double expect[3] = {centre[1] * impulse[2] - centre[2] * impulse[1],
+                              centre[2] * impulse[0] - centre[0] * impulse[2],
+                              centre[0] * impulse[1] - centre[1] * impulse[0]};
+    fprintf(stderr,
+            "wall impulse (%.3e, %.3e, %.6e) N s, momentum change (%.3e, %.3e, %.6e), peak "
+            "reaction %.3e N; angular impulse (%.6e, %.6e, %.3e), (c - q) x impulse (%.6e, "
+            "%.6e, %.3e)\n",
+            impulse[0], impulse[1], impulse[2], p1[0] - p0[0], p1[1] - p0[1], p1[2] - p0[2], peak,
+            angular[0], angular[1], angular[2], expect[0], expect[1], expect[2]);
+    ck_assert(impulse[2] > 0.1 * scale); /* the wall did push */
+    for (int c = 0; c < 3; c++) {
+        ck_assert_msg(fabs(impulse[c] - (p1[c] - p0[c])) < 1e-10 * scale,
+                      "component %d: wall impulse %.15g, momentum change %.15g", c, impulse[c],
+                      p1[c] - p0[c]);
+        ck_assert_msg(fabs(angular[c] - expect[c]) < 1e-8 * 0.005 * sqrt(3.0) * impulse[2],
+                      "torque component %d: %.15g N m s, expected %.15g", c, angular[c],
+                      expect[c]);
+    }
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("wall_arrival", 300, single_particle_loses_all_its_energy_to_the_wall,
-                 cube_books_its_first_layer_as_wall_loss)
+                 cube_books_its_first_layer_as_wall_loss, wall_reaction_is_the_momentum_it_gives)

@@ -65,7 +65,8 @@ def load_docs(path):
     # per-item families: boundary groups, gauges and sections (columns of
     # sections are optional like the global ones: they follow the modules)
     families = {"groups": table(doc, "group-series"), "gauges": table(doc, "gauge-series"),
-                "sections": table(doc, "section-series")}
+                "sections": table(doc, "section-series"), "walls": table(doc, "wall-series"),
+                "contacts": table(doc, "contact-series")}
     for row in families["sections"]:
         row["optional"] = row.get("present when", "always") != "always"
     return table(doc, "fields"), table(doc, "series") + optional, families
@@ -163,7 +164,7 @@ def check_series_group(g, rows, where, live):
         lengths.append(T)
     documented = {r["name"] for r in rows}
     for name in g:
-        if name not in ("groups", "gauges", "sections"):
+        if name not in ("groups", "gauges", "sections", "walls", "contacts"):
             check(name in documented, "%s/%s is documented" % (where, name))
     return lengths
 
@@ -174,9 +175,13 @@ def check_series(f, series, families, scene, live):
     loaded = [b["name"] for b in scene.get("boundary_conditions", [])
               if b.get("type") in ("fixed", "velocity")]
     out = scene.get("output", {})
+    walls = [b.get("name", "bc%d" % i) for i, b in enumerate(scene.get("boundary_conditions", []))
+             if b.get("type") == "wall"]
     items = {"groups": loaded,
              "gauges": [g["name"] for g in out.get("gauges", [])],
-             "sections": [c["name"] for c in out.get("sections", [])]}
+             "sections": [c["name"] for c in out.get("sections", [])],
+             "walls": walls,
+             "contacts": [b["name"] for b in scene.get("bodies", [])] if "contact" in scene else []}
     check("groups" in obs, "/observables/groups exists")
     for family, names in items.items():
         if not names:

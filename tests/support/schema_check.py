@@ -32,6 +32,8 @@ SEMANTIC_ONLY = {
     "unknown_material",
     "selector_unknown_body",
     "duplicate_body_names",
+    "contact_one_body",       # a contact block needs two bodies
+    "contact_bodies_overlap", # bodies in contact must not overlap at t = 0
     # geometry and vector consistency
     "wall_normal_zero",
     "notch_root_too_large",

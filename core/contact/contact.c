@@ -1,0 +1,174 @@
+/* Setup and teardown of the contact phase (contact.h), and what it reports. */
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+#include "contact/state.h"
+#include "run/model.h"
+
+/* At t = 0 no two bodies may overlap: the lattice cells of two particles of
+ * different bodies (edge s_i, s_j) may touch but not interpenetrate, i.e.
+ * r >= (s_i + s_j)/2 up to round-off.  Overlapping bodies would start with a
+ * contact force that no motion caused, an explosion of their overlap's
+ * energy.  Looks at the candidate pairs (closer than R_i + R_j + skin), which
+ * hold every such pair unless a law's radius is far below half the spacing. */
+static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
+{
+    const struct tlsph_contact *c = m->contact;
+    const struct tlsph_scene *s = &m->scene;
+    const double *x = m->p.x;
+    size_t pairs = 0, bi = 0, bj = 0, at = 0;
+    double worst = 0.0, gap = 0.0;
+    for (size_t i = 0; i < m->p.n; i++)
+        for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
+            const size_t j = (size_t)c->j[k];
+            const size_t a = (size_t)m->p.body[i], b = (size_t)m->p.body[j];
+            if (a > b)
+                continue; /* each pair once */
+            const double touch = 0.5 * (s->bodies[a].spacing + s->bodies[b].spacing);
+            double r2 = 0.0;
+            for (int d = 0; d < 3; d++)
+                r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
+            const double depth = (touch - sqrt(r2)) / touch;
+            if (depth <= 1e-9)
+                continue;
+            if (pairs++ == 0 || depth > worst) {
+                worst = depth;
+                gap = sqrt(r2);
+                bi = a;
+                bj = b;
+                at = i;
+            }
+        }
+    if (pairs == 0)
+        return 0;
+    char ptr[64];
+    snprintf(ptr, sizeof ptr, "/bodies/%zu", bj);
+    const double *X = x + 3 * at;
+    tlsph_errors_add(err, ptr,
+                     "body '%s' overlaps body '%s' at t = 0: %zu pairs of their particles are "
+                     "closer than their lattice cells allow (the closest %.3g m apart, %.3g "
+                     "spacings, near (%g, %g, %g) m); with contact the bodies must start apart "
+                     "or touching",
+                     s->bodies[bj].name, s->bodies[bi].name, pairs, gap,
+                     gap / s->bodies[bj].spacing, X[0], X[1], X[2]);
+    return -1;
+}
+
+int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const size_t n = m->p.n;
+    struct tlsph_contact *c = calloc(1, sizeof *c);
+    if (!c) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    m->contact = c;
+    m->bytes_allocated += sizeof *c;
+    c->law = s->contact.law;
+    for (int k = 0; k < 4; k++)
+        c->params[k] = s->contact.params[k];
+    c->variant = c->law->variant(s);
+    c->bodies = tlsph_alloc(m, s->nbodies, sizeof *c->bodies);
+    c->start = tlsph_alloc(m, n + 1, sizeof *c->start);
+    c->x_search = tlsph_alloc(m, 3 * n, sizeof *c->x_search);
+    c->key = tlsph_alloc(m, n, sizeof *c->key);
+    c->order = tlsph_alloc(m, n, sizeof *c->order);
+    c->f_old = tlsph_alloc(m, 3 * n, sizeof *c->f_old);
+    if (!c->bodies || !c->start || !c->x_search || !c->key || !c->order || !c->f_old) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    double spacing = 0.0;
+    for (size_t b = 0; b < s->nbodies; b++) {
+        c->law->body(s, b, &c->bodies[b]);
+        c->max_radius = fmax(c->max_radius, c->bodies[b].radius);
+        spacing = fmax(spacing, s->bodies[b].spacing);
+    }
+    c->skin = s->contact.skin * spacing;
+    if (tlsph_contact_search(m, c, 1) != 0) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    return check_start(m, err);
+}
+
+void tlsph_contact_free(struct tlsph_model *m)
+{
+    struct tlsph_contact *c = m->contact;
+    if (!c)
+        return;
+    free(c->bodies);
+    free(c->start);
+    free(c->j);
+    free(c->x_search);
+    free(c->key);
+    free(c->order);
+    free(c->cell_start);
+    free(c->f_old);
+    free(c);
+    m->contact = NULL;
+}
+
+struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m)
+{
+    const struct tlsph_contact *c = m->contact;
+    return (struct tlsph_contact_cost){c->searches, c->search_seconds, c->phase_seconds};
+}
+
+void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[3])
+{
+    const double *f = m->contact->f_old; /* the last evaluation's contact forces */
+    out[0] = out[1] = out[2] = 0.0;
+    for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
+        for (int c = 0; c < 3; c++)
+            out[c] += f[3 * i + c];
+}
+
+size_t tlsph_contact_active(const struct tlsph_model *m)
+{
+    return m->contact->active;
+}
+long tlsph_contact_searches(const struct tlsph_model *m)
+{
+    return m->contact->searches;
+}
+double tlsph_contact_take_overlap(struct tlsph_model *m)
+{
+    const double seen = m->contact->max_overlap;
+    m->contact->max_overlap = 0.0;
+    return seen;
+}
+
+void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2])
+{
+    const struct tlsph_contact *c = m->contact;
+    ids[0] = ids[1] = -1;
+    double deepest = 0.0;
+    const double *x = m->p.x;
+    for (size_t i = 0; i < m->p.n; i++)
+        for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
+            const size_t j = (size_t)c->j[k];
+            const double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            double r2 = 0.0;
+            for (int d = 0; d < 3; d++)
+                r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
+            const double depth = (reach - sqrt(r2)) / reach;
+            if (depth > deepest) {
+                deepest = depth;
+                ids[0] = m->p.id[i];
+                ids[1] = m->p.id[j];
+            }
+        }
+}
+
+int tlsph_contact_failed(const struct tlsph_model *m)
+{
+    return m->contact->failed;
+}
+
+size_t tlsph_contact_candidates(const struct tlsph_model *m)
+{
+    return (size_t)m->contact->start[m->p.n];
+}

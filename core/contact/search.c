@@ -1,0 +1,191 @@
+/* Contact search in the current configuration (contact/state.h).
+ *
+ * A cell list over the current positions, cells at least as large as the
+ * reach 2 R_max + skin, lists every pair of particles that may touch: of
+ * different bodies (contact_candidate) and closer than R_i + R_j + skin.  The
+ * list stays valid until some particle has moved more than half the skin
+ * since the search (two particles closing the skin between them each moved at
+ * least half of it), so the search runs again only then; between searches a
+ * step only checks the displacements.
+ *
+ * The grid is sized from the particles' bounding box; when fragments fly far
+ * apart the cells grow (doubling) until the grid has at most 4 n + 64 cells,
+ * so memory stays O(n) at the price of more candidates examined.  Within a
+ * cell particles keep index order, and each particle scans the 27 (9 in 2-D)
+ * cells around its own in a fixed order, so the lists do not depend on the
+ * thread count. */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contact/state.h"
+#include "run/model.h"
+#include "util/clock.h"
+#include "util/parallel.h"
+
+/* May i and j touch?  Today: particles of different bodies.  Contact between
+ * the separated parts of one body (a pair that is not a reference neighbour,
+ * or whose link is broken) is the next filter to add here. */
+static inline int contact_candidate(const int32_t *body, size_t i, size_t j)
+{
+    return body[i] != body[j];
+}
+
+struct grid {
+    double lo[3];
+    double cell; /* m */
+    int64_t dims[3];
+    int dim;
+};
+
+/* Cells along each axis for the bounds lo..hi: the particles' cells plus one
+ * on each side, so the 3 x 3 x 3 block around any particle's cell exists. */
+static double grid_layout(struct grid *g, const double hi[3], double cell, double limit)
+{
+    double dims[3], total = 1.0;
+    for (int d = 0; d < 3; d++) {
+        dims[d] = d < g->dim ? floor((hi[d] - g->lo[d]) / cell) + 3.0 : 1.0;
+        total *= dims[d];
+    }
+    if (total <= limit) { /* only then do the counts fit the integers */
+        g->cell = cell;
+        for (int d = 0; d < 3; d++)
+            g->dims[d] = (int64_t)dims[d];
+    }
+    return total;
+}
+
+static int64_t grid_key(const struct grid *g, const double *x)
+{
+    int64_t c[3] = {0, 0, 0};
+    for (int d = 0; d < g->dim; d++)
+        c[d] = (int64_t)floor((x[d] - g->lo[d]) / g->cell) + 1;
+    return (c[2] * g->dims[1] + c[1]) * g->dims[0] + c[0];
+}
+
+/* Candidates of particle i: counted (out NULL) or written to out. */
+static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, const struct grid *g,
+                   size_t i, int32_t *out)
+{
+    const double *x = m->p.x;
+    const int32_t *body = m->p.body;
+    const double ri = c->bodies[body[i]].radius + c->skin;
+    const int64_t home = c->key[i];
+    const int zr = g->dim == 3 ? 1 : 0;
+    size_t n = 0;
+    for (int dz = -zr; dz <= zr; dz++)
+        for (int dy = -1; dy <= 1; dy++)
+            for (int dx = -1; dx <= 1; dx++) {
+                const int64_t cell = home + (dz * g->dims[1] + dy) * g->dims[0] + dx;
+                for (int64_t k = c->cell_start[cell]; k < c->cell_start[cell + 1]; k++) {
+                    const size_t j = (size_t)c->order[k];
+                    if (j == i || !contact_candidate(body, i, j))
+                        continue;
+                    const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
+                                 d2 = x[3 * j + 2] - x[3 * i + 2];
+                    const double reach = ri + c->bodies[body[j]].radius;
+                    if (d0 * d0 + d1 * d1 + d2 * d2 >= reach * reach)
+                        continue;
+                    if (out)
+                        out[n] = (int32_t)j;
+                    n++;
+                }
+            }
+    return n;
+}
+
+/* Largest squared displacement since the last search, m^2. */
+static double moved(const struct tlsph_model *m, const struct tlsph_contact *c)
+{
+    const size_t n = m->p.n;
+    const double *x = m->p.x, *x0 = c->x_search;
+    double worst = 0.0;
+#pragma omp parallel for schedule(static) reduction(max : worst) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++) {
+        const double d0 = x[3 * i] - x0[3 * i], d1 = x[3 * i + 1] - x0[3 * i + 1],
+                     d2 = x[3 * i + 2] - x0[3 * i + 2];
+        const double d = d0 * d0 + d1 * d1 + d2 * d2;
+        worst = d > worst ? d : worst;
+    }
+    return worst;
+}
+
+/* Grows *buf to at least count items of size bytes, counting the growth in
+ * m->bytes_allocated. */
+static int reserve(struct tlsph_model *m, void **buf, size_t *cap, size_t count, size_t size)
+{
+    if (count <= *cap)
+        return 0;
+    const size_t want = count + count / 4 + 16;
+    void *p = realloc(*buf, want * size);
+    if (!p)
+        return -1;
+    m->bytes_allocated += (want - *cap) * size;
+    *buf = p;
+    *cap = want;
+    return 0;
+}
+
+int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int force)
+{
+    const size_t n = m->p.n;
+    const double *x = m->p.x;
+    if (!force && c->searches > 0 && moved(m, c) <= 0.25 * c->skin * c->skin)
+        return 0;
+    const double t0 = tlsph_monotonic_seconds();
+    struct grid g = {.dim = m->dim};
+    double hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (int d = 0; d < 3; d++)
+        g.lo[d] = INFINITY;
+    for (size_t i = 0; i < n; i++)
+        for (int d = 0; d < 3; d++) {
+            /* a run gone unstable: no cell for such a particle; the previous
+             * candidates stay until the stability contract stops the run
+             * (non_finite) */
+            if (!isfinite(x[3 * i + d]))
+                return 0;
+            g.lo[d] = fmin(g.lo[d], x[3 * i + d]);
+            hi[d] = fmax(hi[d], x[3 * i + d]);
+        }
+    double cell = 2.0 * c->max_radius + c->skin;
+    while (grid_layout(&g, hi, cell, 4.0 * (double)n + 64.0) > 4.0 * (double)n + 64.0)
+        cell *= 2.0;
+    const size_t cells = (size_t)(g.dims[0] * g.dims[1] * g.dims[2]);
+    if (reserve(m, (void **)&c->cell_start, &c->cell_cap, cells + 1, sizeof *c->cell_start) != 0)
+        return -1;
+
+    /* counting sort by cell, stable: index order within a cell */
+    memset(c->cell_start, 0, (cells + 1) * sizeof *c->cell_start);
+    for (size_t i = 0; i < n; i++) {
+        c->key[i] = grid_key(&g, x + 3 * i);
+        c->cell_start[c->key[i] + 1]++;
+    }
+    for (size_t k = 0; k < cells; k++)
+        c->cell_start[k + 1] += c->cell_start[k];
+    for (size_t i = 0; i < n; i++) { /* cell_start[key] counts up to the next cell's start */
+        const int64_t k = c->key[i];
+        c->order[c->cell_start[k]++] = (int32_t)i;
+    }
+    for (size_t k = cells; k > 0; k--) /* back to starts */
+        c->cell_start[k] = c->cell_start[k - 1];
+    c->cell_start[0] = 0;
+
+    int64_t *start = c->start;
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++)
+        start[i + 1] = (int64_t)scan(m, c, &g, i, NULL);
+    start[0] = 0;
+    for (size_t i = 0; i < n; i++)
+        start[i + 1] += start[i];
+    if (reserve(m, (void **)&c->j, &c->cap, (size_t)start[n], sizeof *c->j) != 0) {
+        memset(start, 0, (n + 1) * sizeof *start);
+        return -1;
+    }
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++)
+        scan(m, c, &g, i, c->j + start[i]);
+    memcpy(c->x_search, x, 3 * n * sizeof *x);
+    c->searches++;
+    c->search_seconds += tlsph_monotonic_seconds() - t0;
+    return 0;
+}
