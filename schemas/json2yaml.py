@@ -12,8 +12,8 @@ import sys
 
 import yaml
 
-HEADER = ("# Generated from openapi.json by json2yaml.py - do not edit; edit openapi.json\n"
-          "# and run: python3 schemas/json2yaml.py\n")
+HEADER = ("# Generated from openapi.json by json2yaml.py - do not edit; edit openapi.src.json\n"
+          "# and run: python3 schemas/bundle_openapi.py && python3 schemas/json2yaml.py\n")
 
 
 def main(argv):
