@@ -189,6 +189,14 @@ static enum MHD_Result queue_reply(struct hreq *r)
     return ret;
 }
 
+/* A reply before the body was read: MHD sends it and then closes the
+ * connection instead of reading (and discarding) the rest of the upload. */
+static enum MHD_Result refuse(struct hreq *r)
+{
+    http_add_header(r, MHD_HTTP_HEADER_CONNECTION, "close");
+    return queue_reply(r);
+}
+
 /* ------------------------------------------------------------ helper threads */
 
 int http_defer(struct hreq *r, void (*fn)(struct hreq *r, void *app, void *ctx))
@@ -344,6 +352,10 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
         }
         r->phase = PHASE_BODY;
         *con_cls = r;
+        if (h->cfg.admit)
+            h->cfg.admit(r, h->cfg.app);
+        if (r->has_reply)
+            return refuse(r);
         const char *cl = MHD_lookup_connection_value(conn, MHD_HEADER_KIND,
                                                      MHD_HTTP_HEADER_CONTENT_LENGTH);
         if (cl) {
@@ -353,7 +365,7 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
             if (errno || end == cl || n > h->cfg.body_limit) {
                 r->too_big = 1;
                 http_reply_problem(r, PROBLEM_TOO_LARGE, "request body exceeds the limit");
-                return queue_reply(r);
+                return refuse(r);
             }
         }
         return MHD_YES;

@@ -12,6 +12,9 @@
  *     the deadline passes; the route then runs again with r->resumed = 1.
  * Each helper thread gets a context from thread_init (e.g. its own queue handle).
  *
+ * Admission: the headers are checked (cfg.admit) before any of the body is
+ * read; a refusal is answered at once with Connection: close, so a refused
+ * upload costs no memory for its body.
  * Bodies: accumulated up to body_limit (Content-Length above the limit is
  * refused with 413 before the upload; chunked bodies are counted and dropped).
  * One log line per request on stderr: time, method, path, status, ms. */
@@ -68,6 +71,11 @@ struct http_config {
     int connection_limit, per_ip_limit, connection_timeout;
     size_t body_limit;
     size_t max_waiters;
+    /* admission: called on the MHD thread as soon as the headers are in,
+     * before any of the body is read (NULL: admit all).  A reply set here
+     * (e.g. 401 for a missing token) is sent at once and the connection is
+     * closed without reading the body. */
+    void (*admit)(struct hreq *r, void *app);
     /* routing: called on the MHD thread once the request (and body) is complete;
      * must set a reply (http_reply_*) or suspend (http_defer / http_wait). */
     void (*route)(struct hreq *r, void *app);

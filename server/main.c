@@ -184,6 +184,7 @@ int main(int argc, char **argv)
         .connection_timeout = cfg.connection_timeout,
         .body_limit = cfg.body_limit,
         .max_waiters = (size_t)(cfg.connection_limit / 2),
+        .admit = troutes_admit,
         .route = troutes_route,
         .thread_init = troutes_thread_init,
         .thread_fini = troutes_thread_fini,

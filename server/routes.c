@@ -153,17 +153,18 @@ static struct route_call *call_of(struct hreq *r, struct tapp *a)
     return c;
 }
 
-void troutes_route(struct hreq *r, void *app)
+/* Matches r against the table and checks its token: the row to run, or NULL
+ * with the refusal (401, 404 or 405) set as r's reply. */
+static const struct route *resolve(struct hreq *r, struct tapp *a)
 {
-    struct tapp *a = app;
     struct route_call *c = call_of(r, a);
     if (!c) {
         http_reply_problem(r, PROBLEM_INTERNAL, "out of memory");
-        return;
+        return NULL;
     }
     if (!split_path(c, r->path)) {
         http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
-        return;
+        return NULL;
     }
     bool matched[NROUTES], any = false, public = false;
     const struct route *hit = NULL;
@@ -178,19 +179,33 @@ void troutes_route(struct hreq *r, void *app)
         !tauth_check_header(&a->cfg->auth, http_header(r, "Authorization"))) {
         http_reply_problem(r, PROBLEM_UNAUTHORIZED, "a valid bearer token is required");
         http_add_header(r, "WWW-Authenticate", "Bearer realm=\"tlsphd\"");
-        return;
+        return NULL;
     }
     if (!any) {
         http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
-        return;
+        return NULL;
     }
     if (!hit) {
         char allow[64];
         allowed_methods(matched, allow, sizeof allow);
         http_reply_problem(r, PROBLEM_METHOD, "method not allowed for this resource");
         http_add_header(r, "Allow", allow);
-        return;
+        return NULL;
     }
+    return hit;
+}
+
+void troutes_admit(struct hreq *r, void *app)
+{
+    resolve(r, app); /* a refusal is answered before the body is read */
+}
+
+void troutes_route(struct hreq *r, void *app)
+{
+    const struct route *hit = resolve(r, app);
+    if (!hit)
+        return;
+    struct route_call *c = r->data;
     match(hit->pattern, c, true);
     hit->handler(r, c);
 }

@@ -27,6 +27,7 @@ struct tapp {
 };
 
 /* http_config callbacks */
+void troutes_admit(struct hreq *r, void *app); /* the token and the route, on the headers */
 void troutes_route(struct hreq *r, void *app);
 void *troutes_thread_init(void *app);  /* opens a queue handle for a helper thread */
 void troutes_thread_fini(void *ctx);

@@ -1,0 +1,167 @@
+#!/usr/bin/env python3
+"""Raw-socket checks of tlsphd's HTTP layer (stdlib only), for tests/daemon/api_http.sh.
+
+usage: raw_http.py CHECK PORT [PID]
+
+Checks:
+  auth-before-body PORT PID  with tokens on, a tokenless upload is refused (401
+                             problem+json) on its headers, before any of its
+                             body is read; 40 concurrent tokenless 8 MiB
+                             uploads do not grow the daemon's peak RSS by
+                             their bodies' size.
+
+Each check prints "ok N - ..." / "FAIL N - ..." lines and exits 1 when one
+failed.  Socket reads have a hang detector of HANG_S seconds (default 300),
+never a speed limit: a check that waits for an answer fails only when none
+comes at all.
+"""
+import json
+import os
+import socket
+import sys
+import threading
+
+HANG_S = float(os.environ.get("HANG_S", "300"))
+PROBLEM = "application/problem+json"
+results = []
+
+
+def report(good, desc):
+    results.append(good)
+    print("%s %d - %s" % ("ok" if good else "FAIL", len(results), desc), flush=True)
+
+
+def connect(port, source="127.0.0.1"):
+    s = socket.socket(socket.AF_INET, socket.SOCK_STREAM)
+    s.bind((source, 0))
+    s.settimeout(HANG_S)
+    s.connect(("127.0.0.1", port))
+    return s
+
+
+def read_response(s):
+    """One response: (status, headers dict (lower-case names), body bytes, rest).
+    status None when the connection closed (or hung) before a status line."""
+    buf = b""
+    try:
+        while b"\r\n\r\n" not in buf:
+            b = s.recv(65536)
+            if not b:
+                return None, {}, b"", buf
+            buf += b
+    except (socket.timeout, ConnectionError):
+        return None, {}, b"", buf
+    head, _, rest = buf.partition(b"\r\n\r\n")
+    lines = head.decode("latin1").split("\r\n")
+    try:
+        status = int(lines[0].split()[1])
+    except (IndexError, ValueError):
+        return None, {}, b"", buf
+    hdrs = {}
+    for ln in lines[1:]:
+        k, _, v = ln.partition(":")
+        hdrs[k.strip().lower()] = v.strip()
+    n = int(hdrs.get("content-length", "0"))
+    try:
+        while len(rest) < n:
+            b = s.recv(65536)
+            if not b:
+                break
+            rest += b
+    except (socket.timeout, ConnectionError):
+        pass
+    return status, hdrs, rest[:n], rest[n:]
+
+
+def read_rest(s):
+    """Everything the server sends until it closes (b"" when it closes at once)."""
+    out = b""
+    try:
+        while True:
+            b = s.recv(65536)
+            if not b:
+                return out
+            out += b
+    except (socket.timeout, ConnectionError):
+        return out
+
+
+def is_problem(hdrs, body, status):
+    if hdrs.get("content-type") != PROBLEM:
+        return False
+    try:
+        return json.loads(body).get("status") == status
+    except ValueError:
+        return False
+
+
+def vm_hwm_kib(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for ln in f:
+            if ln.startswith("VmHWM:"):
+                return int(ln.split()[1])
+    raise RuntimeError("no VmHWM")
+
+
+UPLOAD = 8 << 20
+
+
+def upload_head(length):
+    return (b"POST /processes/run/execution HTTP/1.1\r\nHost: t\r\n"
+            b"Content-Type: application/json\r\nContent-Length: %d\r\n\r\n" % length)
+
+
+def check_auth_before_body(port, pid):
+    # The headers alone: the 401 must come without any of the body sent (a
+    # daemon that reads the body first waits for it and answers nothing).
+    s = connect(port)
+    s.sendall(upload_head(UPLOAD))
+    status, hdrs, body, _ = read_response(s)
+    s.close()
+    report(status == 401 and is_problem(hdrs, body, 401),
+           "tokenless upload refused on its headers: %s %s" % (status, hdrs.get("content-type")))
+
+    # 40 concurrent tokenless 8 MiB uploads.  Reading their bodies would cost
+    # up to 40 x 8 MiB = 320 MiB; refusing on the headers costs at most the
+    # connections' memory pools (MHD's per-connection limit, 128 KiB: 5 MiB)
+    # plus allocator slack, so the peak RSS may grow by 48 MiB at most (less
+    # than 6 bodies).
+    before = vm_hwm_kib(pid)
+    payload = b"x" * UPLOAD
+    statuses = []
+
+    def one():
+        c = connect(port)
+        try:
+            c.sendall(upload_head(UPLOAD) + payload)
+        except OSError:
+            pass  # refused and closed while we were still sending
+        st, _, _, _ = read_response(c)
+        statuses.append(st)
+        c.close()
+
+    threads = [threading.Thread(target=one) for _ in range(40)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    after = vm_hwm_kib(pid)
+    grew = (after - before) / 1024.0
+    report(grew < 48, "40 tokenless 8 MiB uploads: peak RSS grew %.1f MiB (limit 48)" % grew)
+    report(all(st in (401, None) for st in statuses),
+           "every answered upload was a 401: %s" % sorted(set(map(str, statuses))))
+
+
+def main():
+    if len(sys.argv) < 3:
+        sys.exit(__doc__)
+    check, port = sys.argv[1], int(sys.argv[2])
+    if check == "auth-before-body":
+        check_auth_before_body(port, int(sys.argv[3]))
+    else:
+        sys.exit("unknown check %s" % check)
+    sys.exit(0 if all(results) else 1)
+
+
+if __name__ == "__main__":
+    main()
