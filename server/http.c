@@ -14,6 +14,7 @@
 #include <microhttpd.h>
 
 #include "errmsg.h"
+#include "http_protocol.h"
 #include "numtext.h"
 #include "util/clock.h"
 
@@ -328,6 +329,49 @@ static void *watcher_main(void *arg)
 
 /* -------------------------------------------------------------- MHD glue */
 
+static struct hreq *request_new(struct http *h, struct MHD_Connection *conn)
+{
+    struct hreq *r = calloc(1, sizeof *r);
+    if (!r)
+        return NULL;
+    r->conn = conn;
+    r->http = h;
+    r->t0 = tlsph_monotonic_seconds();
+    r->reply.fd = -1;
+    r->phase = PHASE_NEW;
+    return r;
+}
+
+/* Called by MHD with the raw request target before it splits the query: the
+ * request starts here, and a query with too many parameters is cut off before
+ * MHD tries to store them (http_protocol.h).  0.9.75 passes the connection's
+ * own buffer, which it parses right after this call, so the cut takes. */
+static void *uri_cb(void *cls, const char *uri, struct MHD_Connection *conn)
+{
+    struct hreq *r = request_new(cls, conn);
+    if (r)
+        r->query_params = http_protocol_trim_query((char *)uri);
+    return r;
+}
+
+/* The checks of the request line and headers before anything else (http_protocol.h). */
+static int protocol_refused(struct hreq *r, const char *version)
+{
+    char detail[160];
+    enum problem_kind kind;
+    if (r->query_params) {
+        snprintf(detail, sizeof detail, "%zu query parameters; at most %d are accepted",
+                 r->query_params, HTTP_MAX_QUERY_PARAMS);
+        http_reply_problem(r, PROBLEM_URI_TOO_LONG, detail);
+        return 1;
+    }
+    if (http_protocol_check(r->conn, version, &kind, detail, sizeof detail) != 0) {
+        http_reply_problem(r, kind, detail);
+        return 1;
+    }
+    return 0;
+}
+
 static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const char *url,
                                  const char *method, const char *version,
                                  const char *upload_data, size_t *upload_data_size,
@@ -335,23 +379,16 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
 {
     struct http *h = cls;
     struct hreq *r = *con_cls;
-    (void)version;
-    if (!r) {
-        r = calloc(1, sizeof *r);
-        if (!r)
-            return MHD_NO;
-        r->conn = conn;
-        r->http = h;
-        r->t0 = tlsph_monotonic_seconds();
-        r->reply.fd = -1;
+    if (!r && !(r = *con_cls = request_new(h, conn)))
+        return MHD_NO;
+    if (r->phase == PHASE_NEW) {
         snprintf(r->method, sizeof r->method, "%s", method);
         r->path = strdup(url ? url : "/");
-        if (!r->path) {
-            free(r);
+        if (!r->path)
             return MHD_NO;
-        }
         r->phase = PHASE_BODY;
-        *con_cls = r;
+        if (protocol_refused(r, version))
+            return refuse(r);
         if (h->cfg.admit)
             h->cfg.admit(r, h->cfg.app);
         if (r->has_reply)
@@ -414,7 +451,7 @@ static void log_line(const struct hreq *r)
         path[i++] = (*s >= 0x20 && *s < 0x7f) ? *s : '?';
     path[i] = '\0';
     fprintf(stderr, "%s.%03ldZ tlsphd: %s %s %u %.1fms\n", ts, now.tv_nsec / 1000000L,
-            r->method, path, r->logged_status, 1e3 * (tlsph_monotonic_seconds() - r->t0));
+            r->method[0] ? r->method : "-", i ? path : "-", r->logged_status, 1e3 * (tlsph_monotonic_seconds() - r->t0));
 }
 
 static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
@@ -494,7 +531,8 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)cfg->per_ip_limit,
         MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)cfg->connection_timeout,
         MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)CONNECTION_MEMORY_LIMIT,
-        MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
+        MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_URI_LOG_CALLBACK, uri_cb, h,
+        MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
         tlog("cannot start the HTTP server (libmicrohttpd refused the listening socket)");

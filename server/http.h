@@ -53,6 +53,7 @@ struct hreq {
     char *path;            /* decoded request path (owned) */
     struct strbuf body;    /* request body (NUL-terminated once non-empty) */
     int too_big;           /* body exceeded the limit */
+    size_t query_params;   /* > 0: this many query parameters, too many (cut off) */
     double t0;             /* start, monotonic s */
     int resumed;           /* route re-run after a long-poll wait */
     int has_reply;

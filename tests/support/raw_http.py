@@ -9,6 +9,9 @@ Checks:
                              body is read; 40 concurrent tokenless 8 MiB
                              uploads do not grow the daemon's peak RSS by
                              their bodies' size.
+  malformed PORT             each malformed request gets its 4xx/5xx as
+                             problem+json, promptly, and the connection is
+                             closed: nothing smuggled after it is answered.
 
 Each check prints "ok N - ..." / "FAIL N - ..." lines and exits 1 when one
 failed.  Socket reads have a hang detector of HANG_S seconds (default 300),
@@ -152,12 +155,81 @@ def check_auth_before_body(port, pid):
            "every answered upload was a 401: %s" % sorted(set(map(str, statuses))))
 
 
+GOOD = b"GET /healthz HTTP/1.1\r\nHost: t\r\n\r\n"
+RUN = b"POST /processes/run/execution HTTP/1.1\r\nHost: t\r\nContent-Type: application/json\r\n"
+MALFORMED = [
+    # (what, request, status); GOOD follows each request on the same connection
+    ("Content-Length and Transfer-Encoding (a smuggled request follows)",
+     RUN + b"Content-Length: 5\r\nTransfer-Encoding: chunked\r\n\r\n0\r\n\r\n", 400),
+    ("two different Content-Lengths",
+     RUN + b"Content-Length: 2\r\nContent-Length: 3\r\n\r\n{}x", 400),
+    ("two equal Content-Lengths", RUN + b"Content-Length: 2\r\nContent-Length: 2\r\n\r\n{}", 400),
+    ("HTTP/1.1 without Host", b"GET /healthz HTTP/1.1\r\n\r\n", 400),
+    ("two Hosts", b"GET /healthz HTTP/1.1\r\nHost: a\r\nHost: b\r\n\r\n", 400),
+    ("space before a header's colon", b"GET /healthz HTTP/1.1\r\nHost : t\r\n\r\n", 400),
+    ("space before Content-Type's colon",
+     b"POST /processes/run/execution HTTP/1.1\r\nHost: t\r\nContent-Type : application/json\r\n"
+     b"Content-Length: 2\r\n\r\n{}", 400),
+    ("Transfer-Encoding: gzip, chunked",
+     RUN + b"Transfer-Encoding: gzip, chunked\r\n\r\n0\r\n\r\n", 501),
+    ("Transfer-Encoding: identity", RUN + b"Transfer-Encoding: identity\r\n\r\n{}", 501),
+    ("10 000 query parameters",
+     b"GET /jobs?" + b"&".join(b"a%d=1" % i for i in range(10000)) + b" HTTP/1.1\r\nHost: t\r\n\r\n",
+     414),
+]
+
+
+def check_malformed(port):
+    for what, raw, want in MALFORMED:
+        s = connect(port)
+        try:
+            s.sendall(raw + GOOD)
+        except OSError:
+            pass
+        status, hdrs, body, rest = read_response(s)
+        rest += read_rest(s)
+        s.close()
+        report(status == want and is_problem(hdrs, body, want),
+               "%s: %s %s (want %d problem+json)" % (what, status, hdrs.get("content-type"), want))
+        report(b"HTTP/1." not in rest and hdrs.get("connection", "").lower() == "close",
+               "%s: Connection: close, nothing more answered (%r)" % (what, rest[:60]))
+    # what MHD answers itself, before the daemon sees the request: a
+    # Content-Length that is not a number gets MHD's own 400 (HTML), and the
+    # connection is closed (docs/deployment.md, "Hostile clients")
+    s = connect(port)
+    s.sendall(b"GET /healthz HTTP/1.1\r\nHost: t\r\nContent-Length: abc\r\n\r\n" + GOOD)
+    status, hdrs, body, rest = read_response(s)
+    rest += read_rest(s)
+    s.close()
+    report(status == 400 and b"200 OK" not in rest,
+           "Content-Length: abc: MHD's own %s, the request after it not answered" % status)
+    # well-formed requests still pass: keep-alive, HTTP/1.0 without Host, chunked
+    s = connect(port)
+    s.sendall(GOOD + GOOD)
+    a = read_response(s)
+    b = read_response(s)
+    s.close()
+    report(a[0] == 200 and b[0] == 200, "two requests on one connection: %s %s" % (a[0], b[0]))
+    s = connect(port)
+    s.sendall(b"GET /healthz HTTP/1.0\r\n\r\n")
+    status = read_response(s)[0]
+    s.close()
+    report(status == 200, "HTTP/1.0 without Host: %s" % status)
+    s = connect(port)
+    s.sendall(RUN + b"Transfer-Encoding: chunked\r\n\r\n2\r\n{}\r\n0\r\n\r\n")
+    status, hdrs, body, _ = read_response(s)
+    s.close()
+    report(status == 422, "a chunked body is read: %s (422: {} is no execute request)" % status)
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     check, port = sys.argv[1], int(sys.argv[2])
     if check == "auth-before-body":
         check_auth_before_body(port, int(sys.argv[3]))
+    elif check == "malformed":
+        check_malformed(port)
     else:
         sys.exit("unknown check %s" % check)
     sys.exit(0 if all(results) else 1)
