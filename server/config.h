@@ -16,9 +16,11 @@
  *                                             (2000000; at most TLSPH_MAX_PARTICLES)
  *   max_children = N          --max-children  1000 (study size)
  *   body_limit = BYTES        --body-limit    8388608
- *   connection_limit = N      --connection-limit 256
- *   per_ip_limit = N          --per-ip-limit  64
- *   connection_timeout = S    --connection-timeout 30
+ *   connection_limit = N      --connection-limit 512
+ *   per_ip_limit = N          --per-ip-limit  64 (0 = none)
+ *   connection_timeout = S    --connection-timeout 30 (idle)
+ *   header_timeout = S        --header-timeout 10 (a request's headers, from its start)
+ *   body_timeout = S          --body-timeout  120 (a request's body, from its start)
  *   memory_limit_mb = N       --memory-limit-mb 0 (RLIMIT_AS per engine; 0 = none)
  *   kill_grace = S            --kill-grace    5
  *   max_attempts = N          --max-attempts  3
@@ -63,6 +65,8 @@ struct tcfg {
     int connection_limit;
     int per_ip_limit;
     int connection_timeout;
+    int header_timeout;      /* s for a request's headers, from its start (http_conns.h) */
+    int body_timeout;        /* s for its body, from its start */
     long memory_limit_mb;
     double kill_grace;
     int max_attempts;

@@ -14,12 +14,14 @@
 #include <microhttpd.h>
 
 #include "errmsg.h"
+#include "http_conns.h"
 #include "http_protocol.h"
 #include "numtext.h"
 #include "util/clock.h"
 
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
 #define WATCH_PERIOD_MS 200
+#define LATE_LOG_PERIOD 10.0
 
 enum { PHASE_NEW, PHASE_BODY, PHASE_DEFERRED, PHASE_WAITING, PHASE_DONE };
 
@@ -46,6 +48,9 @@ struct http {
     int stopping;
     pthread_t worker, watcher;
     int worker_started, watcher_started;
+    struct http_conns *conns;
+    size_t late_closed;   /* connections shut past a deadline, not yet logged */
+    double late_logged;   /* when that was last logged */
 };
 
 /* ------------------------------------------------------------------ replies */
@@ -285,15 +290,28 @@ static void *worker_main(void *arg)
     return NULL;
 }
 
+/* Shuts the connections past their deadlines (http_conns.h); says so in the
+ * log at most every LATE_LOG_PERIOD s, so that an attack does not flood it. */
+static void enforce_deadlines(struct http *h, double now)
+{
+    h->late_closed += http_conns_enforce(h->conns, now);
+    if (h->late_closed && now - h->late_logged >= LATE_LOG_PERIOD) {
+        tlog("closed %zu connection(s) whose headers or body were not complete within "
+             "header_timeout %d s / body_timeout %d s",
+             h->late_closed, h->cfg.header_timeout, h->cfg.body_timeout);
+        h->late_closed = 0;
+        h->late_logged = now;
+    }
+}
+
 static void *watcher_main(void *arg)
 {
     struct http *h = arg;
     void *ctx = h->cfg.thread_init ? h->cfg.thread_init(h->cfg.app) : NULL;
     pthread_mutex_lock(&h->mu);
     for (;;) {
-        if (h->nwait == 0 && !h->stopping)
-            pthread_cond_wait(&h->watch_cv, &h->mu);
         const double now = tlsph_monotonic_seconds();
+        enforce_deadlines(h, now);
         for (size_t i = 0; i < h->nwait;) {
             struct waiter *w = &h->waiters[i];
             int go = h->stopping || now >= w->deadline;
@@ -310,16 +328,14 @@ static void *watcher_main(void *arg)
         }
         if (h->stopping)
             break;
-        if (h->nwait > 0) {
-            struct timespec ts;
-            clock_gettime(CLOCK_REALTIME, &ts);
-            ts.tv_nsec += WATCH_PERIOD_MS * 1000000L;
-            if (ts.tv_nsec >= 1000000000L) {
-                ts.tv_sec++;
-                ts.tv_nsec -= 1000000000L;
-            }
-            pthread_cond_timedwait(&h->watch_cv, &h->mu, &ts);
+        struct timespec ts; /* the deadlines are checked every period, waiters or not */
+        clock_gettime(CLOCK_REALTIME, &ts);
+        ts.tv_nsec += WATCH_PERIOD_MS * 1000000L;
+        if (ts.tv_nsec >= 1000000000L) {
+            ts.tv_sec++;
+            ts.tv_nsec -= 1000000000L;
         }
+        pthread_cond_timedwait(&h->watch_cv, &h->mu, &ts);
     }
     pthread_mutex_unlock(&h->mu);
     if (h->cfg.thread_fini)
@@ -387,6 +403,7 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
         if (!r->path)
             return MHD_NO;
         r->phase = PHASE_BODY;
+        http_conn_headers_in(conn);
         if (protocol_refused(r, version))
             return refuse(r);
         if (h->cfg.admit)
@@ -430,6 +447,7 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
         http_reply_problem(r, PROBLEM_TOO_LARGE, "request body exceeds the limit");
         return queue_reply(r);
     }
+    http_conn_complete(conn);
     r->phase = PHASE_BODY;
     r->has_reply = 0;
     h->cfg.route(r, h->cfg.app);
@@ -458,8 +476,8 @@ static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
                          enum MHD_RequestTerminationCode toe)
 {
     (void)cls;
-    (void)conn;
     (void)toe;
+    http_conn_answered(conn);
     struct hreq *r = *con_cls;
     if (!r)
         return;
@@ -512,6 +530,11 @@ struct http *http_start(const struct http_config *cfg)
     h->cfg = *cfg;
     if (!h->cfg.max_waiters)
         h->cfg.max_waiters = 128;
+    h->conns = http_conns_new(cfg->header_timeout, cfg->body_timeout, cfg->connection_timeout);
+    if (!h->conns) {
+        free(h);
+        return NULL;
+    }
     pthread_mutex_init(&h->mu, NULL);
     pthread_cond_init(&h->work_cv, NULL);
     pthread_cond_init(&h->watch_cv, NULL);
@@ -532,6 +555,7 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)cfg->connection_timeout,
         MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)CONNECTION_MEMORY_LIMIT,
         MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_URI_LOG_CALLBACK, uri_cb, h,
+        MHD_OPTION_NOTIFY_CONNECTION, http_conns_notify, h->conns,
         MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
@@ -549,6 +573,7 @@ fail:
         pthread_join(h->worker, NULL);
     if (h->watcher_started)
         pthread_join(h->watcher, NULL);
+    http_conns_free(h->conns);
     free(h);
     return NULL;
 }
@@ -578,6 +603,7 @@ void http_stop(struct http *h)
         usleep(50000);
     }
     MHD_stop_daemon(h->d);
+    http_conns_free(h->conns);
     free(h->waiters);
     pthread_mutex_destroy(&h->mu);
     pthread_cond_destroy(&h->work_cv);

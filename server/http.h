@@ -1,4 +1,6 @@
-/* The HTTP layer of tlsphd (server/http.c) over libmicrohttpd 0.9.75.
+/* The HTTP layer of tlsphd (server/http.c) over libmicrohttpd 0.9.75; the
+ * request checks in http_protocol.h, the connections' deadlines in
+ * http_conns.h.
  *
  * Threading: one MHD internal polling thread (epoll) runs every access
  * handler; handlers never block.  Two helper threads:
@@ -6,12 +8,15 @@
  *     insertion, study summaries): the handler suspends the connection
  *     (MHD_suspend_connection), the worker fills the reply and resumes it,
  *     and the MHD thread queues the reply when the handler is called again;
- *   - the watcher serves long-polls (GET /jobs/{id}?wait=S): suspended
+ *   - the watcher enforces the connections' deadlines and serves long-polls (GET /jobs/{id}?wait=S): suspended
  *     connections are checked every 200 ms with a caller-supplied predicate
  *     (on the watcher's own database handle) and resumed when it says so or
  *     the deadline passes; the route then runs again with r->resumed = 1.
  * Each helper thread gets a context from thread_init (e.g. its own queue handle).
  *
+ * Deadlines: every request must have sent its headers within header_timeout
+ * and its body within body_timeout of its start, however steadily it
+ * dribbles (http_conns.h; the watcher shuts down the late ones).
  * Admission: the headers are checked (cfg.admit) before any of the body is
  * read; a refusal is answered at once with Connection: close, so a refused
  * upload costs no memory for its body.
@@ -70,6 +75,7 @@ struct http_config {
     int listen_fd;         /* a bound, listening socket (the caller binds it, so that a
                             * failure can name the address); MHD closes it at stop */
     int connection_limit, per_ip_limit, connection_timeout;
+    int header_timeout, body_timeout; /* s from a request's start (http_conns.h) */
     size_t body_limit;
     size_t max_waiters;
     /* admission: called on the MHD thread as soon as the headers are in,

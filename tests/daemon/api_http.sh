@@ -2,7 +2,9 @@
 # tlsphd's HTTP layer against hostile clients, through raw sockets
 # (tests/support/raw_http.py): the token is checked on the headers, before any
 # of the body is read; malformed requests are refused with problem+json and
-# the connection closed.
+# the connection closed; slow clients are closed at their deadlines and the
+# default connection budgets keep room for a normal client while 5 addresses
+# hold 64 slow connections each.
 . "$(dirname "$0")/common.sh"
 RAW="$PY $top_srcdir/tests/support/raw_http.py"
 port_of() { echo "${1##*:}"; }
@@ -21,5 +23,14 @@ start_daemon M "$TMP/data-malformed" || exit 1
 if $RAW malformed "$(port_of "$M_URL")"; then ok "malformed requests"; else fail "malformed requests"; fi
 req GET "$M_URL/healthz"
 check "daemon up after the malformed requests" [ "$STATUS" = 200 ]
+
+# --------------------------------------------------------- slow clients
+# small deadlines (the defaults are 10 s and 120 s) so that the dribblers end
+# soon; the connection limits are the defaults
+start_daemon S "$TMP/data-slow" --header-timeout 2 --body-timeout 4 || exit 1
+if $RAW slow "$(port_of "$S_URL")"; then ok "slow clients"; else fail "slow clients"; fi
+req GET "$S_URL/healthz"
+check "daemon up after the slow clients" [ "$STATUS" = 200 ]
+check "the closes are logged" grep -q "closed .* connection(s) whose headers or body" "$S_LOG"
 
 finish

@@ -9,6 +9,12 @@ Checks:
                              body is read; 40 concurrent tokenless 8 MiB
                              uploads do not grow the daemon's peak RSS by
                              their bodies' size.
+  slow PORT                  a client dribbling its headers, or its body, a
+                             line or a byte at a time is closed by the
+                             daemon's deadlines (configured at 2 s and 4 s
+                             by the test); while 5 addresses (127.0.0.2-6)
+                             hold 64 dribbling connections each, a normal
+                             client's /healthz is answered.
   malformed PORT             each malformed request gets its 4xx/5xx as
                              problem+json, promptly, and the connection is
                              closed: nothing smuggled after it is answered.
@@ -20,9 +26,11 @@ comes at all.
 """
 import json
 import os
+import selectors
 import socket
 import sys
 import threading
+import time
 
 HANG_S = float(os.environ.get("HANG_S", "300"))
 PROBLEM = "application/problem+json"
@@ -42,10 +50,10 @@ def connect(port, source="127.0.0.1"):
     return s
 
 
-def read_response(s):
-    """One response: (status, headers dict (lower-case names), body bytes, rest).
+def read_response(s, buf=b""):
+    """One response: (status, headers dict (lower-case names), body bytes, rest),
+    buf: what was read already (the rest of a previous response's read).
     status None when the connection closed (or hung) before a status line."""
-    buf = b""
     try:
         while b"\r\n\r\n" not in buf:
             b = s.recv(65536)
@@ -207,7 +215,7 @@ def check_malformed(port):
     s = connect(port)
     s.sendall(GOOD + GOOD)
     a = read_response(s)
-    b = read_response(s)
+    b = read_response(s, a[3])
     s.close()
     report(a[0] == 200 and b[0] == 200, "two requests on one connection: %s %s" % (a[0], b[0]))
     s = connect(port)
@@ -222,12 +230,134 @@ def check_malformed(port):
     report(status == 422, "a chunked body is read: %s (422: {} is no execute request)" % status)
 
 
+DRIBBLE_PERIOD = 0.5
+# How long a dribbler keeps going before the check gives up: a hang detector
+# (30 times the deadlines the test configures), not a speed limit.
+DRIBBLE_HANG_S = float(os.environ.get("DRIBBLE_HANG_S", "60"))
+
+
+def dribble(port, first, each):
+    """Sends first, then each every DRIBBLE_PERIOD until the daemon closes
+    the connection: True when it did, False when DRIBBLE_HANG_S passed."""
+    s = connect(port)
+    s.setblocking(False)
+    end = time.monotonic() + DRIBBLE_HANG_S
+    data, n = first, 0
+    while time.monotonic() < end:
+        try:
+            s.sendall(data)
+            if s.recv(4096) == b"":
+                return True
+        except BlockingIOError:
+            pass
+        except OSError:
+            return True
+        n += 1
+        data = each(n)
+        time.sleep(DRIBBLE_PERIOD)
+    s.close()
+    return False
+
+
+class Attack:
+    """addresses x per_address connections that dribble a header line every
+    DRIBBLE_PERIOD and never end their headers; a closed one is opened again."""
+
+    def __init__(self, port, addresses, per_address):
+        self.port, self.stop, self.reopened = port, threading.Event(), 0
+        self.slots = [a for a in addresses for _ in range(per_address)]
+        self.socks = [None] * len(self.slots)
+        self.started = threading.Event()
+        self.thread = threading.Thread(target=self.run)
+        self.thread.start()
+        self.started.wait()
+
+    def open(self, i):
+        try:
+            s = connect(self.port, self.slots[i])
+            s.setblocking(False)
+            s.send(b"GET /healthz HTTP/1.1\r\nHost: t\r\n")
+            self.socks[i] = s
+        except OSError:
+            self.socks[i] = None
+
+    def run(self):
+        for i in range(len(self.slots)):
+            self.open(i)
+        self.started.set()
+        n = 0
+        while not self.stop.wait(DRIBBLE_PERIOD):
+            n += 1
+            for i, s in enumerate(self.socks):
+                try:
+                    if s is None:
+                        raise OSError
+                    s.send(b"X-Slow-%d: 1\r\n" % n)
+                    if s.recv(4096) == b"":
+                        raise OSError
+                except BlockingIOError:
+                    pass
+                except OSError:
+                    if s is not None:
+                        s.close()
+                    self.reopened += 1
+                    self.open(i)
+        for s in self.socks:
+            if s is not None:
+                s.close()
+
+    def end(self):
+        self.stop.set()
+        self.thread.join()
+
+
+def check_slow(port):
+    results_of = {}
+
+    def run(name, first, each):
+        results_of[name] = dribble(port, first, each)
+
+    threads = [
+        threading.Thread(target=run, args=("headers", b"GET /healthz HTTP/1.1\r\nHost: t\r\n",
+                                           lambda n: b"X-Slow-%d: 1\r\n" % n)),
+        threading.Thread(target=run, args=("body", upload_head(100000) + b"{",
+                                           lambda n: b" ")),
+    ]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    report(results_of["headers"], "a client dribbling a header line every %.1f s is closed "
+           "(hang detector %d s)" % (DRIBBLE_PERIOD, DRIBBLE_HANG_S))
+    report(results_of["body"], "a client dribbling its body a byte every %.1f s is closed "
+           "(hang detector %d s)" % (DRIBBLE_PERIOD, DRIBBLE_HANG_S))
+
+    attack = Attack(port, ["127.0.0.%d" % k for k in range(2, 7)], 64)
+    try:
+        for k in range(3):
+            time.sleep(2 * DRIBBLE_PERIOD)  # let the attack dribble, not a deadline
+            s = connect(port)
+            s.settimeout(DRIBBLE_HANG_S)
+            try:
+                s.sendall(GOOD)
+                status = read_response(s)[0]
+            except OSError:
+                status = None
+            s.close()
+            report(status == 200, "/healthz during 5 x 64 slow connections (try %d): %s"
+                   % (k + 1, status))
+    finally:
+        attack.end()
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
     check, port = sys.argv[1], int(sys.argv[2])
     if check == "auth-before-body":
         check_auth_before_body(port, int(sys.argv[3]))
+    elif check == "slow":
+        check_slow(port)
     elif check == "malformed":
         check_malformed(port)
     else:
