@@ -15,43 +15,12 @@
 
 #include "errmsg.h"
 #include "http_conns.h"
+#include "http_internal.h"
 #include "http_protocol.h"
 #include "numtext.h"
 #include "util/clock.h"
 
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
-#define WATCH_PERIOD_MS 200
-#define LATE_LOG_PERIOD 10.0
-
-enum { PHASE_NEW, PHASE_BODY, PHASE_DEFERRED, PHASE_WAITING, PHASE_DONE };
-
-struct task {
-    struct hreq *r;
-    void (*fn)(struct hreq *r, void *app, void *ctx);
-    struct task *next;
-};
-
-struct waiter {
-    struct hreq *r;
-    char id[40];
-    double deadline;
-};
-
-struct http {
-    struct http_config cfg;
-    struct MHD_Daemon *d;
-    pthread_mutex_t mu;
-    pthread_cond_t work_cv, watch_cv;
-    struct task *head, *tail;
-    struct waiter *waiters;
-    size_t nwait, capwait;
-    int stopping;
-    pthread_t worker, watcher;
-    int worker_started, watcher_started;
-    struct http_conns *conns;
-    size_t late_closed;   /* connections shut past a deadline, not yet logged */
-    double late_logged;   /* when that was last logged */
-};
 
 /* ------------------------------------------------------------------ replies */
 
@@ -203,146 +172,6 @@ static enum MHD_Result refuse(struct hreq *r)
     return queue_reply(r);
 }
 
-/* ------------------------------------------------------------ helper threads */
-
-int http_defer(struct hreq *r, void (*fn)(struct hreq *r, void *app, void *ctx))
-{
-    struct http *h = r->http;
-    struct task *t = calloc(1, sizeof *t);
-    if (!t)
-        return -1;
-    t->r = r;
-    t->fn = fn;
-    pthread_mutex_lock(&h->mu);
-    if (h->stopping) {
-        pthread_mutex_unlock(&h->mu);
-        free(t);
-        return -1;
-    }
-    /* suspend before the worker can see the task (it resumes after the task) */
-    r->phase = PHASE_DEFERRED;
-    r->has_reply = 0;
-    MHD_suspend_connection(r->conn);
-    if (h->tail)
-        h->tail->next = t;
-    else
-        h->head = t;
-    h->tail = t;
-    pthread_cond_signal(&h->work_cv);
-    pthread_mutex_unlock(&h->mu);
-    return 0;
-}
-
-int http_wait(struct hreq *r, const char *id, double deadline)
-{
-    struct http *h = r->http;
-    pthread_mutex_lock(&h->mu);
-    if (h->stopping || h->nwait >= h->cfg.max_waiters) {
-        pthread_mutex_unlock(&h->mu);
-        return -1;
-    }
-    if (h->nwait == h->capwait) {
-        size_t cap = h->capwait ? 2 * h->capwait : 16;
-        void *p = realloc(h->waiters, cap * sizeof *h->waiters);
-        if (!p) {
-            pthread_mutex_unlock(&h->mu);
-            return -1;
-        }
-        h->waiters = p;
-        h->capwait = cap;
-    }
-    struct waiter *w = &h->waiters[h->nwait++];
-    w->r = r;
-    snprintf(w->id, sizeof w->id, "%s", id);
-    w->deadline = deadline;
-    r->phase = PHASE_WAITING;
-    MHD_suspend_connection(r->conn);
-    pthread_cond_signal(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    return 0;
-}
-
-static void *worker_main(void *arg)
-{
-    struct http *h = arg;
-    void *ctx = h->cfg.thread_init ? h->cfg.thread_init(h->cfg.app) : NULL;
-    pthread_mutex_lock(&h->mu);
-    for (;;) {
-        while (!h->head && !h->stopping)
-            pthread_cond_wait(&h->work_cv, &h->mu);
-        struct task *t = h->head;
-        if (!t)
-            break; /* stopping and drained */
-        h->head = t->next;
-        if (!h->head)
-            h->tail = NULL;
-        pthread_mutex_unlock(&h->mu);
-        t->fn(t->r, h->cfg.app, ctx);
-        if (!t->r->has_reply)
-            http_reply_problem(t->r, PROBLEM_INTERNAL, "task produced no response");
-        MHD_resume_connection(t->r->conn);
-        free(t);
-        pthread_mutex_lock(&h->mu);
-    }
-    pthread_mutex_unlock(&h->mu);
-    if (h->cfg.thread_fini)
-        h->cfg.thread_fini(ctx);
-    return NULL;
-}
-
-/* Shuts the connections past their deadlines (http_conns.h); says so in the
- * log at most every LATE_LOG_PERIOD s, so that an attack does not flood it. */
-static void enforce_deadlines(struct http *h, double now)
-{
-    h->late_closed += http_conns_enforce(h->conns, now);
-    if (h->late_closed && now - h->late_logged >= LATE_LOG_PERIOD) {
-        tlog("closed %zu connection(s) whose headers or body were not complete within "
-             "header_timeout %d s / body_timeout %d s",
-             h->late_closed, h->cfg.header_timeout, h->cfg.body_timeout);
-        h->late_closed = 0;
-        h->late_logged = now;
-    }
-}
-
-static void *watcher_main(void *arg)
-{
-    struct http *h = arg;
-    void *ctx = h->cfg.thread_init ? h->cfg.thread_init(h->cfg.app) : NULL;
-    pthread_mutex_lock(&h->mu);
-    for (;;) {
-        const double now = tlsph_monotonic_seconds();
-        enforce_deadlines(h, now);
-        for (size_t i = 0; i < h->nwait;) {
-            struct waiter *w = &h->waiters[i];
-            int go = h->stopping || now >= w->deadline;
-            if (!go && h->cfg.wait_ready)
-                go = h->cfg.wait_ready(h->cfg.app, ctx, w->id) != 0;
-            if (go) {
-                struct hreq *r = w->r;
-                h->waiters[i] = h->waiters[--h->nwait];
-                r->resumed = 1;
-                MHD_resume_connection(r->conn);
-            } else {
-                i++;
-            }
-        }
-        if (h->stopping)
-            break;
-        struct timespec ts; /* the deadlines are checked every period, waiters or not */
-        clock_gettime(CLOCK_REALTIME, &ts);
-        ts.tv_nsec += WATCH_PERIOD_MS * 1000000L;
-        if (ts.tv_nsec >= 1000000000L) {
-            ts.tv_sec++;
-            ts.tv_nsec -= 1000000000L;
-        }
-        pthread_cond_timedwait(&h->watch_cv, &h->mu, &ts);
-    }
-    pthread_mutex_unlock(&h->mu);
-    if (h->cfg.thread_fini)
-        h->cfg.thread_fini(ctx);
-    return NULL;
-}
-
 /* -------------------------------------------------------------- MHD glue */
 
 static struct hreq *request_new(struct http *h, struct MHD_Connection *conn)
@@ -440,19 +269,20 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
         *upload_data_size = 0; /* answered early (413): drop the rest */
         return MHD_YES;
     }
-    if (r->phase == PHASE_DEFERRED) /* resumed by the worker: reply is ready */
+    if (r->phase == PHASE_READY) /* resumed by its lane thread: the reply is set */
         return queue_reply(r);
-    /* body complete, or re-entry after a long-poll */
+    /* body complete (PHASE_BODY), or resumed after a long-poll (PHASE_WAITING) */
     if (r->too_big) {
         http_reply_problem(r, PROBLEM_TOO_LARGE, "request body exceeds the limit");
         return queue_reply(r);
     }
-    http_conn_complete(conn);
-    r->phase = PHASE_BODY;
+    if (r->phase == PHASE_BODY)
+        http_conn_complete(conn);
+    if (http_lane_submit(r) == 0)
+        return MHD_YES; /* suspended until its lane thread resumes it */
+    /* shutting down: answer here (a route cannot defer or wait now) */
     r->has_reply = 0;
-    h->cfg.route(r, h->cfg.app);
-    if (r->phase == PHASE_DEFERRED || r->phase == PHASE_WAITING)
-        return MHD_YES; /* suspended */
+    h->cfg.route(r, h->cfg.app, NULL);
     return queue_reply(r);
 }
 
@@ -469,7 +299,8 @@ static void log_line(const struct hreq *r)
         path[i++] = (*s >= 0x20 && *s < 0x7f) ? *s : '?';
     path[i] = '\0';
     fprintf(stderr, "%s.%03ldZ tlsphd: %s %s %u %.1fms\n", ts, now.tv_nsec / 1000000L,
-            r->method[0] ? r->method : "-", i ? path : "-", r->logged_status, 1e3 * (tlsph_monotonic_seconds() - r->t0));
+            r->method[0] ? r->method : "-", i ? path : "-", r->logged_status,
+            1e3 * (tlsph_monotonic_seconds() - r->t0));
 }
 
 static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
@@ -536,14 +367,12 @@ struct http *http_start(const struct http_config *cfg)
         return NULL;
     }
     pthread_mutex_init(&h->mu, NULL);
-    pthread_cond_init(&h->work_cv, NULL);
-    pthread_cond_init(&h->watch_cv, NULL);
-    if (pthread_create(&h->worker, NULL, worker_main, h) != 0)
-        goto fail;
-    h->worker_started = 1;
-    if (pthread_create(&h->watcher, NULL, watcher_main, h) != 0)
-        goto fail;
-    h->watcher_started = 1;
+    if (http_threads_start(h) != 0) {
+        pthread_mutex_destroy(&h->mu);
+        http_conns_free(h->conns);
+        free(h);
+        return NULL;
+    }
     unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_EPOLL |
                      MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ITC | MHD_USE_ERROR_LOG;
     if (cfg->addr->sa_family == AF_INET6)
@@ -564,15 +393,8 @@ struct http *http_start(const struct http_config *cfg)
     }
     return h;
 fail:
-    pthread_mutex_lock(&h->mu);
-    h->stopping = 1;
-    pthread_cond_broadcast(&h->work_cv);
-    pthread_cond_broadcast(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    if (h->worker_started)
-        pthread_join(h->worker, NULL);
-    if (h->watcher_started)
-        pthread_join(h->watcher, NULL);
+    http_threads_stop(h);
+    pthread_mutex_destroy(&h->mu);
     http_conns_free(h->conns);
     free(h);
     return NULL;
@@ -587,13 +409,7 @@ void http_quiesce(struct http *h)
 
 void http_stop(struct http *h)
 {
-    pthread_mutex_lock(&h->mu);
-    h->stopping = 1;
-    pthread_cond_broadcast(&h->work_cv);
-    pthread_cond_broadcast(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    pthread_join(h->worker, NULL);  /* drains deferred tasks, resuming each */
-    pthread_join(h->watcher, NULL); /* resumes every long-poll */
+    http_threads_stop(h); /* runs what the lanes hold and answers every long-poll */
     /* let resumed connections send their replies (bounded) */
     for (int i = 0; i < 40; i++) {
         const union MHD_DaemonInfo *info =
@@ -606,7 +422,5 @@ void http_stop(struct http *h)
     http_conns_free(h->conns);
     free(h->waiters);
     pthread_mutex_destroy(&h->mu);
-    pthread_cond_destroy(&h->work_cv);
-    pthread_cond_destroy(&h->watch_cv);
     free(h);
 }

@@ -23,8 +23,8 @@ size_t http_protocol_trim_query(char *uri)
 
 struct header_scan {
     int content_length, host, transfer_encoding;
-    const char *te;       /* the (first) Transfer-Encoding */
-    char bad_name[64];    /* a header name with white space, printable */
+    const char *te;    /* the (first) Transfer-Encoding */
+    char bad_name[64]; /* a header name with white space, printable */
 };
 
 static enum MHD_Result scan_header(void *cls, enum MHD_ValueKind kind, const char *key,
@@ -52,20 +52,20 @@ static enum MHD_Result scan_header(void *cls, enum MHD_ValueKind kind, const cha
     return MHD_YES;
 }
 
-int http_protocol_check(struct MHD_Connection *conn, const char *version,
-                        enum problem_kind *kind, char *detail, size_t size)
+int http_protocol_check(struct MHD_Connection *conn, const char *version, enum problem_kind *kind,
+                        char *detail, size_t size)
 {
     struct header_scan s = {0};
     MHD_get_connection_values(conn, MHD_HEADER_KIND, scan_header, &s);
     *kind = PROBLEM_BAD_REQUEST;
     if (s.bad_name[0]) {
-        snprintf(detail, size, "header name '%s' contains white space (RFC 9112 5.1)",
-                 s.bad_name);
+        snprintf(detail, size, "header name '%s' contains white space (RFC 9112 5.1)", s.bad_name);
         return -1;
     }
     if (s.transfer_encoding && s.content_length) {
-        snprintf(detail, size, "a request must not carry both Content-Length and "
-                               "Transfer-Encoding (RFC 9112 6.1)");
+        snprintf(detail, size,
+                 "a request must not carry both Content-Length and "
+                 "Transfer-Encoding (RFC 9112 6.1)");
         return -1;
     }
     if (s.content_length > 1) {

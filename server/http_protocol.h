@@ -32,7 +32,7 @@ size_t http_protocol_trim_query(char *uri);
 /* Checks the request's version and headers (all of them, duplicates
  * included).  0 when the request may go on; otherwise -1 with the status in
  * *kind and a sentence for the problem's detail. */
-int http_protocol_check(struct MHD_Connection *conn, const char *version,
-                        enum problem_kind *kind, char *detail, size_t size);
+int http_protocol_check(struct MHD_Connection *conn, const char *version, enum problem_kind *kind,
+                        char *detail, size_t size);
 
 #endif
