@@ -32,5 +32,12 @@ if $RAW slow "$(port_of "$S_URL")"; then ok "slow clients"; else fail "slow clie
 req GET "$S_URL/healthz"
 check "daemon up after the slow clients" [ "$STATUS" = 200 ]
 check "the closes are logged" grep -q "closed .* connection(s) whose headers or body" "$S_LOG"
+# a complete request has no deadline: a long-poll outlasting header_timeout
+# and body_timeout is answered (the job runs for longer than the wait)
+strip_scene 2e-2 100 | "$PY" -c "import json,sys; print(json.dumps({'inputs':{'scene':json.load(sys.stdin)}}))" >"$TMP/long.json"
+LID=$(submit "$S_URL" "$TMP/long.json")
+req GET "$S_URL/jobs/$LID?wait=6"
+check "a 6 s long-poll under 2 s / 4 s deadlines is answered: $STATUS" [ "$STATUS" = 200 ]
+req DELETE "$S_URL/jobs/$LID"
 
 finish
