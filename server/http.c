@@ -361,7 +361,10 @@ struct http *http_start(const struct http_config *cfg)
     h->cfg = *cfg;
     if (!h->cfg.max_waiters)
         h->cfg.max_waiters = 128;
-    h->conns = http_conns_new(cfg->header_timeout, cfg->body_timeout, cfg->connection_timeout);
+    /* a reserve of an eighth of the connections (http_conns.h) */
+    const size_t limit = (size_t)cfg->connection_limit, reserve = limit / 8 ? limit / 8 : 1;
+    h->conns = http_conns_new(cfg->header_timeout, cfg->body_timeout, cfg->connection_timeout,
+                              limit > reserve ? limit - reserve : 0);
     if (!h->conns) {
         free(h);
         return NULL;

@@ -21,14 +21,18 @@ struct http_conn {
 struct http_conns {
     pthread_mutex_t mu;
     struct http_conn *head;
+    size_t open;     /* connections in the list not shut down yet */
+    size_t max_open; /* 0: no reserve */
     double header_timeout, body_timeout, keepalive;
 };
 
-struct http_conns *http_conns_new(double header_timeout, double body_timeout, double keepalive)
+struct http_conns *http_conns_new(double header_timeout, double body_timeout, double keepalive,
+                                  size_t max_open)
 {
     struct http_conns *cs = calloc(1, sizeof *cs);
     if (!cs)
         return NULL;
+    cs->max_open = max_open;
     pthread_mutex_init(&cs->mu, NULL);
     cs->header_timeout = header_timeout;
     cs->body_timeout = body_timeout;
@@ -77,6 +81,7 @@ void http_conns_notify(void *cls, struct MHD_Connection *c, void **socket_contex
         if (cs->head)
             cs->head->prev = k;
         cs->head = k;
+        cs->open++;
         pthread_mutex_unlock(&cs->mu);
     } else if (code == MHD_CONNECTION_NOTIFY_CLOSED) {
         struct http_conn *k = *socket_context;
@@ -90,6 +95,8 @@ void http_conns_notify(void *cls, struct MHD_Connection *c, void **socket_contex
             cs->head = k->next;
         if (k->next)
             k->next->prev = k->prev;
+        if (!k->shut)
+            cs->open--;
         pthread_mutex_unlock(&cs->mu);
         free(k);
         *socket_context = NULL;
@@ -131,6 +138,25 @@ void http_conn_answered(struct MHD_Connection *c)
     set_state(c, CONN_HEADERS);
 }
 
+/* Caller holds cs->mu. */
+static void shut(struct http_conns *cs, struct http_conn *k)
+{
+    shutdown(k->fd, SHUT_RDWR);
+    k->shut = 1;
+    cs->open--;
+}
+
+/* The connection waiting longest for its headers (caller holds cs->mu). */
+static struct http_conn *oldest_waiting(struct http_conns *cs)
+{
+    struct http_conn *old = NULL;
+    for (struct http_conn *k = cs->head; k; k = k->next)
+        if (!k->shut && k->state == CONN_HEADERS &&
+            (!old || k->header_deadline < old->header_deadline))
+            old = k;
+    return old;
+}
+
 size_t http_conns_enforce(struct http_conns *cs, double now)
 {
     size_t n = 0;
@@ -139,10 +165,14 @@ size_t http_conns_enforce(struct http_conns *cs, double now)
         const int late = (k->state == CONN_HEADERS && now > k->header_deadline) ||
                          (k->state == CONN_BODY && now > k->body_deadline);
         if (late && !k->shut) {
-            shutdown(k->fd, SHUT_RDWR);
-            k->shut = 1;
+            shut(cs, k);
             n++;
         }
+    }
+    struct http_conn *k;
+    while (cs->max_open && cs->open > cs->max_open && (k = oldest_waiting(cs))) {
+        shut(cs, k);
+        n++;
     }
     pthread_mutex_unlock(&cs->mu);
     return n;

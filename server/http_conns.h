@@ -14,6 +14,12 @@
  * thread): MHD sees the end of the stream and closes it.  The client gets no
  * answer: MHD cannot queue one before it has the request's headers.
  *
+ * A reserve: when more than max_open connections are open, the oldest ones
+ * still waiting for their headers (slow clients, or idle kept-alive
+ * connections) are shut down first, so that a new client can still connect
+ * (at connection_limit libmicrohttpd stops accepting).  A request in progress
+ * is never shut for that.
+ *
  * One struct http_conn per open connection, kept as MHD's socket context
  * (MHD_OPTION_NOTIFY_CONNECTION); the list is guarded by its own mutex,
  * which also orders a shutdown before MHD closes (and the kernel reuses) the
@@ -27,8 +33,10 @@
 
 struct http_conns;
 
-/* Seconds; NULL when out of memory. */
-struct http_conns *http_conns_new(double header_timeout, double body_timeout, double keepalive);
+/* Seconds; max_open: connections kept open at most before the reserve is
+ * made (0: no reserve).  NULL when out of memory. */
+struct http_conns *http_conns_new(double header_timeout, double body_timeout, double keepalive,
+                                  size_t max_open);
 /* After MHD has stopped (every connection closed). */
 void http_conns_free(struct http_conns *cs);
 
@@ -43,8 +51,8 @@ void http_conn_headers_in(struct MHD_Connection *c);
 void http_conn_complete(struct MHD_Connection *c);
 void http_conn_answered(struct MHD_Connection *c);
 
-/* Shuts down the connections past a deadline at now (tlsph_monotonic_seconds);
- * returns how many.  Any thread. */
+/* Shuts down the connections past a deadline at now (tlsph_monotonic_seconds),
+ * then makes the reserve; returns how many.  Any thread. */
 size_t http_conns_enforce(struct http_conns *cs, double now);
 
 #endif

@@ -167,8 +167,9 @@ static void enforce_deadlines(struct http *h, double now)
 {
     h->late_closed += http_conns_enforce(h->conns, now);
     if (h->late_closed && now - h->late_logged >= LATE_LOG_PERIOD) {
-        tlog("closed %zu connection(s) whose headers or body were not complete within "
-             "header_timeout %d s / body_timeout %d s",
+        tlog("closed %zu slow connection(s): headers or body not complete within "
+             "header_timeout %d s / body_timeout %d s, or waiting longest for their headers "
+             "when connections ran short",
              h->late_closed, h->cfg.header_timeout, h->cfg.body_timeout);
         h->late_closed = 0;
         h->late_logged = now;

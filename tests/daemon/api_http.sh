@@ -2,9 +2,10 @@
 # tlsphd's HTTP layer against hostile clients, through raw sockets
 # (tests/support/raw_http.py): the token is checked on the headers, before any
 # of the body is read; malformed requests are refused with problem+json and
-# the connection closed; slow clients are closed at their deadlines and the
+# the connection closed; slow clients are closed at their deadlines, the
 # default connection budgets keep room for a normal client while 5 addresses
-# hold 64 slow connections each.
+# hold 64 slow connections each, and a reserve of connections is kept when
+# slow clients fill the limit.
 . "$(dirname "$0")/common.sh"
 RAW="$PY $top_srcdir/tests/support/raw_http.py"
 port_of() { echo "${1##*:}"; }
@@ -31,7 +32,12 @@ start_daemon S "$TMP/data-slow" --header-timeout 2 --body-timeout 4 || exit 1
 if $RAW slow "$(port_of "$S_URL")"; then ok "slow clients"; else fail "slow clients"; fi
 req GET "$S_URL/healthz"
 check "daemon up after the slow clients" [ "$STATUS" = 200 ]
-check "the closes are logged" grep -q "closed .* connection(s) whose headers or body" "$S_LOG"
+check "the closes are logged" grep -q "closed .* slow connection(s)" "$S_LOG"
+# a reserve of connections: when connections waiting for their headers fill
+# connection_limit, the oldest are closed so that others can still connect
+# (long deadlines here, so that only the reserve closes them)
+start_daemon R "$TMP/data-reserve" --connection-limit 16 --per-ip-limit 16 --header-timeout 3600 || exit 1
+if $RAW reserve "$(port_of "$R_URL")" 16; then ok "a reserve of connections"; else fail "a reserve of connections"; fi
 # a complete request has no deadline: a long-poll outlasting header_timeout
 # and body_timeout is answered (the job runs for longer than the wait)
 strip_scene 2e-2 100 | "$PY" -c "import json,sys; print(json.dumps({'inputs':{'scene':json.load(sys.stdin)}}))" >"$TMP/long.json"

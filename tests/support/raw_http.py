@@ -15,6 +15,12 @@ Checks:
                              by the test); while 5 addresses (127.0.0.2-6)
                              hold 64 dribbling connections each, a normal
                              client's /healthz is answered.
+  reserve PORT LIMIT         LIMIT + 4 connections (LIMIT: the daemon's
+                             connection_limit) from 127.0.0.2 that never end
+                             their headers:
+                             the daemon closes the oldest ones to keep a
+                             reserve, and a normal client's /healthz is
+                             answered.
   malformed PORT             each malformed request gets its 4xx/5xx as
                              problem+json, promptly, and the connection is
                              closed: nothing smuggled after it is answered.
@@ -350,6 +356,44 @@ def check_slow(port):
         attack.end()
 
 
+def check_reserve(port, limit):
+    idle = []
+    for _ in range(limit + 4):  # beyond the limit: the last wait in the listen backlog
+        c = connect(port, "127.0.0.2")
+        c.sendall(b"GET /healthz HTTP/1.1\r\nHost: t\r\n")
+        idle.append(c)
+
+    def closed(c):
+        c.setblocking(False)
+        try:
+            return c.recv(4096) == b""
+        except BlockingIOError:
+            return False
+        except OSError:
+            return True
+
+    # the reserve is made within a watcher period or two; wait for it (a hang
+    # detector, not a speed limit)
+    end = time.monotonic() + HANG_S
+    while time.monotonic() < end and not any(closed(c) for c in idle):
+        time.sleep(0.1)
+    gone = [closed(c) for c in idle]
+    report(any(gone), "%d connections that never end their headers: %d closed to keep a "
+           "reserve" % (len(idle), sum(gone)))
+    report(gone[0] and gone == sorted(gone, reverse=True),
+           "the oldest ones were closed: %s" % "".join("x" if g else "." for g in gone))
+    s = connect(port)
+    try:
+        s.sendall(GOOD)
+        status = read_response(s)[0]
+    except OSError:
+        status = None
+    s.close()
+    report(status == 200, "/healthz while they hold the rest: %s" % status)
+    for c in idle:
+        c.close()
+
+
 def main():
     if len(sys.argv) < 3:
         sys.exit(__doc__)
@@ -358,6 +402,8 @@ def main():
         check_auth_before_body(port, int(sys.argv[3]))
     elif check == "slow":
         check_slow(port)
+    elif check == "reserve":
+        check_reserve(port, int(sys.argv[3]))
     elif check == "malformed":
         check_malformed(port)
     else:
