@@ -35,8 +35,9 @@ check "daemon up after the slow clients" [ "$STATUS" = 200 ]
 check "the closes are logged" grep -q "closed .* slow connection(s)" "$S_LOG"
 # a reserve of connections: when connections waiting for their headers fill
 # connection_limit, the oldest are closed so that others can still connect
-# (long deadlines here, so that only the reserve closes them)
-start_daemon R "$TMP/data-reserve" --connection-limit 16 --per-ip-limit 16 --header-timeout 3600 || exit 1
+# (long deadlines and idle timeout here, so that only the reserve closes them)
+start_daemon R "$TMP/data-reserve" --connection-limit 16 --per-ip-limit 16 --header-timeout 3600 \
+    --connection-timeout 3600 || exit 1
 if $RAW reserve "$(port_of "$R_URL")" 16; then ok "a reserve of connections"; else fail "a reserve of connections"; fi
 # a complete request has no deadline: a long-poll outlasting header_timeout
 # and body_timeout is answered (the job runs for longer than the wait)
