@@ -236,6 +236,18 @@ def check_malformed(port):
     report(status == 422, "a chunked body is read: %s (422: {} is no execute request)" % status)
 
 
+def healthz(port):
+    """The status of a GET /healthz from 127.0.0.1 (None: no answer)."""
+    s = connect(port)
+    try:
+        s.sendall(GOOD)
+        return read_response(s)[0]
+    except OSError:
+        return None
+    finally:
+        s.close()
+
+
 DRIBBLE_PERIOD = 0.5
 # How long a dribbler keeps going before the check gives up: a hang detector
 # (30 times the deadlines the test configures), not a speed limit.
@@ -342,14 +354,7 @@ def check_slow(port):
     try:
         for k in range(3):
             time.sleep(2 * DRIBBLE_PERIOD)  # let the attack dribble, not a deadline
-            s = connect(port)
-            s.settimeout(DRIBBLE_HANG_S)
-            try:
-                s.sendall(GOOD)
-                status = read_response(s)[0]
-            except OSError:
-                status = None
-            s.close()
+            status = healthz(port)
             report(status == 200, "/healthz during 5 x 64 slow connections (try %d): %s"
                    % (k + 1, status))
     finally:
@@ -382,13 +387,7 @@ def check_reserve(port, limit):
            "reserve" % (len(idle), sum(gone)))
     report(gone[0] and gone == sorted(gone, reverse=True),
            "the oldest ones were closed: %s" % "".join("x" if g else "." for g in gone))
-    s = connect(port)
-    try:
-        s.sendall(GOOD)
-        status = read_response(s)[0]
-    except OSError:
-        status = None
-    s.close()
+    status = healthz(port)
     report(status == 200, "/healthz while they hold the rest: %s" % status)
     for c in idle:
         c.close()
