@@ -25,7 +25,8 @@ void tcfg_usage(FILE *f)
             "              [--engine PATH] [--schemas-dir DIR] [--max-jobs N]\n"
             "              [--threads-per-job N] [--wall-limit S] [--max-particles N]\n"
             "              [--max-children N] [--body-limit BYTES] [--connection-limit N]\n"
-            "              [--per-ip-limit N] [--connection-timeout S] [--memory-limit-mb N]\n"
+            "              [--per-ip-limit N] [--connection-timeout S] [--header-timeout S]\n"
+            "              [--body-timeout S] [--heavy-threads N] [--memory-limit-mb N]\n"
             "              [--kill-grace S] [--max-attempts N] [--token-file FILE]\n"
             "              [--min-free-mb N] [--max-output-mb N] [--disk-reserve-mb N]\n"
             "              [--recover]\n"
@@ -164,12 +165,16 @@ static const struct key keys[] = {
     {"connection_limit", "--connection-limit", K_INT, 4, 65536, MEMBER(connection_limit)},
     {"per_ip_limit", "--per-ip-limit", K_INT, 0, 65536, MEMBER(per_ip_limit)},
     {"connection_timeout", "--connection-timeout", K_INT, 1, 3600, MEMBER(connection_timeout)},
+    {"header_timeout", "--header-timeout", K_INT, 1, 3600, MEMBER(header_timeout)},
+    {"body_timeout", "--body-timeout", K_INT, 1, 86400, MEMBER(body_timeout)},
+    {"heavy_threads", "--heavy-threads", K_INT, 1, 32, MEMBER(heavy_threads)},
     {"memory_limit_mb", "--memory-limit-mb", K_LONG, 0, 1L << 30, MEMBER(memory_limit_mb)},
     {"kill_grace", "--kill-grace", K_DOUBLE, 0, 3600, MEMBER(kill_grace)},
     {"max_attempts", "--max-attempts", K_INT, 1, 100, MEMBER(max_attempts)},
     {"min_free_mb", "--min-free-mb", K_LONG, 0, 1L << 40, MEMBER(min_free_mb)},
     {"max_output_mb", "--max-output-mb", K_LONG, 0, 1L << 40, MEMBER(max_output_mb)},
     {"disk_reserve_mb", "--disk-reserve-mb", K_LONG, 0, 1L << 20, MEMBER(disk_reserve_mb)},
+    {"test_hold_heavy", NULL, K_STRING, 0, 0, MEMBER(test_hold_heavy)},
     {"token_sha256", NULL, K_TOKEN_HEX, 0, 0, 0, 0},
     {"token_file", "--token-file", K_TOKEN_FILE, 0, 0, 0, 0},
 };
@@ -352,9 +357,12 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
     c->max_particles = TLSPH_DEFAULT_MAX_PARTICLES;
     c->max_children = 1000;
     c->body_limit = 8u << 20;
-    c->connection_limit = 256;
+    c->connection_limit = 512;
     c->per_ip_limit = 64;
     c->connection_timeout = 30;
+    c->header_timeout = 10;
+    c->body_timeout = 120;
+    c->heavy_threads = 2;
     c->memory_limit_mb = 0;
     c->kill_grace = 5;
     c->max_attempts = 3;

@@ -16,9 +16,13 @@
  *                                             (2000000; at most TLSPH_MAX_PARTICLES)
  *   max_children = N          --max-children  1000 (study size)
  *   body_limit = BYTES        --body-limit    8388608
- *   connection_limit = N      --connection-limit 256
- *   per_ip_limit = N          --per-ip-limit  64
- *   connection_timeout = S    --connection-timeout 30
+ *   connection_limit = N      --connection-limit 512
+ *   per_ip_limit = N          --per-ip-limit  64 (0 = none)
+ *   connection_timeout = S    --connection-timeout 30 (idle)
+ *   header_timeout = S        --header-timeout 10 (a request's headers, from its start)
+ *   body_timeout = S          --body-timeout  120 (a request's body, from its start)
+ *   heavy_threads = N         --heavy-threads 2 (threads for job lists and result reads;
+ *                                             routes.h's lanes)
  *   memory_limit_mb = N       --memory-limit-mb 0 (RLIMIT_AS per engine; 0 = none)
  *   kill_grace = S            --kill-grace    5
  *   max_attempts = N          --max-attempts  3
@@ -29,6 +33,8 @@
  *   disk_reserve_mb = N       --disk-reserve-mb 8 (the reserve file; 0 = none; storage.h)
  *   token_sha256 = HEX        (repeatable)    SHA-256 of an accepted bearer token
  *   token_file = FILE         --token-file    plaintext tokens, one per line (hashed at load)
+ *   test_hold_heavy = FILE    (file only)     TESTING ONLY: heavy requests (job lists,
+ *                                             result reads) wait while FILE exists
  *
  * And, on the command line only, --recover: start on a data directory that
  * does not pass the start-up checks by rebuilding it (startup.h).
@@ -63,6 +69,9 @@ struct tcfg {
     int connection_limit;
     int per_ip_limit;
     int connection_timeout;
+    int header_timeout;      /* s for a request's headers, from its start (http_conns.h) */
+    int body_timeout;        /* s for its body, from its start */
+    int heavy_threads;       /* threads of the heavy lane (routes.h) */
     long memory_limit_mb;
     double kill_grace;
     int max_attempts;
@@ -70,6 +79,7 @@ struct tcfg {
     long max_output_mb;      /* per-job quota on the estimated result file, MiB (0 = none) */
     long disk_reserve_mb;    /* the reserve file, MiB (0 = none) */
     int recover;             /* --recover was given */
+    char test_hold_heavy[1024]; /* testing only, "" = off (http_config.hold_path) */
     struct tauth auth;       /* token hashes (empty = no authentication) */
 };
 

@@ -14,38 +14,13 @@
 #include <microhttpd.h>
 
 #include "errmsg.h"
+#include "http_conns.h"
+#include "http_internal.h"
+#include "http_protocol.h"
 #include "numtext.h"
 #include "util/clock.h"
 
 #define CONNECTION_MEMORY_LIMIT (128 * 1024)
-#define WATCH_PERIOD_MS 200
-
-enum { PHASE_NEW, PHASE_BODY, PHASE_DEFERRED, PHASE_WAITING, PHASE_DONE };
-
-struct task {
-    struct hreq *r;
-    void (*fn)(struct hreq *r, void *app, void *ctx);
-    struct task *next;
-};
-
-struct waiter {
-    struct hreq *r;
-    char id[40];
-    double deadline;
-};
-
-struct http {
-    struct http_config cfg;
-    struct MHD_Daemon *d;
-    pthread_mutex_t mu;
-    pthread_cond_t work_cv, watch_cv;
-    struct task *head, *tail;
-    struct waiter *waiters;
-    size_t nwait, capwait;
-    int stopping;
-    pthread_t worker, watcher;
-    int worker_started, watcher_started;
-};
 
 /* ------------------------------------------------------------------ replies */
 
@@ -189,136 +164,58 @@ static enum MHD_Result queue_reply(struct hreq *r)
     return ret;
 }
 
-/* ------------------------------------------------------------ helper threads */
-
-int http_defer(struct hreq *r, void (*fn)(struct hreq *r, void *app, void *ctx))
+/* A reply before the body was read: MHD sends it and then closes the
+ * connection instead of reading (and discarding) the rest of the upload. */
+static enum MHD_Result refuse(struct hreq *r)
 {
-    struct http *h = r->http;
-    struct task *t = calloc(1, sizeof *t);
-    if (!t)
-        return -1;
-    t->r = r;
-    t->fn = fn;
-    pthread_mutex_lock(&h->mu);
-    if (h->stopping) {
-        pthread_mutex_unlock(&h->mu);
-        free(t);
-        return -1;
-    }
-    /* suspend before the worker can see the task (it resumes after the task) */
-    r->phase = PHASE_DEFERRED;
-    r->has_reply = 0;
-    MHD_suspend_connection(r->conn);
-    if (h->tail)
-        h->tail->next = t;
-    else
-        h->head = t;
-    h->tail = t;
-    pthread_cond_signal(&h->work_cv);
-    pthread_mutex_unlock(&h->mu);
-    return 0;
-}
-
-int http_wait(struct hreq *r, const char *id, double deadline)
-{
-    struct http *h = r->http;
-    pthread_mutex_lock(&h->mu);
-    if (h->stopping || h->nwait >= h->cfg.max_waiters) {
-        pthread_mutex_unlock(&h->mu);
-        return -1;
-    }
-    if (h->nwait == h->capwait) {
-        size_t cap = h->capwait ? 2 * h->capwait : 16;
-        void *p = realloc(h->waiters, cap * sizeof *h->waiters);
-        if (!p) {
-            pthread_mutex_unlock(&h->mu);
-            return -1;
-        }
-        h->waiters = p;
-        h->capwait = cap;
-    }
-    struct waiter *w = &h->waiters[h->nwait++];
-    w->r = r;
-    snprintf(w->id, sizeof w->id, "%s", id);
-    w->deadline = deadline;
-    r->phase = PHASE_WAITING;
-    MHD_suspend_connection(r->conn);
-    pthread_cond_signal(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    return 0;
-}
-
-static void *worker_main(void *arg)
-{
-    struct http *h = arg;
-    void *ctx = h->cfg.thread_init ? h->cfg.thread_init(h->cfg.app) : NULL;
-    pthread_mutex_lock(&h->mu);
-    for (;;) {
-        while (!h->head && !h->stopping)
-            pthread_cond_wait(&h->work_cv, &h->mu);
-        struct task *t = h->head;
-        if (!t)
-            break; /* stopping and drained */
-        h->head = t->next;
-        if (!h->head)
-            h->tail = NULL;
-        pthread_mutex_unlock(&h->mu);
-        t->fn(t->r, h->cfg.app, ctx);
-        if (!t->r->has_reply)
-            http_reply_problem(t->r, PROBLEM_INTERNAL, "task produced no response");
-        MHD_resume_connection(t->r->conn);
-        free(t);
-        pthread_mutex_lock(&h->mu);
-    }
-    pthread_mutex_unlock(&h->mu);
-    if (h->cfg.thread_fini)
-        h->cfg.thread_fini(ctx);
-    return NULL;
-}
-
-static void *watcher_main(void *arg)
-{
-    struct http *h = arg;
-    void *ctx = h->cfg.thread_init ? h->cfg.thread_init(h->cfg.app) : NULL;
-    pthread_mutex_lock(&h->mu);
-    for (;;) {
-        if (h->nwait == 0 && !h->stopping)
-            pthread_cond_wait(&h->watch_cv, &h->mu);
-        const double now = tlsph_monotonic_seconds();
-        for (size_t i = 0; i < h->nwait;) {
-            struct waiter *w = &h->waiters[i];
-            int go = h->stopping || now >= w->deadline;
-            if (!go && h->cfg.wait_ready)
-                go = h->cfg.wait_ready(h->cfg.app, ctx, w->id) != 0;
-            if (go) {
-                struct hreq *r = w->r;
-                h->waiters[i] = h->waiters[--h->nwait];
-                r->resumed = 1;
-                MHD_resume_connection(r->conn);
-            } else {
-                i++;
-            }
-        }
-        if (h->stopping)
-            break;
-        if (h->nwait > 0) {
-            struct timespec ts;
-            clock_gettime(CLOCK_REALTIME, &ts);
-            ts.tv_nsec += WATCH_PERIOD_MS * 1000000L;
-            if (ts.tv_nsec >= 1000000000L) {
-                ts.tv_sec++;
-                ts.tv_nsec -= 1000000000L;
-            }
-            pthread_cond_timedwait(&h->watch_cv, &h->mu, &ts);
-        }
-    }
-    pthread_mutex_unlock(&h->mu);
-    if (h->cfg.thread_fini)
-        h->cfg.thread_fini(ctx);
-    return NULL;
+    http_add_header(r, MHD_HTTP_HEADER_CONNECTION, "close");
+    return queue_reply(r);
 }
 
 /* -------------------------------------------------------------- MHD glue */
+
+static struct hreq *request_new(struct http *h, struct MHD_Connection *conn)
+{
+    struct hreq *r = calloc(1, sizeof *r);
+    if (!r)
+        return NULL;
+    r->conn = conn;
+    r->http = h;
+    r->t0 = tlsph_monotonic_seconds();
+    r->reply.fd = -1;
+    r->phase = PHASE_NEW;
+    return r;
+}
+
+/* Called by MHD with the raw request target before it splits the query: the
+ * request starts here, and a query with too many parameters is cut off before
+ * MHD tries to store them (http_protocol.h).  0.9.75 passes the connection's
+ * own buffer, which it parses right after this call, so the cut takes. */
+static void *uri_cb(void *cls, const char *uri, struct MHD_Connection *conn)
+{
+    struct hreq *r = request_new(cls, conn);
+    if (r)
+        r->query_params = http_protocol_trim_query((char *)uri);
+    return r;
+}
+
+/* The checks of the request line and headers before anything else (http_protocol.h). */
+static int protocol_refused(struct hreq *r, const char *version)
+{
+    char detail[160];
+    enum problem_kind kind;
+    if (r->query_params) {
+        snprintf(detail, sizeof detail, "%zu query parameters; at most %d are accepted",
+                 r->query_params, HTTP_MAX_QUERY_PARAMS);
+        http_reply_problem(r, PROBLEM_URI_TOO_LONG, detail);
+        return 1;
+    }
+    if (http_protocol_check(r->conn, version, &kind, detail, sizeof detail) != 0) {
+        http_reply_problem(r, kind, detail);
+        return 1;
+    }
+    return 0;
+}
 
 static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const char *url,
                                  const char *method, const char *version,
@@ -327,23 +224,21 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
 {
     struct http *h = cls;
     struct hreq *r = *con_cls;
-    (void)version;
-    if (!r) {
-        r = calloc(1, sizeof *r);
-        if (!r)
-            return MHD_NO;
-        r->conn = conn;
-        r->http = h;
-        r->t0 = tlsph_monotonic_seconds();
-        r->reply.fd = -1;
+    if (!r && !(r = *con_cls = request_new(h, conn)))
+        return MHD_NO;
+    if (r->phase == PHASE_NEW) {
         snprintf(r->method, sizeof r->method, "%s", method);
         r->path = strdup(url ? url : "/");
-        if (!r->path) {
-            free(r);
+        if (!r->path)
             return MHD_NO;
-        }
         r->phase = PHASE_BODY;
-        *con_cls = r;
+        http_conn_headers_in(conn);
+        if (protocol_refused(r, version))
+            return refuse(r);
+        if (h->cfg.admit)
+            h->cfg.admit(r, h->cfg.app);
+        if (r->has_reply)
+            return refuse(r);
         const char *cl = MHD_lookup_connection_value(conn, MHD_HEADER_KIND,
                                                      MHD_HTTP_HEADER_CONTENT_LENGTH);
         if (cl) {
@@ -353,7 +248,7 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
             if (errno || end == cl || n > h->cfg.body_limit) {
                 r->too_big = 1;
                 http_reply_problem(r, PROBLEM_TOO_LARGE, "request body exceeds the limit");
-                return queue_reply(r);
+                return refuse(r);
             }
         }
         return MHD_YES;
@@ -374,18 +269,20 @@ static enum MHD_Result access_cb(void *cls, struct MHD_Connection *conn, const c
         *upload_data_size = 0; /* answered early (413): drop the rest */
         return MHD_YES;
     }
-    if (r->phase == PHASE_DEFERRED) /* resumed by the worker: reply is ready */
+    if (r->phase == PHASE_READY) /* resumed by its lane thread: the reply is set */
         return queue_reply(r);
-    /* body complete, or re-entry after a long-poll */
+    /* body complete (PHASE_BODY), or resumed after a long-poll (PHASE_WAITING) */
     if (r->too_big) {
         http_reply_problem(r, PROBLEM_TOO_LARGE, "request body exceeds the limit");
         return queue_reply(r);
     }
-    r->phase = PHASE_BODY;
+    if (r->phase == PHASE_BODY)
+        http_conn_complete(conn);
+    if (http_lane_submit(r) == 0)
+        return MHD_YES; /* suspended until its lane thread resumes it */
+    /* shutting down: answer here (a route cannot defer or wait now) */
     r->has_reply = 0;
-    h->cfg.route(r, h->cfg.app);
-    if (r->phase == PHASE_DEFERRED || r->phase == PHASE_WAITING)
-        return MHD_YES; /* suspended */
+    h->cfg.route(r, h->cfg.app, NULL);
     return queue_reply(r);
 }
 
@@ -402,15 +299,16 @@ static void log_line(const struct hreq *r)
         path[i++] = (*s >= 0x20 && *s < 0x7f) ? *s : '?';
     path[i] = '\0';
     fprintf(stderr, "%s.%03ldZ tlsphd: %s %s %u %.1fms\n", ts, now.tv_nsec / 1000000L,
-            r->method, path, r->logged_status, 1e3 * (tlsph_monotonic_seconds() - r->t0));
+            r->method[0] ? r->method : "-", i ? path : "-", r->logged_status,
+            1e3 * (tlsph_monotonic_seconds() - r->t0));
 }
 
 static void completed_cb(void *cls, struct MHD_Connection *conn, void **con_cls,
                          enum MHD_RequestTerminationCode toe)
 {
     (void)cls;
-    (void)conn;
     (void)toe;
+    http_conn_answered(conn);
     struct hreq *r = *con_cls;
     if (!r)
         return;
@@ -463,15 +361,21 @@ struct http *http_start(const struct http_config *cfg)
     h->cfg = *cfg;
     if (!h->cfg.max_waiters)
         h->cfg.max_waiters = 128;
+    /* a reserve of an eighth of the connections (http_conns.h) */
+    const size_t limit = (size_t)cfg->connection_limit, reserve = limit / 8 ? limit / 8 : 1;
+    h->conns = http_conns_new(cfg->header_timeout, cfg->body_timeout, cfg->connection_timeout,
+                              limit > reserve ? limit - reserve : 0);
+    if (!h->conns) {
+        free(h);
+        return NULL;
+    }
     pthread_mutex_init(&h->mu, NULL);
-    pthread_cond_init(&h->work_cv, NULL);
-    pthread_cond_init(&h->watch_cv, NULL);
-    if (pthread_create(&h->worker, NULL, worker_main, h) != 0)
-        goto fail;
-    h->worker_started = 1;
-    if (pthread_create(&h->watcher, NULL, watcher_main, h) != 0)
-        goto fail;
-    h->watcher_started = 1;
+    if (http_threads_start(h) != 0) {
+        pthread_mutex_destroy(&h->mu);
+        http_conns_free(h->conns);
+        free(h);
+        return NULL;
+    }
     unsigned flags = MHD_USE_INTERNAL_POLLING_THREAD | MHD_USE_EPOLL |
                      MHD_ALLOW_SUSPEND_RESUME | MHD_USE_ITC | MHD_USE_ERROR_LOG;
     if (cfg->addr->sa_family == AF_INET6)
@@ -482,7 +386,9 @@ struct http *http_start(const struct http_config *cfg)
         MHD_OPTION_PER_IP_CONNECTION_LIMIT, (unsigned)cfg->per_ip_limit,
         MHD_OPTION_CONNECTION_TIMEOUT, (unsigned)cfg->connection_timeout,
         MHD_OPTION_CONNECTION_MEMORY_LIMIT, (size_t)CONNECTION_MEMORY_LIMIT,
-        MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
+        MHD_OPTION_NOTIFY_COMPLETED, completed_cb, h, MHD_OPTION_URI_LOG_CALLBACK, uri_cb, h,
+        MHD_OPTION_NOTIFY_CONNECTION, http_conns_notify, h->conns,
+        MHD_OPTION_UNESCAPE_CALLBACK, unescape_cb,
         NULL, MHD_OPTION_END);
     if (!h->d) {
         tlog("cannot start the HTTP server (libmicrohttpd refused the listening socket)");
@@ -490,15 +396,9 @@ struct http *http_start(const struct http_config *cfg)
     }
     return h;
 fail:
-    pthread_mutex_lock(&h->mu);
-    h->stopping = 1;
-    pthread_cond_broadcast(&h->work_cv);
-    pthread_cond_broadcast(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    if (h->worker_started)
-        pthread_join(h->worker, NULL);
-    if (h->watcher_started)
-        pthread_join(h->watcher, NULL);
+    http_threads_stop(h);
+    pthread_mutex_destroy(&h->mu);
+    http_conns_free(h->conns);
     free(h);
     return NULL;
 }
@@ -512,13 +412,7 @@ void http_quiesce(struct http *h)
 
 void http_stop(struct http *h)
 {
-    pthread_mutex_lock(&h->mu);
-    h->stopping = 1;
-    pthread_cond_broadcast(&h->work_cv);
-    pthread_cond_broadcast(&h->watch_cv);
-    pthread_mutex_unlock(&h->mu);
-    pthread_join(h->worker, NULL);  /* drains deferred tasks, resuming each */
-    pthread_join(h->watcher, NULL); /* resumes every long-poll */
+    http_threads_stop(h); /* runs what the lanes hold and answers every long-poll */
     /* let resumed connections send their replies (bounded) */
     for (int i = 0; i < 40; i++) {
         const union MHD_DaemonInfo *info =
@@ -528,9 +422,8 @@ void http_stop(struct http *h)
         usleep(50000);
     }
     MHD_stop_daemon(h->d);
+    http_conns_free(h->conns);
     free(h->waiters);
     pthread_mutex_destroy(&h->mu);
-    pthread_cond_destroy(&h->work_cv);
-    pthread_cond_destroy(&h->watch_cv);
     free(h);
 }

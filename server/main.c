@@ -182,9 +182,16 @@ int main(int argc, char **argv)
         .connection_limit = cfg.connection_limit,
         .per_ip_limit = cfg.per_ip_limit,
         .connection_timeout = cfg.connection_timeout,
+        .header_timeout = cfg.header_timeout,
+        .body_timeout = cfg.body_timeout,
         .body_limit = cfg.body_limit,
         .max_waiters = (size_t)(cfg.connection_limit / 2),
+        .hold_path = cfg.test_hold_heavy[0] ? cfg.test_hold_heavy : NULL,
+        .hold_lane = LANE_HEAVY,
+        .admit = troutes_admit,
         .route = troutes_route,
+        .nlanes = LANE_COUNT,
+        .lane_threads = {[LANE_LIGHT] = 1, [LANE_WRITE] = 1, [LANE_HEAVY] = cfg.heavy_threads},
         .thread_init = troutes_thread_init,
         .thread_fini = troutes_thread_fini,
         .wait_ready = troutes_wait_ready,
@@ -199,6 +206,14 @@ int main(int argc, char **argv)
         tcfg_free(&cfg);
         return 1;
     }
+    if (cfg.per_ip_limit > 0 && cfg.per_ip_limit * 4 > cfg.connection_limit)
+        tlog("warning: per_ip_limit %d x 4 addresses > connection_limit %d: a few clients can "
+             "take every connection (docs/deployment.md, \"Hostile clients\")",
+             cfg.per_ip_limit, cfg.connection_limit);
+    else if (cfg.per_ip_limit == 0 && !cfg.loopback)
+        tlog("warning: per_ip_limit 0 (no limit per address) on %s: one client can take every "
+             "connection",
+             cfg.listen);
     tlog("listening on %s (data %s, engine %s, max-jobs %d, threads-per-job %d, auth %s)",
          cfg.listen, cfg.data_dir, cfg.engine, cfg.max_jobs, cfg.threads_per_job,
          tauth_enabled(&cfg.auth) ? "bearer" : "off");

@@ -26,11 +26,13 @@ enum problem_kind {
     PROBLEM_RESULT_NOT_READY,  /* 404 (OGC type URI; OGC 1.0 asks 404) */
     PROBLEM_CONFLICT,          /* 409 */
     PROBLEM_TOO_LARGE,         /* 413 */
+    PROBLEM_URI_TOO_LONG,      /* 414: too many query parameters */
     PROBLEM_OUTPUT_QUOTA,      /* 413: a job's estimated result file is above the quota */
     PROBLEM_MEDIA_TYPE,        /* 415 */
     PROBLEM_RANGE,             /* 416 */
     PROBLEM_VALIDATION,        /* 422 */
     PROBLEM_INTERNAL,          /* 500 */
+    PROBLEM_NOT_IMPLEMENTED,   /* 501: a Transfer-Encoding other than chunked */
     PROBLEM_UNAVAILABLE,       /* 503 */
     PROBLEM_NO_STORAGE,        /* 507: the data directory's disk cannot take it */
     PROBLEM_KIND_COUNT

@@ -5,7 +5,7 @@
  * A handler gets the request and a struct route_call: the matched path
  * parameters and the options it parsed from the query and the headers, each
  * in its own typed member.  The call lives in r->data (freed by http.c with
- * the request), so a task deferred to the worker thread (route_defer) reads
+ * the request), so a task deferred with route_defer (run on the same lane thread) reads
  * the same members there. */
 #ifndef TLSPHD_ROUTE_H
 #define TLSPHD_ROUTE_H
@@ -37,11 +37,12 @@ enum route_format {
 
 struct route_call;
 typedef void route_handler(struct hreq *r, struct route_call *c);
-/* A task on the worker thread, with that thread's queue handle. */
+/* A deferred task, with the lane thread's queue handle. */
 typedef void route_task(struct hreq *r, struct route_call *c, struct tq *q);
 
 struct route_call {
-    struct tapp *app;
+    struct tapp *app;    /* thread_app on a lane thread: its q is that thread's */
+    struct tapp thread_app;
     /* path parameters: point into path[] ("{id}", "{process}", "{name}"; NULL
      * when the route has none) and the segments matched by a trailing "**" */
     const char *id, *process, *name;
@@ -78,7 +79,8 @@ route_handler result_log, result_doc, result_summary, result_h5, result_xmf, res
 
 /* routes_util.c */
 
-/* Runs task on the worker thread; 0, or -1 when shutting down (reply yourself). */
+/* Runs task with this lane thread's queue handle; 0, or -1 when shutting down
+ * (reply yourself). */
 int route_defer(struct hreq *r, struct route_call *c, route_task *task);
 /* The service view of this thread's queue handle. */
 struct jobs_env route_jobs_env(const struct tapp *a, struct tq *q);

@@ -25,32 +25,33 @@ struct route {
     const char *pattern;
     route_handler *handler;
     bool public;           /* served without a token */
+    enum route_lane lane;  /* the helper threads that run it (routes.h) */
 };
 
 /* Order matters only where patterns overlap: the first matching row wins,
  * so the catch-all under results/ comes last. */
 static const struct route routes[] = {
-    {"GET", "/", meta_landing, true},
-    {"GET", "/conformance", meta_conformance, true},
-    {"GET", "/openapi.json", meta_openapi, true},
-    {"GET", "/healthz", meta_healthz, true},
-    {"GET", "/schemas/{name}", meta_schema, true},
-    {"GET", "/processes", meta_processes, false},
-    {"GET", "/processes/{process}", meta_process, false},
-    {"POST", "/processes/{process}/execution", job_execute, false},
-    {"GET", "/jobs", job_list, false},
-    {"GET", "/jobs/{id}", job_get, false},
-    {"DELETE", "/jobs/{id}", job_delete, false},
-    {"GET", "/jobs/{id}/log", result_log, false},
-    {"GET", "/jobs/{id}/results", result_doc, false},
-    {"GET", "/jobs/{id}/results/summary", result_summary, false},
-    {"GET", "/jobs/{id}/results/result.h5", result_h5, false},
-    {"GET", "/jobs/{id}/results/result.xmf", result_xmf, false},
-    {"GET", "/jobs/{id}/results/series", result_series_list, false},
-    {"GET", "/jobs/{id}/results/series/**", result_series, false},
-    {"GET", "/jobs/{id}/results/frames", result_frames, false},
-    {"GET", "/jobs/{id}/results/fields/{name}", result_field, false},
-    {"GET", "/jobs/{id}/results/**", result_other, false},
+    {"GET", "/", meta_landing, true, LANE_LIGHT},
+    {"GET", "/conformance", meta_conformance, true, LANE_LIGHT},
+    {"GET", "/openapi.json", meta_openapi, true, LANE_LIGHT},
+    {"GET", "/healthz", meta_healthz, true, LANE_LIGHT},
+    {"GET", "/schemas/{name}", meta_schema, true, LANE_LIGHT},
+    {"GET", "/processes", meta_processes, false, LANE_LIGHT},
+    {"GET", "/processes/{process}", meta_process, false, LANE_LIGHT},
+    {"POST", "/processes/{process}/execution", job_execute, false, LANE_WRITE},
+    {"GET", "/jobs", job_list, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}", job_get, false, LANE_LIGHT},
+    {"DELETE", "/jobs/{id}", job_delete, false, LANE_WRITE},
+    {"GET", "/jobs/{id}/log", result_log, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results", result_doc, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/summary", result_summary, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/result.h5", result_h5, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/result.xmf", result_xmf, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/series", result_series_list, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/series/**", result_series, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/frames", result_frames, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/fields/{name}", result_field, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/**", result_other, false, LANE_HEAVY},
 };
 #define NROUTES (sizeof routes / sizeof routes[0])
 
@@ -153,17 +154,18 @@ static struct route_call *call_of(struct hreq *r, struct tapp *a)
     return c;
 }
 
-void troutes_route(struct hreq *r, void *app)
+/* Matches r against the table and checks its token: the row to run, or NULL
+ * with the refusal (401, 404 or 405) set as r's reply. */
+static const struct route *resolve(struct hreq *r, struct tapp *a)
 {
-    struct tapp *a = app;
     struct route_call *c = call_of(r, a);
     if (!c) {
         http_reply_problem(r, PROBLEM_INTERNAL, "out of memory");
-        return;
+        return NULL;
     }
     if (!split_path(c, r->path)) {
         http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
-        return;
+        return NULL;
     }
     bool matched[NROUTES], any = false, public = false;
     const struct route *hit = NULL;
@@ -178,18 +180,38 @@ void troutes_route(struct hreq *r, void *app)
         !tauth_check_header(&a->cfg->auth, http_header(r, "Authorization"))) {
         http_reply_problem(r, PROBLEM_UNAUTHORIZED, "a valid bearer token is required");
         http_add_header(r, "WWW-Authenticate", "Bearer realm=\"tlsphd\"");
-        return;
+        return NULL;
     }
     if (!any) {
         http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
-        return;
+        return NULL;
     }
     if (!hit) {
         char allow[64];
         allowed_methods(matched, allow, sizeof allow);
         http_reply_problem(r, PROBLEM_METHOD, "method not allowed for this resource");
         http_add_header(r, "Allow", allow);
+        return NULL;
+    }
+    return hit;
+}
+
+void troutes_admit(struct hreq *r, void *app)
+{
+    const struct route *hit = resolve(r, app); /* a refusal is answered before the body */
+    r->lane = hit ? (int)hit->lane : LANE_LIGHT;
+}
+
+void troutes_route(struct hreq *r, void *app, void *ctx)
+{
+    const struct route *hit = resolve(r, app);
+    if (!hit)
         return;
+    struct route_call *c = r->data;
+    if (ctx) { /* the handlers use c->app->q: this thread's own handle */
+        c->thread_app = *(struct tapp *)app;
+        c->thread_app.q = ctx;
+        c->app = &c->thread_app;
     }
     match(hit->pattern, c, true);
     hit->handler(r, c);
