@@ -10,12 +10,7 @@
 # validation however loaded the machine; each wait is a 300 s hang detector.
 # Reference (issue 13, item 5): before, SIGTERM was ignored until the
 # validation ended.
-set -u
-here=$(cd "$(dirname "$0")" && pwd)
-top_srcdir=${top_srcdir:-$here/../..}
-top_builddir=${top_builddir:-$top_srcdir}
-PY=${SYSTEM_PYTHON:-/usr/bin/python3}
-tmp=$(mktemp -d)
+. "$(dirname "$0")/../support/script_env.sh"
 pid=
 trap '[ -n "$pid" ] && kill -KILL $pid 2>/dev/null; rm -rf "$tmp"' EXIT
 [ -r /proc/self/status ] || { echo "SKIP: no /proc to see when the handler is in place"; exit 77; }

@@ -6,13 +6,7 @@
 # with no frames and no /diagnostics status would look like a result.
 # Reference (issue 13, item 4): before, tlsph-run left the partial result.h5
 # and died of SIGSEGV in HDF5's exit handler after the final event.
-set -u
-here=$(cd "$(dirname "$0")" && pwd)
-top_srcdir=${top_srcdir:-$here/../..}
-top_builddir=${top_builddir:-$top_srcdir}
-PY=${SYSTEM_PYTHON:-/usr/bin/python3}
-tmp=$(mktemp -d)
-trap 'rm -rf "$tmp"' EXIT
+. "$(dirname "$0")/../support/script_env.sh"
 
 # SIGXFSZ ignored: a write past the limit then fails with EFBIG, as on a full disk
 (trap '' XFSZ; ulimit -f 8 2>/dev/null || exit 77
