@@ -161,6 +161,41 @@ static void ex_triaxiality(const struct tlsph_model *m, void *out)
     }
 }
 
+/* The Gurson family's own fields (material/damage/porous.h). */
+static int has_porous(const struct tlsph_model *m)
+{
+    return m->p.void_fstar != NULL;
+}
+
+static void ex_void_fstar(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.void_fstar, m->p.n * sizeof(double));
+}
+
+static void ex_void_nucleated(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.void_nucleated, m->p.n * sizeof(double));
+}
+
+static void ex_void_shear(const struct tlsph_model *m, void *out)
+{
+    memcpy(out, m->p.void_shear, m->p.n * sizeof(double));
+}
+
+/* xi = 27 J3 / (2 sigma_eq^3) of the Cauchy deviator, in [-1, 1]. */
+static void ex_lode(const struct tlsph_model *m, void *out)
+{
+    double *o = out;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double *s = m->p.sigma + 6 * i;
+        const double q = von_mises(s), mean = (s[0] + s[3] + s[5]) / 3.0;
+        const double a = s[0] - mean, d = s[3] - mean, f = s[5] - mean;
+        const double J3 = a * (d * f - s[4] * s[4]) - s[1] * (s[1] * f - s[4] * s[2]) +
+                          s[2] * (s[1] * s[4] - d * s[2]);
+        o[i] = q > 0.0 ? fmin(fmax(13.5 * J3 / (q * q * q), -1.0), 1.0) : 0.0;
+    }
+}
+
 const struct tlsph_field tlsph_fields[] = {
     {"id", TLSPH_FIELD_REFERENCE, TLSPH_INT64, 1, "1", NULL,
      "stable particle id (generation order, body by body)", NULL, ex_id},
@@ -208,6 +243,21 @@ const struct tlsph_field tlsph_fields[] = {
      "stress triaxiality sigma_m / sigma_eq of the Cauchy stress; 0 where sigma_eq = 0 "
      "(unstressed or failed particles)",
      has_damage, ex_triaxiality},
+    {"void_fraction_effective", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "Gurson family: f* of the yield surface (coalescence, paper 003 eq. 45; f* = f "
+     "below critical_void_fraction); 0 in bodies of other materials",
+     has_porous, ex_void_fstar},
+    {"void_fraction_nucleated", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "Gurson family: the part of f nucleated so far (eqs. 46-48)", has_porous,
+     ex_void_nucleated},
+    {"void_fraction_shear", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "Gurson family: the part of f grown by the shear term so far (eqs. 49-54)", has_porous,
+     ex_void_shear},
+    {"lode_parameter", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "normalised third invariant xi = 27 J3 / (2 sigma_eq^3) of the Cauchy deviator: 1 "
+     "axisymmetric tension, 0 pure shear, -1 axisymmetric compression (the shear term's "
+     "omega = 1 - xi^2, eq. 50); 0 where sigma_eq = 0; with a Gurson-family model only",
+     has_porous, ex_lode},
 };
 const size_t tlsph_nfields = sizeof tlsph_fields / sizeof *tlsph_fields;
 

@@ -32,7 +32,7 @@ static double hourglass_scale(const struct tlsph_material *mat,
 
 /* Which of the particle arrays the point updates of one body read and write. */
 struct point_arrays {
-    int plastic, thermal, damaging, voids;
+    int plastic, thermal, damaging, voids, porous;
 };
 
 static struct point_arrays point_arrays_of(const struct tlsph_material *mat)
@@ -43,6 +43,7 @@ static struct point_arrays point_arrays_of(const struct tlsph_material *mat)
         .thermal = mat->thermal.enabled,
         .damaging = dm != NULL,
         .voids = dm && (dm->fields & TLSPH_DAMAGE_FIELD_VOID_FRACTION),
+        .porous = dm && (dm->fields & TLSPH_DAMAGE_FIELD_POROUS),
     };
 }
 
@@ -59,6 +60,11 @@ static inline void load_state(const struct tlsph_particles *p, size_t i, struct 
     st->damage = a.damaging ? p->damage[i] : 0.0;
     st->damage_init = a.damaging ? p->damage_init[i] : 0.0;
     st->void_fraction = a.voids ? p->void_fraction[i] : 0.0;
+    if (a.porous) {
+        st->void_fstar = p->void_fstar[i];
+        st->void_nucleated = p->void_nucleated[i];
+        st->void_shear = p->void_shear[i];
+    }
 }
 
 static inline void store_damage(struct tlsph_particles *p, size_t i, struct point_arrays a,
@@ -68,6 +74,11 @@ static inline void store_damage(struct tlsph_particles *p, size_t i, struct poin
     p->damage_init[i] = st->damage_init;
     if (a.voids)
         p->void_fraction[i] = st->void_fraction;
+    if (a.porous) {
+        p->void_fstar[i] = st->void_fstar;
+        p->void_nucleated[i] = st->void_nucleated;
+        p->void_shear[i] = st->void_shear;
+    }
 }
 
 static inline void store_state(struct tlsph_particles *p, size_t i, struct point_arrays a,

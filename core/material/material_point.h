@@ -64,6 +64,9 @@ struct tlsph_point_state {
     double damage;            /* D in [0, 1], 1 (read and written only with a damage model) */
     double damage_init;       /* damage-initiation variable D_init >= 0, 1 (idem; GTN: f/f_c) */
     double void_fraction;     /* void volume fraction f, 1 (porous damage models only) */
+    /* The Gurson family (material/damage/porous.h) only: f* of eq. 45 and the
+     * parts of f nucleated (eq. 47) and grown by shear (eqs. 49, 52) so far, 1 */
+    double void_fstar, void_nucleated, void_shear;
 };
 
 struct tlsph_point_result {

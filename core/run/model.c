@@ -63,6 +63,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
     free(p->T); free(p->hg_scale);
     free(p->damage); free(p->damage_init); free(p->crack_gradient); free(p->void_fraction);
+    free(p->void_fstar); free(p->void_nucleated); free(p->void_shear);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -176,6 +177,11 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     }
     if ((damage_fields & TLSPH_DAMAGE_FIELD_VOID_FRACTION) &&
         !(p->void_fraction = tlsph_alloc(m, n, sizeof(double))))
+        return -1;
+    if ((damage_fields & TLSPH_DAMAGE_FIELD_POROUS) &&
+        (!(p->void_fstar = tlsph_alloc(m, n, sizeof(double))) ||
+         !(p->void_nucleated = tlsph_alloc(m, n, sizeof(double))) ||
+         !(p->void_shear = tlsph_alloc(m, n, sizeof(double)))))
         return -1;
     if (damage && (!(p->damage = tlsph_alloc(m, n, sizeof(double))) ||
                    !(p->damage_init = tlsph_alloc(m, n, sizeof(double)))))

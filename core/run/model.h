@@ -61,6 +61,9 @@ struct tlsph_particles {
      * needs it (TLSPH_DAMAGE_FIELD_VOID_FRACTION, material/damage/damage.h: GTN),
      * zero for the others. */
     double *void_fraction;
+    /* The Gurson family (TLSPH_DAMAGE_FIELD_POROUS, material/damage/porous.h) only:
+     * f* (eq. 45) and the parts of f nucleated and grown by shear so far, 1 */
+    double *void_fstar, *void_nucleated, *void_shear;
     /* Damage-aware treatment only (sph/damage_aware.h): sum_j V_j sum_steps D_j
      * (du_j - du_i) (x) grad W_i, the part of the displacement gradient (before
      * L_i^-1) that damaged neighbours did not transmit, so that F follows eq. 34 [9n]. */

@@ -52,7 +52,7 @@ struct tlsph_thermal {
  * entry has a "damage" block (model != NULL).  Needs a plastic strength model. */
 struct tlsph_damage {
     const struct tlsph_damage_model *model; /* NULL: the material does not damage */
-    double params[12];        /* meaning fixed by the model */
+    double params[16];        /* meaning fixed by the model */
     unsigned terms;           /* TLSPH_FLOW_RATE / TLSPH_FLOW_THERMAL terms of the criterion */
     double evolution_factor;  /* eq. 45: D = factor (D_init - 1) once D_init >= 1, 1 */
 };

@@ -40,6 +40,8 @@ struct tlsph_point_result;
 
 /* Per-particle arrays a model needs beyond D and D_init (run/model.h). */
 #define TLSPH_DAMAGE_FIELD_VOID_FRACTION 1u /* p.void_fraction: the state's void_fraction */
+/* p.void_fstar, p.void_nucleated, p.void_shear: the Gurson family's (porous.h) */
+#define TLSPH_DAMAGE_FIELD_POROUS 2u
 
 /* Most extra module labels one material's damage model reports. */
 #define TLSPH_DAMAGE_MAX_MODULES 4

@@ -4,7 +4,9 @@
 
 /* One row per model, in the order of the scene's list of accepted names:
  * ROW(name) stands for the descriptor tlsph_damage_<name>, whose .name is "name". */
-#define DAMAGE_MODELS(ROW) ROW(cockcroft_latham) ROW(johnson_cook) ROW(gtn)
+#define DAMAGE_MODELS(ROW)                                                                         \
+    ROW(cockcroft_latham) ROW(johnson_cook) ROW(gtn) ROW(gurson) ROW(gtn_aravas) ROW(sm_gurson)   \
+        ROW(m_gurson)
 
 #define DECLARE(id) extern const struct tlsph_damage_model tlsph_damage_##id;
 DAMAGE_MODELS(DECLARE)
@@ -12,7 +14,7 @@ DAMAGE_MODELS(DECLARE)
 #define ENTRY(id) &tlsph_damage_##id,
 static const struct tlsph_damage_model *const models[] = {DAMAGE_MODELS(ENTRY)};
 
-/* "cockcroft_latham, johnson_cook, gtn": the rows of models[] */
+/* "cockcroft_latham, johnson_cook, gtn, ...": the rows of models[] */
 const char *tlsph_damage_names(void) { return DAMAGE_MODELS(TLSPH_LISTED) + 2; }
 
 const struct tlsph_damage_model *tlsph_damage_find(const char *name)

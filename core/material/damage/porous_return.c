@@ -1,0 +1,423 @@
+#include "material/damage/porous_return.h"
+
+#include <float.h>
+#include <math.h>
+
+#include "material/damage/porous.h"
+#include "material/eos/eos.h"
+#include "material/strength/strength.h"
+
+#define TOLERANCE 1e-12
+#define SQRT_2PI 2.5066282746310002
+#define MATRIX_ITERATIONS 60
+
+/* Everything at one iterate (a, b): the stress, the internal variables the
+ * step ends with, the outer residuals and their consistent Jacobian. */
+struct eval {
+    double se, sm, p, K_t; /* Cauchy von Mises and mean stress, EOS pressure and modulus */
+    double W, T;           /* plastic work per reference volume, temperature */
+    double dM, f, sM;      /* internal state at the end: matrix strain increment, f, sigma_M */
+    double N, kappa, c0;   /* nucleated part, k_w omega Omega b, f_n + growth part */
+    double F[2], dF[2][2]; /* residuals (F1 / scale, F2) and d F_i / d (a, b)_k */
+    double size[2];        /* size of the terms of each residual */
+    double floor[2];       /* what the resolution of the unknowns moves it by */
+    double merit;          /* F . F */
+};
+
+/* Void fraction nucleated while the matrix strain goes from e0 to e1: the
+ * exact integral of eq. 47-48's A_N, f_N/2 [erf(z1/sqrt 2) - erf(z0/sqrt 2)]. */
+static double nucleated(const double *g, double e0, double e1)
+{
+    if (!(g[POR_FN] > 0.0))
+        return 0.0;
+    const double k = 1.0 / (g[POR_SN] * sqrt(2.0));
+    return 0.5 * g[POR_FN] * (erf((e1 - g[POR_EN]) * k) - erf((e0 - g[POR_EN]) * k));
+}
+
+/* A_N of eq. 48 at matrix strain e. */
+static double nucleation_rate(const double *g, double e)
+{
+    if (!(g[POR_FN] > 0.0))
+        return 0.0;
+    const double z = (e - g[POR_EN]) / g[POR_SN];
+    return g[POR_FN] / (g[POR_SN] * SQRT_2PI) * exp(-0.5 * z * z);
+}
+
+/* The matrix at the end of the step: the work equation
+ *   r(dM) = (1 - f(dM)) sigma_M(eps_n + dM) dM - w = 0,  f(dM) = (c0 + N(dM))/(1 - kappa)
+ * (w the work per current volume, > 0) by Newton kept inside the bracket
+ * [lo, hi] that r(0) = -w < 0 starts, bisecting when a step leaves it.  Sets
+ * e->dM, f, N, sM and the slopes the Jacobian needs; returns 0 when no
+ * admissible root was found. */
+struct matrix_slopes {
+    double r_dM;   /* d r / d dM */
+    double f_dM;   /* d f / d dM */
+    double h;      /* d sigma_M / d dM (strain and rate hardening) */
+    double sM_T;   /* d sigma_M / d T */
+};
+
+static int matrix_state(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        double w, struct eval *e, struct matrix_slopes *sl)
+{
+    const double *g = m->damage.params;
+    const double one_k = 1.0 - e->kappa;
+    double lo = 0.0, hi = INFINITY, x = 0.0;
+    struct tlsph_flow fl;
+    /* first guess: the flow stress and the void fraction of the start */
+    m->strength->flow(m, in->eps_M, 0.0, e->T, &fl);
+    x = w / ((1.0 - e->c0 / one_k) * fl.stress);
+    if (!(x > 0.0) || !isfinite(x))
+        x = w / fmax(fl.stress, 1.0);
+    for (int it = 0; it < MATRIX_ITERATIONS; it++) {
+        e->N = nucleated(g, in->eps_M, in->eps_M + x);
+        e->f = (e->c0 + e->N) / one_k;
+        m->strength->flow(m, in->eps_M + x, in->dt > 0.0 ? x / in->dt : 0.0, e->T, &fl);
+        sl->h = fl.d_strain + (in->dt > 0.0 ? fl.d_rate / in->dt : 0.0);
+        sl->sM_T = fl.d_temperature;
+        sl->f_dM = nucleation_rate(g, in->eps_M + x) / one_k;
+        e->sM = fl.stress;
+        e->dM = x;
+        const double r = (1.0 - e->f) * fl.stress * x - w;
+        sl->r_dM = -sl->f_dM * fl.stress * x + (1.0 - e->f) * (sl->h * x + fl.stress);
+        if (fabs(r) <= 1e-14 * w && e->f < 1.0)
+            return 1;
+        if (r < 0.0)
+            lo = x;
+        else
+            hi = x;
+        if (hi - lo <= 4e-16 * hi)
+            return e->f < 1.0 && isfinite(sl->r_dM);
+        double next = x - r / sl->r_dM;
+        if (!(next > lo && next < hi) || !isfinite(next))
+            next = isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * fmax(x, lo);
+        x = next;
+    }
+    return 0;
+}
+
+/* The iterate (a, b): returns 0 when it has no admissible internal state. */
+static int evaluate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                    double scale, double a, double b, struct eval *e)
+{
+    const double *g = m->damage.params;
+    const double q1 = g[POR_Q1], q2 = g[POR_Q2], q3 = g[POR_Q3], J = in->J;
+
+    /* stress (eqs. 82-83 in the engine's elastic law) */
+    e->se = (in->q_trial - 3.0 * in->G * b) / J;
+    const double se_b = -3.0 * in->G / J;
+    m->eos->pressure(m, J * exp(-(in->lnJp + a)), in->e, &e->p, &e->K_t);
+    e->sm = -e->p;
+    const double sm_a = -e->K_t; /* dp/da = K_t: the plastic dilatation relieves the pressure */
+    e->W = J * (e->se * b + e->sm * a);
+    const double W_a = J * (e->sm + a * sm_a), W_b = J * (e->se + b * se_b);
+    e->T = in->T + in->heating * e->W;
+
+    /* shear term of eqs. 49-54: kappa = k_w omega Omega(T) b */
+    double kappa_a = 0.0, kappa_b = 0.0;
+    e->kappa = 0.0;
+    if (g[POR_SHEAR] != POROUS_SHEAR_NONE && g[POR_KW] > 0.0 && e->se > 0.0) {
+        const double kw = g[POR_KW] * in->omega;
+        double slope;
+        const double Om = tlsph_porous_switch(g, e->sm / e->se, &slope);
+        const double T_a = sm_a / e->se, T_b = -e->sm / (e->se * e->se) * se_b;
+        e->kappa = kw * Om * b;
+        kappa_a = kw * b * slope * T_a;
+        kappa_b = kw * (Om + b * slope * T_b);
+    }
+    if (!(e->kappa < 1.0))
+        return 0;
+    /* growth: f_n + (1 - f_n)(1 - exp(-a)) */
+    e->c0 = in->f - (1.0 - in->f) * expm1(-a);
+    const double c0_a = (1.0 - in->f) * exp(-a);
+    if (!(e->c0 >= 0.0))
+        return 0;
+
+    /* internal variables and their derivatives with respect to (a, b) */
+    struct matrix_slopes sl = {0};
+    double dM_a = 0.0, dM_b = 0.0, f_k[2];
+    const double sM_T = in->heating > 0.0 ? 1.0 : 0.0; /* switch for the heating chain */
+    if (e->W > 0.0) {
+        if (!matrix_state(m, in, e->W / J, e, &sl))
+            return 0;
+        const double one_k = 1.0 - e->kappa;
+        const double fa = (c0_a + e->f * kappa_a) / one_k, fb = e->f * kappa_b / one_k;
+        const double heat = sM_T * sl.sM_T * in->heating * e->dM * (1.0 - e->f);
+        const double r_a = -fa * e->sM * e->dM + heat * W_a - W_a / J;
+        const double r_b = -fb * e->sM * e->dM + heat * W_b - W_b / J;
+        dM_a = -r_a / sl.r_dM;
+        dM_b = -r_b / sl.r_dM;
+        f_k[0] = fa + sl.f_dM * dM_a; /* total d f/d(a, b) */
+        f_k[1] = fb + sl.f_dM * dM_b;
+    } else {
+        /* no work, no matrix flow: dM = 0 (a state the return never ends in) */
+        struct tlsph_flow fl;
+        m->strength->flow(m, in->eps_M, 0.0, e->T, &fl);
+        e->dM = 0.0;
+        e->N = 0.0;
+        e->sM = fl.stress;
+        e->f = e->c0 / (1.0 - e->kappa);
+        sl.sM_T = fl.d_temperature;
+        f_k[0] = (c0_a + e->f * kappa_a) / (1.0 - e->kappa);
+        f_k[1] = e->f * kappa_b / (1.0 - e->kappa);
+    }
+    if (!(e->f < 1.0) || !(e->sM > 0.0))
+        return 0;
+    const double W_k[2] = {W_a, W_b}, dM_k[2] = {dM_a, dM_b};
+    double sM_k[2];
+    for (int k = 0; k < 2; k++)
+        sM_k[k] = sl.h * dM_k[k] + sM_T * sl.sM_T * in->heating * W_k[k];
+
+    /* the yield function and normality (eqs. 43, 89) */
+    const double sM = e->sM, x = e->se / sM, y = e->sm / sM, A = 1.5 * q2 * y;
+    const double ch = cosh(A), sh = sinh(A);
+    const double fs = tlsph_porous_fstar(g, e->f), fs_f = tlsph_porous_fstar_slope(g, e->f);
+    const double x_k[2] = {-x * sM_k[0] / sM, se_b / sM - x * sM_k[1] / sM};
+    const double y_k[2] = {sm_a / sM - y * sM_k[0] / sM, -y * sM_k[1] / sM};
+    const double c = 3.0 * q1 * q2;
+    e->F[1] = x * x + 2.0 * q1 * fs * ch - 1.0 - q3 * fs * fs;
+    e->F[0] = (2.0 * x * a - c * fs * sh * b) / scale;
+    for (int k = 0; k < 2; k++) {
+        const double fs_k = fs_f * f_k[k];
+        e->dF[1][k] = 2.0 * x * x_k[k] + 2.0 * q1 * fs_k * ch + c * fs * sh * y_k[k] -
+                      2.0 * q3 * fs * fs_k;
+        e->dF[0][k] = (2.0 * x_k[k] * a + (k == 0 ? 2.0 * x : -c * fs * sh) -
+                       c * b * (fs_k * sh + fs * ch * 1.5 * q2 * y_k[k])) /
+                      scale;
+    }
+    /* round-off floors: the size of the terms of each residual, and what the
+     * resolution of the unknowns moves it by -- b relative, a absolute: the EOS
+     * sees a only through J exp(-(tr Ep + a)), resolved to a few ulps of 1 */
+    e->size[1] = x * x + 2.0 * q1 * fs * ch + 1.0 + q3 * fs * fs;
+    e->size[0] = (fabs(2.0 * x * a) + fabs(c * fs * sh * b)) / scale;
+    for (int i = 0; i < 2; i++)
+        e->floor[i] = 4.0 * DBL_EPSILON * (fabs(e->dF[i][0]) * (1.0 + fabs(a)) + fabs(e->dF[i][1] * b));
+    e->merit = e->F[0] * e->F[0] + e->F[1] * e->F[1];
+    return isfinite(e->merit);
+}
+
+int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                          double scale, double a, double b, double F[2], double dF[2][2])
+{
+    struct eval e;
+    if (!evaluate(m, in, scale, a, b, &e))
+        return 0;
+    for (int i = 0; i < 2; i++) {
+        F[i] = e.F[i];
+        for (int k = 0; k < 2; k++)
+            dF[i][k] = e.dF[i][k];
+    }
+    return 1;
+}
+
+/* The unknowns stay where the state means something: the deviator does not
+ * reverse (0 <= b <= q_tr/(3G)) and the voids do not close below none
+ * (f_n + growth >= 0: a >= ln(1 - f_n)). */
+static void keep_admissible(const struct tlsph_porous_input *in, double u[2])
+{
+    u[0] = fmax(u[0], log1p(-in->f));
+    u[1] = fmin(fmax(u[1], 0.0), in->q_trial / (3.0 * in->G));
+}
+
+/* First guess: the return with sigma_M and f frozen at the start and the EOS
+ * linearised (K_t).  In the plane x = sigma_e/sigma_M, y = sigma_m/sigma_M the
+ * surface is x(y) = sqrt(1 + q3 f*^2 - 2 q1 f* cosh(3/2 q2 y)), and normality
+ * leaves one equation in y,
+ *   g(y) = 2 x(y) (y_tr - y) sigma_M/K_t - (x_tr - x(y)) Phi_y(y) J sigma_M/(3G) = 0,
+ * whose root is bracketed by y = 0 (Phi_y = 0, g >= 0) and the trial value or
+ * the cap of the surface (g <= 0): Illinois regula falsi. */
+static void first_guess(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        double sM, double p_tr, double K_t, double u[2])
+{
+    const double *g = m->damage.params;
+    const double q1 = g[POR_Q1], q2 = g[POR_Q2], q3 = g[POR_Q3];
+    const double fs = tlsph_porous_fstar(g, in->f);
+    const double x_tr = in->q_trial / (in->J * sM), y_tr = -p_tr / sM;
+    const double cG = in->J * sM / (3.0 * in->G), cK = sM / K_t;
+    const double top = 1.0 + q3 * fs * fs;
+    const double cap = fs > 0.0 && top > 2.0 * q1 * fs
+                           ? acosh(top / (2.0 * q1 * fs)) / (1.5 * q2)
+                           : (fs > 0.0 ? 0.0 : INFINITY);
+    const double side = y_tr >= 0.0 ? 1.0 : -1.0;
+    double lo = 0.0, hi = side * fmin(fabs(y_tr), cap);
+#define SURFACE_X(y) sqrt(fmax(top - 2.0 * q1 * fs * cosh(1.5 * q2 * (y)), 0.0))
+#define NORMAL_G(y, x)                                                                             \
+    (2.0 * (x) * (y_tr - (y)) * cK - (x_tr - (x)) * 3.0 * q1 * q2 * fs * sinh(1.5 * q2 * (y)) * cG)
+    double x_lo = SURFACE_X(lo), x_hi = SURFACE_X(hi);
+    double g_lo = NORMAL_G(lo, x_lo), g_hi = NORMAL_G(hi, x_hi);
+    double y = hi, x = x_hi;
+    if (g_lo * g_hi < 0.0) {
+        for (int it = 0; it < 60; it++) {
+            y = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
+            x = SURFACE_X(y);
+            const double gy = NORMAL_G(y, x);
+            if (gy * g_hi < 0.0) {
+                lo = hi;
+                g_lo = g_hi;
+            } else {
+                g_lo *= 0.5;
+            }
+            hi = y;
+            g_hi = gy;
+            if (gy == 0.0 || fabs(hi - lo) <= 1e-12 * fmax(fabs(y), 1e-3))
+                break;
+        }
+    } else if (g_lo == 0.0 || fabs(g_lo) < fabs(g_hi)) {
+        y = lo;
+        x = x_lo;
+    }
+#undef SURFACE_X
+#undef NORMAL_G
+    u[0] = (y_tr - y) * cK;
+    u[1] = fmax(x_tr - x, 0.0) * cG;
+}
+
+static int converged(const struct eval *e)
+{
+    return fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
+           fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
+}
+
+/* Newton (eqs. 91-94) from u with a backtracking line search on |F|^2; at most
+ * `budget` evaluations, counted in *evals.  Returns 1 when converged (e: the
+ * state at u). */
+static int newton(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                  double scale, double u[2], struct eval *e, int budget, int *evals)
+{
+    struct eval trial;
+    keep_admissible(in, u);
+    int used = 1;
+    if (!evaluate(m, in, scale, u[0], u[1], e)) {
+        *evals += used;
+        return 0;
+    }
+    while (!converged(e)) {
+        if (used >= budget) {
+            *evals += used;
+            return 0;
+        }
+        const double det = e->dF[0][0] * e->dF[1][1] - e->dF[0][1] * e->dF[1][0];
+        if (!(fabs(det) > 0.0) || !isfinite(det)) {
+            *evals += used;
+            return 0;
+        }
+        const double d[2] = {(-e->F[0] * e->dF[1][1] + e->F[1] * e->dF[0][1]) / det,
+                             (-e->F[1] * e->dF[0][0] + e->F[0] * e->dF[1][0]) / det};
+        double lambda = 1.0;
+        int moved = 0;
+        while (used < budget && lambda >= 1e-6) {
+            double v[2] = {u[0] + lambda * d[0], u[1] + lambda * d[1]};
+            keep_admissible(in, v);
+            used++;
+            if (evaluate(m, in, scale, v[0], v[1], &trial) &&
+                trial.merit <= (1.0 - 1e-4 * lambda) * e->merit) {
+                u[0] = v[0];
+                u[1] = v[1];
+                *e = trial;
+                moved = 1;
+                break;
+            }
+            lambda *= 0.5;
+        }
+        if (!moved) {
+            *evals += used;
+            return 0;
+        }
+    }
+    *evals += used;
+    return 1;
+}
+
+static struct tlsph_porous_input scaled_trial(const struct tlsph_porous_input *in, double s)
+{
+    struct tlsph_porous_input sub = *in;
+    const double lnJ = log(in->J);
+    sub.q_trial = s * in->q_trial;
+    sub.lnJp = lnJ - s * (lnJ - in->lnJp);
+    return sub;
+}
+
+static double trial_phi(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        double yield, double *p, double *K_t)
+{
+    const double *g = m->damage.params;
+    m->eos->pressure(m, in->J * exp(-in->lnJp), in->e, p, K_t);
+    const double fs = tlsph_porous_fstar(g, in->f);
+    const double x = in->q_trial / (in->J * yield);
+    return x * x + 2.0 * g[POR_Q1] * fs * cosh(1.5 * g[POR_Q2] * (-*p / yield)) -
+           (1.0 + g[POR_Q3] * fs * fs);
+}
+
+static double strain_scale(const struct tlsph_porous_input *in, double p)
+{
+    return (in->q_trial + in->J * fabs(p)) / (3.0 * in->G);
+}
+
+int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        struct tlsph_porous_result *out)
+{
+    double yield = in->yield;
+    if (!(yield > 0.0)) {
+        struct tlsph_flow fl;
+        m->strength->flow(m, in->eps_M, 0.0, in->T, &fl);
+        yield = fl.stress;
+    }
+    double p_tr, K_tr;
+    const double phi_tr = trial_phi(m, in, yield, &p_tr, &K_tr);
+    *out = (struct tlsph_porous_result){.f = in->f, .T = in->T, .sigma_M = yield, .p = p_tr,
+                                        .K_t = K_tr, .phi = phi_tr, .yield = yield,
+                                        .converged = 1};
+    if (!(phi_tr > 0.0))
+        return 0; /* inside or on the surface: elastic */
+    out->yield = 0.0;
+
+    const double scale = strain_scale(in, p_tr);
+    double u[2];
+    struct eval e;
+    int evals = 0;
+    first_guess(m, in, yield, p_tr, K_tr, u);
+    int ok = newton(m, in, scale, u, &e, TLSPH_POROUS_MAX_ITERATIONS, &evals);
+    /* continuation through scaled trial states (gtn_return.c): the last solve
+     * is the step's own system, so a converged result is the exact step */
+    for (int n = 4; !ok && n <= 64; n *= 4) {
+        double v[2] = {0.0, 0.0};
+        int flowing = 0;
+        ok = 1;
+        for (int k = 1; k <= n && ok; k++) {
+            const struct tlsph_porous_input sub = scaled_trial(in, (double)k / n);
+            double p, K_t;
+            if (!(trial_phi(m, &sub, yield, &p, &K_t) > 0.0))
+                continue;
+            if (!flowing)
+                first_guess(m, &sub, yield, p, K_t, v);
+            flowing = 1;
+            ok = newton(m, &sub, strain_scale(&sub, p), v, &e, TLSPH_POROUS_MAX_ITERATIONS,
+                        &evals);
+        }
+        if (ok) {
+            u[0] = v[0];
+            u[1] = v[1];
+        }
+    }
+    out->iterations = evals;
+    out->converged = ok;
+    if (!ok) {
+        /* nothing of a failed solve is kept: the state stays that of the
+         * start, finite, and the run is stopped by the stability contract */
+        out->phi = phi_tr;
+        return 1;
+    }
+    out->a = u[0];
+    out->b = u[1];
+    out->dM = e.dM;
+    out->f = e.f;
+    out->df_growth = e.c0 - in->f;
+    out->df_nucleated = e.N;
+    out->df_shear = e.kappa * e.f;
+    out->T = e.T;
+    out->sigma_M = e.sM;
+    out->p = e.p;
+    out->K_t = e.K_t;
+    out->work = e.W;
+    out->phi = e.F[1];
+    return 1;
+}

@@ -1,0 +1,446 @@
+/* Single-material-point tests of the Gurson family of paper 003 (gurson,
+ * gtn_aravas, sm_gurson, m_gurson; core/material/damage/porous.h) and its
+ * Aravas-type return (porous_return.h).  Points are driven through the
+ * engine's own tlsph_point_update; every reference is recomputed here from the
+ * paper's equations, independently of porous_return.c.
+ *
+ * Material: paper 003 Table 1 (Normal Strength steel): E = 200 GPa, nu = 0.3,
+ * sigma_M = 270 MPa + 833 MPa eps_M (linear hardening h_M), linear EOS; the
+ * porous parameters are Table 1's defaults unless stated (q1 2.5, q2 1,
+ * q3 3.25, f_N 0.02, eps_N 0.55, s_N 0.2, f_c 0.021, f_f 0.2109, k_w 1,
+ * T1 0.2, T2 0.7), with fracture moved out of the way (fracture_void_fraction
+ * 0.9) where a test follows the surface.
+ *
+ * References and tolerances:
+ *  1. f0 = 0, no nucleation: every model is J2 (eq. 43 at f = 0).  Along
+ *     uniaxial stress to eps 0.3 stress and plastic strain equal those of the
+ *     material without damage within 1e-10 relative, f stays exactly 0.
+ *  2. Yield condition (eq. 43 with f* of eq. 45): one-step returns from trial
+ *     triaxialities -0.5 .. 3 (2 and 10 yield strains, f0 1e-4 .. 0.05, non-
+ *     axisymmetric deviator so the shear term is on) end with |Phi| <= 1e-8,
+ *     Phi recomputed from the returned Cauchy stress, sigma_M(eps_M) and f.
+ *  3. Void growth rate: along proportional strain paths (steps of 2e-5) the
+ *     step's df / d eps_q equals the closed-form rate of each model at the
+ *     end state, (1 - f) Phi_m/Phi_e + A_N d eps_M/d eps_q + k_w f omega
+ *     Omega(T) (eqs. 44, 47, 49, 52 with normality eq. 89, d eps_M from eq.
+ *     86), within 1e-4 relative (the step integrates growth exactly, the rate
+ *     is instantaneous: O(step) apart; relative to max(rate, 1e-8): on the
+ *     isochoric path of the original Gurson model the rate is round-off).
+ *  4. Shear term: omega (eq. 50) is 0 for hydrostatic and axisymmetric
+ *     deviators (either sign), 1 in pure shear and <= 1 for 200 random
+ *     deviators; along an axisymmetric path sm_gurson grows no shear voids at
+ *     all (void_shear == 0: omega of an axisymmetric deviator computed
+ *     through the kinematics is round-off, <= 2e-14, which porous_point.c
+ *     takes as the exact 0 below 1e-12), in pure shear it does.
+ *  5. M-Gurson switch (eq. 54): the shear part of f of one return divided by
+ *     k_w f omega d eps_q is Omega(T) at the returned triaxiality: 1 below
+ *     T1, (T - T2)/(T1 - T2) between, 0 above T2, within 1e-9.
+ *  6. Consistent derivatives (Appendix B): the Newton Jacobian of the two
+ *     outer equations equals central finite differences within 1e-5 relative
+ *     (the FD truncation), for every model, with nucleation active and on the
+ *     Omega ramp.
+ *  7. Paper 000's gtn and this update solve the same backward-Euler system
+ *     when q3 = q1^2 (growth exact, nucleation integrated exactly, shear term
+ *     implicit with omega of the trial deviator): along the same loading path
+ *     to f ~ 0.1, f and the stress agree within 1e-8 relative (the two solvers'
+ *     round-off tolerances, 1e-12 of each residual's terms, accumulated). */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "material/damage/porous.h"
+#include "material/damage/porous_return.h"
+#include "material/damage/damage.h"
+#include "support/check_main.h"
+#include "support/point_driver.h"
+
+static const double S0 = 270e6, HM = 833e6;
+
+static const char *const MODELS[] = {"gurson", "gtn_aravas", "sm_gurson", "m_gurson"};
+#define NMODELS 4
+
+static struct tlsph_material porous(const char *model, double f0, const char *extra)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+             "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":%.17g,"
+             "\"hardening_modulus\":%.17g},"
+             "\"damage\":{\"type\":\"%s\",\"initial_void_fraction\":%.17g,"
+             "\"fracture_void_fraction\":0.9%s}}",
+             S0, HM, model, f0, extra);
+    return material(json);
+}
+
+static struct tlsph_point_state start(const struct tlsph_material *m)
+{
+    struct tlsph_point_state s = {0};
+    tlsph_porous_point_init(m, &s);
+    return s;
+}
+
+static double fstar(const double *g, double f)
+{
+    if (f <= g[POR_FC])
+        return f;
+    return g[POR_FC] + (1.0 / g[POR_Q1] - g[POR_FC]) / (g[POR_FF] - g[POR_FC]) * (f - g[POR_FC]);
+}
+
+/* Eq. 43 from a Cauchy stress, eps_M and f. */
+static double yield_function(const struct tlsph_material *m, const double *sig, double eps_M,
+                             double f, double *triax)
+{
+    const double *g = m->damage.params;
+    const double sM = S0 + HM * eps_M, q = von_mises(sig);
+    const double sm = (sig[0] + sig[3] + sig[5]) / 3.0, fs = fstar(g, f);
+    *triax = sm / q;
+    return q * q / (sM * sM) + 2.0 * g[POR_Q1] * fs * cosh(1.5 * g[POR_Q2] * sm / sM) - 1.0 -
+           g[POR_Q3] * fs * fs;
+}
+
+/* F = exp(diag(ev/3 + e d0, ev/3 + e d1, ev/3 + e d2)), d traceless */
+static void F_log(double ev, double e, const double d[3], double *F)
+{
+    memset(F, 0, 9 * sizeof *F);
+    for (int a = 0; a < 3; a++)
+        F[4 * a] = exp(ev / 3.0 + e * d[a]);
+}
+
+static const double AXI[3] = {1.0, -0.5, -0.5}, GENERAL[3] = {1.0, -0.2, -0.8},
+                    SHEAR[3] = {1.0, -1.0, 0.0};
+
+START_TEST(without_voids_every_model_is_j2)
+{
+    const struct tlsph_material j = material(
+        "{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+        "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":270e6,"
+        "\"hardening_modulus\":833e6}}");
+    for (int k = 0; k < NMODELS; k++) {
+        const struct tlsph_material m =
+            porous(MODELS[k], 0.0, k ? ",\"nucleation\":{\"amplitude\":0}" : "");
+        struct tlsph_point_state sg = start(&m), sj = {0};
+        struct tlsph_point_result rg, rj;
+        double etg = 0.0, etj = 0.0, worst = 0.0;
+        for (int i = 1; i <= 300; i++) {
+            uniaxial_step(&m, 1e-3 * i, &etg, 1e-6, &sg, &rg);
+            uniaxial_step(&j, 1e-3 * i, &etj, 1e-6, &sj, &rj);
+            worst = fmax(worst, fabs(rg.sigma[0] - rj.sigma[0]) / fabs(rj.sigma[0]));
+            if (sj.eps_p > 0.0)
+                worst = fmax(worst, fabs(sg.eps_p - sj.eps_p) / sj.eps_p);
+            ck_assert(sg.void_fraction == 0.0 && sg.damage == 0.0);
+        }
+        printf("%s, f0 = 0: vs J2 to eps 0.3, worst relative difference %.2e\n", MODELS[k], worst);
+        ck_assert_msg(worst <= 1e-10, "%s with f0 = 0 differs from J2 by %g", MODELS[k], worst);
+    }
+}
+END_TEST
+
+START_TEST(one_step_returns_satisfy_the_yield_condition)
+{
+    const double triax[] = {-0.5, -1.0 / 3.0, 0.0, 1.0 / 3.0, 0.5, 1.0, 1.5, 2.0, 3.0};
+    const double sizes[] = {2.0, 10.0};
+    const double voids[] = {1e-4, 5e-3, 0.05};
+    for (int k = 0; k < NMODELS; k++) {
+        double worst = 0.0, tmin = INFINITY, tmax = -INFINITY;
+        int most = 0;
+        for (size_t a = 0; a < sizeof voids / sizeof *voids; a++) {
+            /* coalescence reachable: f_c just above f0 */
+            const struct tlsph_material m =
+                porous(MODELS[k], voids[a],
+                       k ? ",\"critical_void_fraction\":0.06,\"failure_void_fraction\":0.3" : "");
+            const double K = m.bulk_modulus, ey = S0 / (3.0 * m.shear_modulus);
+            for (size_t b = 0; b < sizeof triax / sizeof *triax; b++)
+                for (size_t c = 0; c < sizeof sizes / sizeof *sizes; c++) {
+                    const double e = sizes[c] * ey, ev = triax[b] * S0 / K;
+                    double F[9];
+                    F_log(ev, e, GENERAL, F);
+                    struct tlsph_point_state s = start(&m);
+                    struct tlsph_point_result r;
+                    tlsph_point_update(&m, F, 0.0, 1e-6, &s, &r);
+                    ck_assert_msg(r.converged && r.iterations > 0, "%s f %g triax %g size %g: %s",
+                                  MODELS[k], voids[a], triax[b], sizes[c],
+                                  r.converged ? "elastic" : "not converged");
+                    double t;
+                    const double phi = yield_function(&m, r.sigma, s.eps_p, s.void_fraction, &t);
+                    worst = fmax(worst, fabs(phi));
+                    tmin = fmin(tmin, t);
+                    tmax = fmax(tmax, t);
+                    most = r.iterations > most ? r.iterations : most;
+                    ck_assert_msg(fabs(phi) <= 1e-8, "%s f %g triax %g size %g: Phi = %g",
+                                  MODELS[k], voids[a], triax[b], sizes[c], phi);
+                }
+        }
+        printf("%s one-step returns: worst |Phi| %.2e, end triaxiality %.3f .. %.3f, at most %d "
+               "evaluations\n",
+               MODELS[k], worst, tmin, tmax, most);
+        ck_assert_msg(tmin <= -0.49 && tmax >= 2.9, "triaxiality range %g .. %g", tmin, tmax);
+    }
+}
+END_TEST
+
+/* The closed-form rate df/d eps_q of model m at a state on the surface, with
+ * A_N at eps_mid (the step's midpoint: the return integrates nucleation
+ * exactly, and the midpoint rule matches that to second order). */
+static double closed_form_rate(const struct tlsph_material *m, const double *sig, double eps_M,
+                               double f, double eps_mid, double omega)
+{
+    const double *g = m->damage.params;
+    const double sM = S0 + HM * eps_M, se = von_mises(sig);
+    const double sm = (sig[0] + sig[3] + sig[5]) / 3.0, fs = fstar(g, f);
+    /* normality: d eps_v / d eps_q = Phi_m / Phi_e (eqs. 78-79) */
+    const double ratio = 3.0 * g[POR_Q1] * g[POR_Q2] * fs * sinh(1.5 * g[POR_Q2] * sm / sM) * sM /
+                         (2.0 * se);
+    /* equal work (eq. 86): d eps_M / d eps_q */
+    const double dM = (sm * ratio + se) / ((1.0 - f) * sM);
+    double rate = (1.0 - f) * ratio;
+    if (g[POR_FN] > 0.0) {
+        const double z = (eps_mid - g[POR_EN]) / g[POR_SN];
+        rate += g[POR_FN] / (g[POR_SN] * sqrt(2.0 * M_PI)) * exp(-0.5 * z * z) * dM;
+    }
+    if (g[POR_SHEAR] != POROUS_SHEAR_NONE) {
+        const double T = sm / se;
+        double Om = 1.0;
+        if (g[POR_SHEAR] == POROUS_SHEAR_SWITCHED)
+            Om = T < g[POR_T1] ? 1.0 : T > g[POR_T2] ? 0.0 : (T - g[POR_T2]) / (g[POR_T1] - g[POR_T2]);
+        rate += g[POR_KW] * f * omega * Om;
+    }
+    return rate;
+}
+
+static double omega_of(const double d[3])
+{
+    const double q = sqrt(1.5 * (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]));
+    const double xi = 13.5 * d[0] * d[1] * d[2] / (q * q * q);
+    return 1.0 - xi * xi;
+}
+
+START_TEST(void_growth_follows_the_closed_form_rate)
+{
+    const double ratios[] = {0.0, 0.3, 1.0};
+    for (int k = 0; k < NMODELS; k++)
+        for (size_t a = 0; a < sizeof ratios / sizeof *ratios; a++) {
+            /* nucleation centred where the path goes */
+            const struct tlsph_material m =
+                porous(MODELS[k], 0.01,
+                       k ? ",\"nucleation\":{\"mean_strain\":0.02,\"deviation\":0.01}" : "");
+            struct tlsph_point_state s = start(&m);
+            struct tlsph_point_result r;
+            double worst = 0.0, tmin = INFINITY, tmax = -INFINITY;
+            int seen = 0;
+            for (int i = 1; i <= 1500; i++) {
+                const double e = 2e-5 * i;
+                double F[9];
+                F_log(ratios[a] * e, e, GENERAL, F);
+                const struct tlsph_point_state old = s;
+                tlsph_point_update(&m, F, 0.0, 1e-6, &s, &r);
+                if (r.iterations == 0)
+                    continue;
+                ck_assert(r.converged && s.damage < 1.0);
+                double d[6];
+                for (int c = 0; c < 6; c++)
+                    d[c] = s.plastic_strain[c] - old.plastic_strain[c];
+                const double dv = d[0] + d[3] + d[5];
+                const double dd[3] = {d[0] - dv / 3.0, d[3] - dv / 3.0, d[5] - dv / 3.0};
+                const double dq = sqrt(2.0 / 3.0 * (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]));
+                if (!(dq > 1e-7))
+                    continue;
+                const double rate = closed_form_rate(&m, r.sigma, s.eps_p, s.void_fraction,
+                                                     0.5 * (old.eps_p + s.eps_p),
+                                                     omega_of(GENERAL));
+                const double step = (s.void_fraction - old.void_fraction) / dq;
+                /* relative, with a floor for the isochoric path where the growth
+                 * rate itself is round-off (1e-18) */
+                worst = fmax(worst, fabs(step - rate) / fmax(fabs(rate), 1e-8));
+                tmin = fmin(tmin, r.triaxiality);
+                tmax = fmax(tmax, r.triaxiality);
+                seen++;
+            }
+            printf("%s volume/deviator %.1f: %d steps, triaxiality %.2f .. %.2f, f %.4f, worst "
+                   "relative rate error %.2e\n",
+                   MODELS[k], ratios[a], seen, tmin, tmax, s.void_fraction, worst);
+            ck_assert(seen > 100);
+            ck_assert_msg(worst <= 1e-4, "%s ratio %g: rate error %g", MODELS[k], ratios[a], worst);
+        }
+}
+END_TEST
+
+START_TEST(shear_term_vanishes_in_axisymmetric_states_and_peaks_in_shear)
+{
+    const double hydro[9] = {0}, axi_t[9] = {2, 0, 0, 0, -1, 0, 0, 0, -1},
+                 axi_c[9] = {-2, 0, 0, 0, 1, 0, 0, 0, 1},
+                 shear[9] = {0, 1, 0, 1, 0, 0, 0, 0, 0}, shear_d[9] = {1, 0, 0, 0, -1, 0, 0, 0, 0};
+    ck_assert(tlsph_porous_omega(hydro) == 0.0);
+    ck_assert(fabs(tlsph_porous_omega(axi_t)) <= 1e-15);
+    ck_assert(fabs(tlsph_porous_omega(axi_c)) <= 1e-15);
+    ck_assert(fabs(tlsph_porous_omega(shear) - 1.0) <= 1e-15);
+    ck_assert(fabs(tlsph_porous_omega(shear_d) - 1.0) <= 1e-15);
+    srand(7);
+    double top = 0.0;
+    for (int i = 0; i < 200; i++) {
+        double s[9];
+        for (int c = 0; c < 9; c++)
+            s[c] = rand() / (double)RAND_MAX - 0.5;
+        for (int a = 0; a < 3; a++)
+            for (int b = 0; b < a; b++)
+                s[3 * a + b] = s[3 * b + a];
+        const double tr = (s[0] + s[4] + s[8]) / 3.0;
+        for (int a = 0; a < 3; a++)
+            s[4 * a] -= tr;
+        top = fmax(top, tlsph_porous_omega(s));
+    }
+    ck_assert(top <= 1.0);
+    /* the point: axisymmetric tension grows no shear voids, pure shear does */
+    const struct tlsph_material m = porous("sm_gurson", 0.01, "");
+    struct tlsph_point_state sa = start(&m), ss = start(&m);
+    struct tlsph_point_result r;
+    for (int i = 1; i <= 100; i++) {
+        double F[9];
+        F_log(0.3 * 1e-3 * i, 1e-3 * i, AXI, F);
+        tlsph_point_update(&m, F, 0.0, 1e-6, &sa, &r);
+        F_log(0.0, 1e-3 * i, SHEAR, F);
+        tlsph_point_update(&m, F, 0.0, 1e-6, &ss, &r);
+    }
+    printf("sm_gurson: shear part of f, axisymmetric %.3g, pure shear %.3g (f %.4f)\n",
+           sa.void_shear, ss.void_shear, ss.void_fraction);
+    ck_assert_msg(sa.eps_p > 0.05 && sa.void_shear == 0.0, "axisymmetric: eps %g, shear part %g",
+                  sa.eps_p, sa.void_shear);
+    ck_assert(ss.void_shear > 1e-3);
+}
+END_TEST
+
+START_TEST(m_gurson_switches_at_t1_and_t2)
+{
+    const struct tlsph_material m = porous("m_gurson", 0.01, "");
+    const double *g = m.damage.params;
+    const double K = m.bulk_modulus, G = m.shear_modulus;
+    int below = 0, ramp = 0, above = 0;
+    double worst = 0.0;
+    for (int i = 0; i <= 60; i++) {
+        const double t = -0.1 + 0.02 * i;
+        /* trial pressure -t sigma_M through the elastic volume (linear EOS),
+         * trial deviator 1.2 sigma_M: a return from outside the surface */
+        const double sM = S0 + HM * 0.1;
+        struct tlsph_porous_input w = {.omega = 0.7, .lnJp = 0.0, .G = G, .eps_M = 0.1,
+                                       .f = 0.01, .dt = 1e-6};
+        w.J = exp(t * sM / K);
+        w.q_trial = 1.2 * sM * w.J;
+        struct tlsph_porous_result out;
+        if (!tlsph_porous_return(&m, &w, &out))
+            continue;
+        ck_assert(out.converged);
+        const double se = (w.q_trial - 3.0 * G * out.b) / w.J, T = -out.p / se;
+        const double Om = T < g[POR_T1] ? 1.0
+                          : T > g[POR_T2] ? 0.0
+                                          : (T - g[POR_T2]) / (g[POR_T1] - g[POR_T2]);
+        const double seen = out.df_shear / (g[POR_KW] * out.f * w.omega * out.b);
+        worst = fmax(worst, fabs(seen - Om));
+        below += T < g[POR_T1];
+        ramp += T >= g[POR_T1] && T <= g[POR_T2];
+        above += T > g[POR_T2];
+        ck_assert_msg(fabs(seen - Om) <= 1e-9, "T %g: Omega %g, expected %g", T, seen, Om);
+    }
+    printf("m_gurson: Omega(T) of eq. 54 within %.1e (%d below T1, %d on the ramp, %d above "
+           "T2)\n",
+           worst, below, ramp, above);
+    ck_assert(below > 3 && ramp > 3 && above > 3);
+}
+END_TEST
+
+START_TEST(newton_jacobian_is_the_derivative_of_the_residuals)
+{
+    const double ts[] = {0.1, 0.45, 1.2};
+    for (int k = 0; k < NMODELS; k++) {
+        const struct tlsph_material m =
+            porous(MODELS[k], 0.01, k ? ",\"nucleation\":{\"mean_strain\":0.1}" : "");
+        const double K = m.bulk_modulus, G = m.shear_modulus;
+        double worst = 0.0;
+        for (size_t i = 0; i < sizeof ts / sizeof *ts; i++) {
+            const double sM = S0 + HM * 0.1;
+            struct tlsph_porous_input in = {.q_trial = 0, .omega = 0.6, .lnJp = 0.0, .G = G,
+                                            .eps_M = 0.1, .f = 0.03, .dt = 1e-6};
+            in.J = exp(ts[i] * sM / K);
+            in.q_trial = 1.5 * sM * in.J;
+            const double scale = in.q_trial / (3.0 * G);
+            const double a0 = 2e-4, b0 = 0.3 * scale;
+            double F[2], dF[2][2];
+            ck_assert(tlsph_porous_residual(&m, &in, scale, a0, b0, F, dF));
+            const double h[2] = {1e-6 * a0, 1e-6 * b0};
+            for (int c = 0; c < 2; c++) {
+                double Fp[2], Fm[2], dummy[2][2];
+                const double ap = a0 + (c == 0 ? h[0] : 0.0), bp = b0 + (c == 1 ? h[1] : 0.0);
+                const double am = a0 - (c == 0 ? h[0] : 0.0), bm = b0 - (c == 1 ? h[1] : 0.0);
+                ck_assert(tlsph_porous_residual(&m, &in, scale, ap, bp, Fp, dummy));
+                ck_assert(tlsph_porous_residual(&m, &in, scale, am, bm, Fm, dummy));
+                for (int r = 0; r < 2; r++) {
+                    const double fd = (Fp[r] - Fm[r]) / (2.0 * h[c]);
+                    const double size = fabs(dF[r][0]) + fabs(dF[r][1]);
+                    const double err = fabs(fd - dF[r][c]) / size;
+                    worst = fmax(worst, err);
+                    ck_assert_msg(err <= 1e-5, "%s t %g: dF%d/d%c analytic %g, FD %g", MODELS[k],
+                                  ts[i], r + 1, c ? 'b' : 'a', dF[r][c], fd);
+                }
+            }
+        }
+        printf("%s: consistent Jacobian vs central differences, worst %.1e\n", MODELS[k], worst);
+    }
+}
+END_TEST
+
+START_TEST(paper_000_gtn_and_this_update_agree)
+{
+    const char *common = "\"q1\":1.5,\"q2\":1.0,\"initial_void_fraction\":0.005,"
+                         "\"critical_void_fraction\":0.05,\"failure_void_fraction\":0.2";
+    const char *nuc = "\"nucleation\":{\"amplitude\":0.02,\"mean_strain\":0.1,\"deviation\":0.05}";
+    const char *pairs[2][2] = {{"gtn", "gtn_aravas"}, {"gtn", "sm_gurson"}};
+    for (int c = 0; c < 2; c++) {
+        char a[1024], b[1024];
+        const char *kw = c ? ",\"shear_coefficient\":1.0" : "";
+        snprintf(a, sizeof a,
+                 "{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+                 "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":270e6,"
+                 "\"hardening_modulus\":833e6},\"damage\":{\"type\":\"%s\",%s,%s%s}}",
+                 pairs[c][0], common, nuc, kw);
+        snprintf(b, sizeof b,
+                 "{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+                 "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":270e6,"
+                 "\"hardening_modulus\":833e6},\"damage\":{\"type\":\"%s\",%s,%s%s,"
+                 "\"q3\":2.25,\"fracture_void_fraction\":0.9}}",
+                 pairs[c][1], common, nuc, kw);
+        const struct tlsph_material ma = material(a), mb = material(b);
+        struct tlsph_point_state sa = {0}, sb = start(&mb);
+        ma.damage.model->point_init(&ma, &sa);
+        struct tlsph_point_result ra, rb;
+        double worst = 0.0;
+        int n = 0;
+        for (int i = 1; i <= 400; i++) {
+            const double e = 5e-4 * i;
+            double F[9];
+            F_log(0.4 * e, e, GENERAL, F);
+            tlsph_point_update(&ma, F, 0.0, 1e-6, &sa, &ra);
+            tlsph_point_update(&mb, F, 0.0, 1e-6, &sb, &rb);
+            if (sa.damage >= 1.0 || sb.damage >= 1.0)
+                break;
+            ck_assert(ra.converged && rb.converged);
+            worst = fmax(worst, fabs(sa.void_fraction - sb.void_fraction) / sa.void_fraction);
+            worst = fmax(worst, fabs(sa.eps_p - sb.eps_p) / fmax(sa.eps_p, 1e-3));
+            for (int k = 0; k < 6; k++)
+                worst = fmax(worst, fabs(ra.sigma[k] - rb.sigma[k]) / von_mises(ra.sigma));
+            worst = fmax(worst, fabs(sa.damage - sb.damage));
+            n++;
+        }
+        printf("%s vs %s: %d steps to f %.4f (eps_M %.3f), worst relative difference %.2e\n",
+               pairs[c][0], pairs[c][1], n, sa.void_fraction, sa.eps_p, worst);
+        ck_assert(sa.void_fraction > 0.05);
+        ck_assert_msg(worst <= 1e-8, "%s vs %s differ by %g", pairs[c][0], pairs[c][1], worst);
+    }
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
+                 one_step_returns_satisfy_the_yield_condition,
+                 void_growth_follows_the_closed_form_rate,
+                 shear_term_vanishes_in_axisymmetric_states_and_peaks_in_shear,
+                 m_gurson_switches_at_t1_and_t2, newton_jacobian_is_the_derivative_of_the_residuals,
+                 paper_000_gtn_and_this_update_agree)
