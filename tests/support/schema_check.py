@@ -57,6 +57,8 @@ SEMANTIC_ONLY = {
     "jc_starts_molten",                   # thermal.initial_temperature < melting_temperature
     "damage_jc_melting_below_reference",  # damage melting_temperature > reference_temperature
     "damage_gtn_f0_above_critical",          # initial_void_fraction < critical_void_fraction
+    "damage_gurson_f0_above_fracture",       # initial_void_fraction < fracture_void_fraction
+    "damage_m_gurson_t1_above_t2",           # low_triaxiality < high_triaxiality
     "damage_gtn_critical_above_failure",     # critical_void_fraction < failure_void_fraction
     "damage_gtn_critical_above_inverse_q1",  # critical_void_fraction < 1/q1
     # gauges and sections: cross references, uniqueness, the lattice
