@@ -167,20 +167,16 @@ static int has_porous(const struct tlsph_model *m)
     return m->p.void_fstar != NULL;
 }
 
-static void ex_void_fstar(const struct tlsph_model *m, void *out)
-{
-    memcpy(out, m->p.void_fstar, m->p.n * sizeof(double));
-}
-
-static void ex_void_nucleated(const struct tlsph_model *m, void *out)
-{
-    memcpy(out, m->p.void_nucleated, m->p.n * sizeof(double));
-}
-
-static void ex_void_shear(const struct tlsph_model *m, void *out)
-{
-    memcpy(out, m->p.void_shear, m->p.n * sizeof(double));
-}
+/* f*, the nucleated and the shear part of f: copies of their arrays */
+#define COPY_EXTRACTOR(fn, array)                                                                  \
+    static void fn(const struct tlsph_model *m, void *out)                                         \
+    {                                                                                              \
+        memcpy(out, m->p.array, m->p.n * sizeof(double));                                          \
+    }
+COPY_EXTRACTOR(ex_void_fstar, void_fstar)
+COPY_EXTRACTOR(ex_void_nucleated, void_nucleated)
+COPY_EXTRACTOR(ex_void_shear, void_shear)
+#undef COPY_EXTRACTOR
 
 /* xi = 27 J3 / (2 sigma_eq^3) of the Cauchy deviator, in [-1, 1]. */
 static void ex_lode(const struct tlsph_model *m, void *out)

@@ -196,12 +196,8 @@ static void path(double ratio, double f0, const char *extra, double *tmin, doubl
         *tmax = fmax(*tmax, t);
         *most = r.iterations > *most ? r.iterations : *most;
         /* normality: plastic increments, stored in the lab frame (no rotation here) */
-        double d[6];
-        for (int c = 0; c < 6; c++)
-            d[c] = s.plastic_strain[c] - old.plastic_strain[c];
-        const double dv = d[0] + d[3] + d[5];
-        const double dd[3] = {d[0] - dv / 3.0, d[3] - dv / 3.0, d[5] - dv / 3.0};
-        const double dq = sqrt(2.0 / 3.0 * (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]));
+        double dv;
+        const double dq = plastic_increment(&old, &s, &dv);
         const double sM = A + B * pow(s.eps_p, N), q = von_mises(r.sigma);
         const double sm = (r.sigma[0] + r.sigma[3] + r.sigma[5]) / 3.0;
         const double fs = fstar(s.void_fraction, 0.25, 0.3);

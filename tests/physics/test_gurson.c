@@ -238,12 +238,8 @@ START_TEST(void_growth_follows_the_closed_form_rate)
                 if (r.iterations == 0)
                     continue;
                 ck_assert(r.converged && s.damage < 1.0);
-                double d[6];
-                for (int c = 0; c < 6; c++)
-                    d[c] = s.plastic_strain[c] - old.plastic_strain[c];
-                const double dv = d[0] + d[3] + d[5];
-                const double dd[3] = {d[0] - dv / 3.0, d[3] - dv / 3.0, d[5] - dv / 3.0};
-                const double dq = sqrt(2.0 / 3.0 * (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2]));
+                double dv;
+                const double dq = plastic_increment(&old, &s, &dv);
                 if (!(dq > 1e-7))
                     continue;
                 const double rate = closed_form_rate(&m, r.sigma, s.eps_p, s.void_fraction,
@@ -329,12 +325,12 @@ START_TEST(m_gurson_switches_at_t1_and_t2)
         struct tlsph_porous_result out;
         if (!tlsph_porous_return(&m, &w, &out))
             continue;
-        ck_assert(out.converged);
-        const double se = (w.q_trial - 3.0 * G * out.b) / w.J, T = -out.p / se;
+        ck_assert(out.flow.converged);
+        const double se = (w.q_trial - 3.0 * G * out.flow.dq) / w.J, T = -out.p / se;
         const double Om = T < g[POR_T1] ? 1.0
                           : T > g[POR_T2] ? 0.0
                                           : (T - g[POR_T2]) / (g[POR_T1] - g[POR_T2]);
-        const double seen = out.df_shear / (g[POR_KW] * out.f * w.omega * out.b);
+        const double seen = out.df_shear / (g[POR_KW] * out.flow.f * w.omega * out.flow.dq);
         worst = fmax(worst, fabs(seen - Om));
         below += T < g[POR_T1];
         ramp += T >= g[POR_T1] && T <= g[POR_T2];

@@ -63,3 +63,16 @@ void uniaxial_step(const struct tlsph_material *m, double ea, double *et, double
     ck_assert(r->converged);
     *s = trial;
 }
+
+double plastic_increment(const struct tlsph_point_state *old, const struct tlsph_point_state *now,
+                         double *dv)
+{
+    double d[6];
+    for (int c = 0; c < 6; c++)
+        d[c] = now->plastic_strain[c] - old->plastic_strain[c];
+    *dv = d[0] + d[3] + d[5];
+    const double dd[3] = {d[0] - *dv / 3.0, d[3] - *dv / 3.0, d[5] - *dv / 3.0};
+    /* off-diagonal components count twice in |dev dEp|^2 */
+    const double off = d[1] * d[1] + d[2] * d[2] + d[4] * d[4];
+    return sqrt(2.0 / 3.0 * (dd[0] * dd[0] + dd[1] * dd[1] + dd[2] * dd[2] + 2.0 * off));
+}

@@ -20,4 +20,10 @@ void diag_F(double ea, double et, double *F);
 void uniaxial_step(const struct tlsph_material *m, double ea, double *et, double dt,
                    struct tlsph_point_state *s, struct tlsph_point_result *r);
 
+/* The plastic strain increment from `old` to `now` (stored in the lab frame:
+ * paths without rotation): returns its equivalent deviatoric part
+ * sqrt(2/3 |dev dEp|^2), *dv its trace. */
+double plastic_increment(const struct tlsph_point_state *old, const struct tlsph_point_state *now,
+                         double *dv);
+
 #endif

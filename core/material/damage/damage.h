@@ -114,4 +114,10 @@ extern const struct tlsph_key_table tlsph_damage_evolution_keys;
 int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, const char *pointer,
                                  struct tlsph_errors *err);
 
+/* A porous model's refusal of an "evolution" block: reports it (naming the
+ * model and why: "'evolution' does not apply to <what>") when obj has one.
+ * Returns -1 then, else 0. */
+int tlsph_damage_refuse_evolution(const json_t *obj, const char *pointer, const char *what,
+                                  struct tlsph_errors *err);
+
 #endif

@@ -29,3 +29,12 @@ int tlsph_damage_parse_evolution(const json_t *obj, struct tlsph_material *m, co
                                     &to, err);
     return r < 0 ? -1 : 0;
 }
+
+int tlsph_damage_refuse_evolution(const json_t *obj, const char *pointer, const char *what,
+                                  struct tlsph_errors *err)
+{
+    if (!json_object_get(obj, "evolution"))
+        return 0;
+    tlsph_key_error(err, pointer, "evolution", "'evolution' does not apply to %s", what);
+    return -1;
+}

@@ -88,12 +88,11 @@ static int parse(const json_t *obj, struct tlsph_material *m, const char *pointe
                         g[GTN_FC], 1.0 / g[GTN_Q1]);
         bad = 1;
     }
-    if (json_object_get(obj, "evolution")) {
-        tlsph_key_error(err, pointer, "evolution",
-                        "'evolution' does not apply to gtn: its damage is D = q1 f* from the "
-                        "void fraction (eq. 48)");
+    if (tlsph_damage_refuse_evolution(obj, pointer,
+                                      "gtn: its damage is D = q1 f* from the void fraction "
+                                      "(eq. 48)",
+                                      err) != 0)
         bad = 1;
-    }
     return bad ? -1 : 0;
 }
 

@@ -14,9 +14,9 @@
  * voids close under pressure f -> 0 is the difference of two numbers near f_n
  * when computed from dv, but dv from f loses nothing. */
 struct eval {
+    struct tlsph_porous_iterate head; /* R . R, converged (porous_step.h) */
     double R[3], dR[3][3]; /* residuals (R2, R3 divided by the strain scale), d R_i / d u_k */
     double size[3];        /* magnitude of the terms of each residual */
-    double merit;          /* R . R */
     double tau_q, dv, p, K_t, sigma_M, f, T, W, phi;
 };
 
@@ -29,9 +29,10 @@ static double nucleation_rate(const double *g, double e)
     return g[GTN_FN] / (g[GTN_SN] * SQRT_2PI) * exp(-0.5 * z * z);
 }
 
-static void evaluate(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
-                     double scale, const double u[3], struct eval *s)
+static void evaluate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                     double scale, const double *u, void *state)
 {
+    struct eval *s = state;
     const double *g = m->damage.params;
     const double q1 = g[GTN_Q1], q2 = g[GTN_Q2], G3 = 3.0 * in->G;
     const double dq = u[0], dM = u[2];
@@ -101,7 +102,11 @@ static void evaluate(const struct tlsph_material *m, const struct tlsph_gtn_inpu
                        s->W * d_sM[k] / (JsM * s->sigma_M)) /
                       scale;
     }
-    s->merit = s->R[0] * s->R[0] + s->R[1] * s->R[1] + s->R[2] * s->R[2];
+    s->head.merit = s->R[0] * s->R[0] + s->R[1] * s->R[1] + s->R[2] * s->R[2];
+    s->head.ok = 1;
+    s->head.done = fabs(s->R[0]) <= TOLERANCE * s->size[0] &&
+                   fabs(s->R[1]) <= TOLERANCE * s->size[1] &&
+                   fabs(s->R[2]) <= TOLERANCE * s->size[2];
 }
 
 /* Solves A d = b (3x3, Gaussian elimination with partial pivoting); 0 if singular. */
@@ -144,7 +149,7 @@ static int solve3(double A[3][3], double b[3], double d[3])
  * reverse (dq <= q_tr/(3G)), 0 <= f < 1 (f >= 0 also excludes a spurious root
  * with f < 0, where "negative voids" shrink in tension), and dM stays
  * positive (some hardening laws have an infinite slope at eps_M = 0). */
-static void keep_admissible(const struct tlsph_gtn_input *in, double scale, double u[3])
+static void keep_admissible(const struct tlsph_porous_input *in, double scale, double u[3])
 {
     const double dq_max = in->q_trial / (3.0 * in->G);
     u[0] = fmin(fmax(u[0], 0.0), dq_max);
@@ -161,11 +166,11 @@ static void keep_admissible(const struct tlsph_gtn_input *in, double scale, doub
  *   g(y) = 2 x(y) (y_tr - y) J/(3G) - (x_tr - x(y)) Phi_y(y)/K_t = 0,
  * with a sign change between y = 0 (g >= 0: Phi_y = 0) and the trial value or
  * the cap of the surface, whichever comes first (g <= 0): a bracketed root,
- * found by the Illinois variant of regula falsi.  This replaces the paper's
+ * found by the Illinois variant of regula falsi (tlsph_porous_frozen_root).  This replaces the paper's
  * constant-triaxiality estimate (Algorithm 2 lines 10-17), which ignores the
  * pressure the plastic dilatation relieves and can start Newton near the
  * spurious root with f < 0. */
-static void first_guess(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+static void first_guess(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         double sM, double p_tr, double K_t, double u[3])
 {
     const double *g = m->damage.params;
@@ -173,37 +178,9 @@ static void first_guess(const struct tlsph_material *m, const struct tlsph_gtn_i
     const double fs = tlsph_gtn_fstar(g, in->f), D = q1 * fs;
     const double JsM = in->J * sM, x_tr = in->q_trial / JsM, y_tr = -p_tr / sM;
     const double cG = JsM / (3.0 * in->G), cK = sM / K_t; /* strain per unit of x, of y */
-    /* cap: x(y) = 0 at cosh(3/2 q2 y) = (1 + D^2)/(2D) */
-    const double cap = D > 0.0 ? acosh((1.0 + D * D) / (2.0 * D)) / (1.5 * q2) : INFINITY;
-    const double side = y_tr >= 0.0 ? 1.0 : -1.0;
-    double a = 0.0, b = side * fmin(fabs(y_tr), cap);
-#define SURFACE_X(y) sqrt(fmax(1.0 + D * D - 2.0 * D * cosh(1.5 * q2 * (y)), 0.0))
-#define NORMAL_G(y, x)                                                                             \
-    (2.0 * (x) * (y_tr - (y)) * cK - (x_tr - (x)) * 3.0 * q1 * q2 * fs * sinh(1.5 * q2 * (y)) * cG)
-    double xa = SURFACE_X(a), xb = SURFACE_X(b);
-    double ga = NORMAL_G(a, xa), gb = NORMAL_G(b, xb);
-    double y = b, x = xb;
-    if (ga * gb < 0.0) {
-        for (int it = 0; it < 60; it++) {
-            y = (a * gb - b * ga) / (gb - ga);
-            x = SURFACE_X(y);
-            const double gy = NORMAL_G(y, x);
-            if (gy * gb < 0.0) {
-                a = b;
-                ga = gb;
-            } else {
-                ga *= 0.5; /* Illinois: the end kept twice counts half */
-            }
-            b = y;
-            gb = gy;
-            if (gy == 0.0 || fabs(b - a) <= 1e-12 * fmax(fabs(y), 1e-3))
-                break;
-        }
-    } else if (ga == 0.0 || fabs(ga) < fabs(gb)) {
-        y = a, x = xa;
-    }
-#undef SURFACE_X
-#undef NORMAL_G
+    double x;
+    const double y =
+        tlsph_porous_frozen_root(1.0 + D * D, 2.0 * D, q1, q2, fs, x_tr, y_tr, cG, cK, &x);
     const double dq = fmax(x_tr - x, 0.0) * JsM / (3.0 * in->G);
     const double dv = (y_tr - y) * cK;
     const double W = (in->q_trial - 3.0 * in->G * dq) * dq - in->J * (p_tr + K_t * dv) * dv;
@@ -213,74 +190,20 @@ static void first_guess(const struct tlsph_material *m, const struct tlsph_gtn_i
            (1.0 - g[GTN_KW] * in->omega * dq);
 }
 
-/* Newton from u with a backtracking line search; at most `budget` residual
- * evaluations, counted in *evals.  Returns 1 when converged (e: the state at u). */
-static int newton(const struct tlsph_material *m, const struct tlsph_gtn_input *in, double scale,
-                  double u[3], struct eval *e, int budget, int *evals)
+/* The Newton step at a state: dR d = -R. */
+static int direction(const void *state, double *d)
 {
-    struct eval trial;
-    keep_admissible(in, scale, u);
-    evaluate(m, in, scale, u, e);
-    int used = 1;
-    for (;;) {
-        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1] &&
-            fabs(e->R[2]) <= TOLERANCE * e->size[2])
-            break;
-        if (used >= budget) {
-            *evals += used;
-            return 0;
-        }
-        double A[3][3], b[3], d[3];
-        for (int i = 0; i < 3; i++) {
-            b[i] = -e->R[i];
-            for (int k = 0; k < 3; k++)
-                A[i][k] = e->dR[i][k];
-        }
-        if (!solve3(A, b, d)) {
-            *evals += used;
-            return 0;
-        }
-        /* backtracking: halve the step until |R|^2 decreases (Armijo); a step
-         * that finds no decrease at all ends the iteration unconverged */
-        double lambda = 1.0;
-        int moved = 0;
-        while (used < budget && lambda >= 1e-6) {
-            double v[3];
-            for (int k = 0; k < 3; k++)
-                v[k] = u[k] + lambda * d[k];
-            keep_admissible(in, scale, v);
-            evaluate(m, in, scale, v, &trial);
-            used++;
-            if (isfinite(trial.merit) && trial.merit <= (1.0 - 1e-4 * lambda) * e->merit) {
-                for (int k = 0; k < 3; k++)
-                    u[k] = v[k];
-                *e = trial;
-                moved = 1;
-                break;
-            }
-            lambda *= 0.5;
-        }
-        if (!moved) {
-            *evals += used;
-            return 0;
-        }
+    const struct eval *e = state;
+    double A[3][3], b[3];
+    for (int i = 0; i < 3; i++) {
+        b[i] = -e->R[i];
+        for (int k = 0; k < 3; k++)
+            A[i][k] = e->dR[i][k];
     }
-    *evals += used;
-    return 1;
+    return solve3(A, b, d);
 }
 
-/* The trial state of `in` with its elastic strain scaled by s (deviator and
- * log elastic volume), for the continuation below. */
-static struct tlsph_gtn_input scaled_trial(const struct tlsph_gtn_input *in, double s)
-{
-    struct tlsph_gtn_input sub = *in;
-    const double lnJ = log(in->J);
-    sub.q_trial = s * in->q_trial;
-    sub.lnJp = lnJ - s * (lnJ - in->lnJp);
-    return sub;
-}
-
-static double trial_phi(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+static double trial_phi(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         double yield, double *p, double *K_t)
 {
     const double *g = m->damage.params;
@@ -290,68 +213,36 @@ static double trial_phi(const struct tlsph_material *m, const struct tlsph_gtn_i
     return x * x + 2.0 * D * cosh(1.5 * g[GTN_Q2] * (-*p / yield)) - (1.0 + D * D);
 }
 
-static double strain_scale(const struct tlsph_gtn_input *in, double p)
-{
-    return (in->q_trial + in->J * fabs(p)) / (3.0 * in->G);
-}
+static const struct tlsph_porous_solver solver =
+    TLSPH_POROUS_SOLVER(3, TLSPH_GTN_MAX_ITERATIONS, struct eval);
 
-int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                      struct tlsph_gtn_result *out)
 {
-    double yield = in->yield;
-    if (!(yield > 0.0)) {
-        struct tlsph_flow fl;
-        m->strength->flow(m, in->eps_M, 0.0, in->T, &fl);
-        yield = fl.stress;
-    }
-    double p_tr, K_tr;
-    const double phi_tr = trial_phi(m, in, yield, &p_tr, &K_tr);
-    *out = (struct tlsph_gtn_result){.f = in->f, .T = in->T, .sigma_M = yield, .p = p_tr,
-                                     .K_t = K_tr, .phi = phi_tr, .yield = yield, .converged = 1};
+    double yield, p_tr, K_tr;
+    const double phi_tr = tlsph_porous_trial_phi(&solver, m, in, &yield, &p_tr, &K_tr);
+    *out = (struct tlsph_gtn_result){.flow = {.f = in->f, .T = in->T, .converged = 1},
+                                     .sigma_M = yield, .p = p_tr, .K_t = K_tr, .phi = phi_tr,
+                                     .yield = yield};
     if (!(phi_tr > 0.0))
         return 0; /* inside or on the yield surface: elastic step */
     out->yield = 0.0;
 
-    const double scale = strain_scale(in, p_tr);
     double u[3];
-    struct eval e;
+    struct eval e, scratch;
     int evals = 0;
-    first_guess(m, in, yield, p_tr, K_tr, u);
-    int ok = newton(m, in, scale, u, &e, TLSPH_GTN_MAX_ITERATIONS, &evals);
-    /* A large increment (many yield strains in one step, strong void growth)
-     * can defeat Newton from the frozen guess.  Continuation: reach the same
-     * end-of-step system through trial states scaled by k/n, each solve
-     * started from the previous solution; the last one (k = n) is the system
-     * itself, so a converged result is the exact backward-Euler step. */
-    for (int n = 4; !ok && n <= 64; n *= 4) {
-        double v[3] = {0.0, 0.0, 0.0};
-        int flowing = 0;
-        ok = 1;
-        for (int k = 1; k <= n && ok; k++) {
-            const struct tlsph_gtn_input sub = scaled_trial(in, (double)k / n);
-            double p, K_t;
-            if (!(trial_phi(m, &sub, yield, &p, &K_t) > 0.0))
-                continue;
-            if (!flowing)
-                first_guess(m, &sub, yield, p, K_t, v);
-            flowing = 1;
-            ok = newton(m, &sub, strain_scale(&sub, p), v, &e, TLSPH_GTN_MAX_ITERATIONS, &evals);
-        }
-        if (ok)
-            for (int k = 0; k < 3; k++)
-                u[k] = v[k];
-    }
-    out->iterations = evals;
-    out->converged = ok;
-    out->dq = u[0];
-    out->dv = e.dv;
-    out->dM = u[2];
-    out->f = e.f;
-    out->T = e.T;
+    const int ok = tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+    out->flow.iterations = evals;
+    out->flow.converged = ok;
+    out->flow.dq = u[0];
+    out->flow.dv = e.dv;
+    out->flow.dM = u[2];
+    out->flow.f = e.f;
+    out->flow.T = e.T;
     out->sigma_M = e.sigma_M;
     out->p = e.p;
     out->K_t = e.K_t;
-    out->work = e.W;
+    out->flow.work = e.W;
     out->phi = e.phi;
     return 1;
 }

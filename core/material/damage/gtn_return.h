@@ -44,41 +44,27 @@
 #ifndef TLSPH_DAMAGE_GTN_RETURN_H
 #define TLSPH_DAMAGE_GTN_RETURN_H
 
+#include "material/damage/porous_step.h"
 #include "scene/scene.h"
 
 #define TLSPH_GTN_MAX_ITERATIONS 40
 
-struct tlsph_gtn_input {
-    double q_trial; /* von Mises value of the trial Kirchhoff deviator, Pa */
-    double omega;   /* Nahshon-Hutchinson metric of the trial deviator (eq. 52), in [0, 1] */
-    double J;       /* det F, 1 */
-    double lnJp;    /* tr Ep at the start of the step: log of the plastic volume ratio, 1 */
-    double e;       /* specific internal energy for the EOS, J/kg */
-    double G;       /* shear modulus, Pa */
-    double eps_M;   /* matrix equivalent plastic strain at the start of the step, 1 */
-    double f;       /* void volume fraction at the start of the step, 1 */
-    double T;       /* temperature at the start of the step, K (ignored without heating) */
-    double dt;      /* time step, s (0 treats the plastic rate as 0) */
-    double heating; /* chi/(rho0 C_p), K per J/m^3 of reference volume; 0 = no heating */
-    double yield;   /* sigma_y(eps_M, 0, T) when known (> 0), else 0 */
-};
 
 struct tlsph_gtn_result {
-    double dq, dv, dM; /* the increments above, 1 (all 0 after an elastic step) */
-    double f;          /* void fraction at the end of the step, 1 */
-    double T;          /* temperature at the end of the step, K */
+    /* the increments above (dq, dv, dM; all 0 after an elastic step), f and T at
+     * the end, the plastic work per unit reference volume (J/m^3), the residual
+     * evaluations after the yield check and converged (0 when
+     * TLSPH_GTN_MAX_ITERATIONS and the continuation were not enough) */
+    struct tlsph_porous_flow flow;
     double sigma_M;    /* matrix flow stress at the end of the step, Pa */
     double p, K_t;     /* EOS pressure and tangent bulk modulus at the end, Pa */
-    double work;       /* plastic work of the step per unit reference volume, J/m^3 */
     double phi;        /* yield function at the end (about 0 after flow, < 0 if elastic) */
     double yield;      /* after an elastic step: sigma_y(eps_M, 0, T) to cache; else 0 */
-    int iterations;    /* residual evaluations after the yield check */
-    int converged;     /* 1, or 0 when TLSPH_GTN_MAX_ITERATIONS were not enough */
 };
 
-/* m: a material whose damage model is gtn.  Returns 1 when the step is
- * plastic, 0 when elastic. */
-int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_gtn_input *in,
+/* m: a material whose damage model is gtn; in: the trial state
+ * (porous_step.h).  Returns 1 when the step is plastic, 0 when elastic. */
+int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                      struct tlsph_gtn_result *out);
 
 #endif

@@ -7,6 +7,7 @@
 #define TLSPH_DAMAGE_POROUS_KEYS_H
 
 #include "scene/keys.h"
+#include "material/damage/damage.h"
 #include "material/damage/porous.h"
 
 /* clang-format off */
@@ -73,6 +74,31 @@
     {.name = "nucleation", .kind = TLSPH_KEY_OBJECT, .table = &nucleation_table,               \
      .description = "strain-controlled nucleation df = A_N d eps_M (eqs. 46-48); absent = "   \
                     "Table 1's values"}
+/* clang-format on */
+
+/* clang-format off */
+/* The keys of the GTN-like rows (gtn_aravas, sm_gurson, m_gurson): the
+ * surface's factors, f0, coalescence and nucleation (its table first, by
+ * POROUS_NUCLEATION_TABLE). */
+#define POROUS_KEYS_GTN                                                                        \
+    POROUS_KEY_Q("q1", 2.5, POR_Q1, "yield-surface factor q1 (eq. 43); Table 1: 2.5"),          \
+    POROUS_KEY_Q("q2", 1.0, POR_Q2, "yield-surface factor q2 (eq. 43); Table 1: 1.0"),          \
+    POROUS_KEY_Q("q3", 3.25, POR_Q3, "yield-surface factor q3 (eq. 43); Table 1: 3.25"),        \
+    POROUS_KEY_F0, POROUS_KEY_COALESCENCE, POROUS_KEY_NUCLEATION
+
+/* The row of model `id` (its descriptor tlsph_damage_<id>) on the key table
+ * `table` of its file, with the shear term `shear` (POROUS_SHEAR_*). */
+#define POROUS_ROW(id, shear)                                                                  \
+    static int parse(const json_t *obj, struct tlsph_material *m, const char *pointer,         \
+                     struct tlsph_errors *err)                                                 \
+    {                                                                                          \
+        return tlsph_porous_parse(obj, m, pointer, &table, (shear), err);                      \
+    }                                                                                          \
+    const struct tlsph_damage_model tlsph_damage_##id = {                                      \
+        .name = #id, .module = "damage:" #id, .keys = &table, .porous = 1,                     \
+        .fields = TLSPH_DAMAGE_FIELD_VOID_FRACTION | TLSPH_DAMAGE_FIELD_POROUS,                \
+        .parse = parse, .point_update = tlsph_porous_point_update,                             \
+        .point_init = tlsph_porous_point_init}
 /* clang-format on */
 
 extern const struct tlsph_key_choice tlsph_porous_criteria[];

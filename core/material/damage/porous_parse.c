@@ -72,11 +72,8 @@ int tlsph_porous_parse(const json_t *obj, struct tlsph_material *m, const char *
     g[POR_SHEAR] = shear;
     if (!bad)
         bad = tlsph_porous_check(m, pointer, err) != 0;
-    if (json_object_get(obj, "evolution")) {
-        tlsph_key_error(err, pointer, "evolution",
-                        "'evolution' does not apply to a porous model: its damage comes from "
-                        "the void fraction");
+    if (tlsph_damage_refuse_evolution(
+            obj, pointer, "a porous model: its damage comes from the void fraction", err) != 0)
         bad = 1;
-    }
     return bad ? -1 : 0;
 }

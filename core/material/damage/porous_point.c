@@ -10,6 +10,7 @@
 
 #include "material/damage/porous.h"
 #include "material/damage/porous_return.h"
+#include "material/damage/porous_step.h"
 #include "util/mat3.h"
 
 #define OMEGA_ROUNDOFF 1e-12
@@ -63,80 +64,25 @@ void tlsph_porous_point_update(const struct tlsph_material *mat,
                                struct tlsph_point_state *s, struct tlsph_point_result *r)
 {
     const double *g = mat->damage.params;
-    const double *lns = k->lns, J = k->J;
-    const double G = mat->shear_modulus, G2 = 2.0 * G;
-    double Ep[9], Epb[9];
-    sym6_to_mat3(s->plastic_strain, Ep);
-    mat3_to_basis(k->Q, Ep, Epb);
-    const double lnJp = Epb[0] + Epb[4] + Epb[8], lnJ = lns[0] + lns[1] + lns[2];
-    double tau[9]; /* trial deviator 2G dev(H - Ep), in the eigenbasis of C */
-    for (int c = 0; c < 9; c++)
-        tau[c] = -G2 * Epb[c];
-    for (int a = 0; a < 3; a++)
-        tau[4 * a] += G2 * (lns[a] - lnJ / 3.0 + lnJp / 3.0);
-    double t2 = 0.0;
-    for (int c = 0; c < 9; c++)
-        t2 += tau[c] * tau[c];
-    const double q_tr = sqrt(1.5 * t2);
-    const struct tlsph_porous_input in = {
-        .q_trial = q_tr,
-        .omega = g[POR_SHEAR] != POROUS_SHEAR_NONE ? tlsph_porous_omega(tau) : 0.0,
-        .J = J,
-        .lnJp = lnJp,
-        .e = e,
-        .G = G,
-        .eps_M = s->eps_p,
-        .f = s->void_fraction,
-        .T = s->T,
-        .dt = dt,
-        .heating = mat->thermal.enabled
-                       ? mat->thermal.taylor_quinney / (mat->density * mat->thermal.specific_heat)
-                       : 0.0,
-        .yield = s->yield,
-    };
+    const double G = mat->shear_modulus;
+    struct tlsph_porous_trial t;
+    struct tlsph_porous_input in;
+    tlsph_porous_trial(mat, k, e, dt, s, &t, &in);
+    if (g[POR_SHEAR] != POROUS_SHEAR_NONE)
+        in.omega = tlsph_porous_omega(t.tau);
     struct tlsph_porous_result out;
     const int plastic = tlsph_porous_return(mat, &in, &out);
     s->yield = out.yield;
     s->rate = 0.0;
-    double tau_q = q_tr;
+    double tau_q = t.q;
     if (plastic) {
-        r->iterations = out.iterations;
-        r->converged = out.converged;
         /* the deviator relaxes along its own direction (eq. 84) */
-        const double flow = q_tr > 0.0 ? 1.5 * out.b / q_tr : 0.0;
-        const double shrink = q_tr > 0.0 ? 1.0 - 3.0 * G * out.b / q_tr : 1.0;
-        for (int c = 0; c < 9; c++) {
-            Epb[c] += flow * tau[c];
-            tau[c] *= shrink;
-        }
-        for (int a = 0; a < 3; a++)
-            Epb[4 * a] += out.a / 3.0;
-        mat3_from_basis(k->Q, Epb, Ep);
-        mat3_to_sym6(Ep, s->plastic_strain);
-        s->eps_p += out.dM;
-        s->rate = dt > 0.0 ? out.dM / dt : 0.0;
-        if (mat->thermal.enabled)
-            s->T = out.T;
-        s->void_fraction = out.f;
+        tau_q = tlsph_porous_commit(mat, k, dt, &out.flow, &t, s, r);
         s->void_nucleated += out.df_nucleated;
         s->void_shear += out.df_shear;
-        r->plastic_work = out.work;
-        tau_q = q_tr - 3.0 * G * out.b;
     }
     set_damage(g, s);
-    if (tau_q > 0.0)
-        r->triaxiality = -out.p * J / tau_q;
-    const double Jp = exp(lnJp + out.a);
-    if (s->damage >= 1.0) {
-        /* fractured: the elastic energy left is released with the failure */
-        r->damage_work = tlsph_deviatoric_energy(G, tau_q) +
-                         tlsph_volumetric_energy(out.p, J / Jp, Jp);
-        tlsph_point_no_stress(r, J, k->min_stretch, out.K_t);
-        return;
-    }
-    for (int a = 0; a < 3; a++)
-        tau[4 * a] -= J * out.p;
-    tlsph_point_assemble(k, tau, 1, out.K_t, r);
+    tlsph_porous_finish(k, G, in.lnJp + out.flow.dv, tau_q, out.p, out.K_t, s->damage >= 1.0, &t, r);
 }
 
 void tlsph_porous_point_init(const struct tlsph_material *mat, struct tlsph_point_state *s)

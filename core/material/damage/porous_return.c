@@ -14,6 +14,7 @@
 /* Everything at one iterate (a, b): the stress, the internal variables the
  * step ends with, the outer residuals and their consistent Jacobian. */
 struct eval {
+    struct tlsph_porous_iterate head; /* |F|^2, admissible, converged (porous_step.h) */
     double se, sm, p, K_t; /* Cauchy von Mises and mean stress, EOS pressure and modulus */
     double W, T;           /* plastic work per reference volume, temperature */
     double dM, f, sM;      /* internal state at the end: matrix strain increment, f, sigma_M */
@@ -21,7 +22,6 @@ struct eval {
     double F[2], dF[2][2]; /* residuals (F1 / scale, F2) and d F_i / d (a, b)_k */
     double size[2];        /* size of the terms of each residual */
     double floor[2];       /* what the resolution of the unknowns moves it by */
-    double merit;          /* F . F */
 };
 
 /* Void fraction nucleated while the matrix strain goes from e0 to e1: the
@@ -96,8 +96,8 @@ static int matrix_state(const struct tlsph_material *m, const struct tlsph_porou
 }
 
 /* The iterate (a, b): returns 0 when it has no admissible internal state. */
-static int evaluate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                    double scale, double a, double b, struct eval *e)
+static int iterate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                   double scale, double a, double b, struct eval *e)
 {
     const double *g = m->damage.params;
     const double q1 = g[POR_Q1], q2 = g[POR_Q2], q3 = g[POR_Q3], J = in->J;
@@ -191,15 +191,24 @@ static int evaluate(const struct tlsph_material *m, const struct tlsph_porous_in
     e->size[0] = (fabs(2.0 * x * a) + fabs(c * fs * sh * b)) / scale;
     for (int i = 0; i < 2; i++)
         e->floor[i] = 4.0 * DBL_EPSILON * (fabs(e->dF[i][0]) * (1.0 + fabs(a)) + fabs(e->dF[i][1] * b));
-    e->merit = e->F[0] * e->F[0] + e->F[1] * e->F[1];
-    return isfinite(e->merit);
+    e->head.merit = e->F[0] * e->F[0] + e->F[1] * e->F[1];
+    return isfinite(e->head.merit);
+}
+
+static void evaluate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                     double scale, const double *u, void *state)
+{
+    struct eval *e = state;
+    e->head.ok = iterate(m, in, scale, u[0], u[1], e);
+    e->head.done = e->head.ok && fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
+                   fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
 }
 
 int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                           double scale, double a, double b, double F[2], double dF[2][2])
 {
     struct eval e;
-    if (!evaluate(m, in, scale, a, b, &e))
+    if (!iterate(m, in, scale, a, b, &e))
         return 0;
     for (int i = 0; i < 2; i++) {
         F[i] = e.F[i];
@@ -212,19 +221,15 @@ int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_por
 /* The unknowns stay where the state means something: the deviator does not
  * reverse (0 <= b <= q_tr/(3G)) and the voids do not close below none
  * (f_n + growth >= 0: a >= ln(1 - f_n)). */
-static void keep_admissible(const struct tlsph_porous_input *in, double u[2])
+static void keep_admissible(const struct tlsph_porous_input *in, double scale, double *u)
 {
+    (void)scale;
     u[0] = fmax(u[0], log1p(-in->f));
     u[1] = fmin(fmax(u[1], 0.0), in->q_trial / (3.0 * in->G));
 }
 
 /* First guess: the return with sigma_M and f frozen at the start and the EOS
- * linearised (K_t).  In the plane x = sigma_e/sigma_M, y = sigma_m/sigma_M the
- * surface is x(y) = sqrt(1 + q3 f*^2 - 2 q1 f* cosh(3/2 q2 y)), and normality
- * leaves one equation in y,
- *   g(y) = 2 x(y) (y_tr - y) sigma_M/K_t - (x_tr - x(y)) Phi_y(y) J sigma_M/(3G) = 0,
- * whose root is bracketed by y = 0 (Phi_y = 0, g >= 0) and the trial value or
- * the cap of the surface (g <= 0): Illinois regula falsi. */
+ * linearised (tlsph_porous_frozen_root), as (a, b). */
 static void first_guess(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         double sM, double p_tr, double K_t, double u[2])
 {
@@ -233,107 +238,23 @@ static void first_guess(const struct tlsph_material *m, const struct tlsph_porou
     const double fs = tlsph_porous_fstar(g, in->f);
     const double x_tr = in->q_trial / (in->J * sM), y_tr = -p_tr / sM;
     const double cG = in->J * sM / (3.0 * in->G), cK = sM / K_t;
-    const double top = 1.0 + q3 * fs * fs;
-    const double cap = fs > 0.0 && top > 2.0 * q1 * fs
-                           ? acosh(top / (2.0 * q1 * fs)) / (1.5 * q2)
-                           : (fs > 0.0 ? 0.0 : INFINITY);
-    const double side = y_tr >= 0.0 ? 1.0 : -1.0;
-    double lo = 0.0, hi = side * fmin(fabs(y_tr), cap);
-#define SURFACE_X(y) sqrt(fmax(top - 2.0 * q1 * fs * cosh(1.5 * q2 * (y)), 0.0))
-#define NORMAL_G(y, x)                                                                             \
-    (2.0 * (x) * (y_tr - (y)) * cK - (x_tr - (x)) * 3.0 * q1 * q2 * fs * sinh(1.5 * q2 * (y)) * cG)
-    double x_lo = SURFACE_X(lo), x_hi = SURFACE_X(hi);
-    double g_lo = NORMAL_G(lo, x_lo), g_hi = NORMAL_G(hi, x_hi);
-    double y = hi, x = x_hi;
-    if (g_lo * g_hi < 0.0) {
-        for (int it = 0; it < 60; it++) {
-            y = (lo * g_hi - hi * g_lo) / (g_hi - g_lo);
-            x = SURFACE_X(y);
-            const double gy = NORMAL_G(y, x);
-            if (gy * g_hi < 0.0) {
-                lo = hi;
-                g_lo = g_hi;
-            } else {
-                g_lo *= 0.5;
-            }
-            hi = y;
-            g_hi = gy;
-            if (gy == 0.0 || fabs(hi - lo) <= 1e-12 * fmax(fabs(y), 1e-3))
-                break;
-        }
-    } else if (g_lo == 0.0 || fabs(g_lo) < fabs(g_hi)) {
-        y = lo;
-        x = x_lo;
-    }
-#undef SURFACE_X
-#undef NORMAL_G
+    double x;
+    const double y = tlsph_porous_frozen_root(1.0 + q3 * fs * fs, 2.0 * q1 * fs, q1, q2, fs, x_tr,
+                                              y_tr, cG, cK, &x);
     u[0] = (y_tr - y) * cK;
     u[1] = fmax(x_tr - x, 0.0) * cG;
 }
 
-static int converged(const struct eval *e)
+/* The Newton step at a state (eqs. 93-94): dF d = -F. */
+static int direction(const void *state, double *d)
 {
-    return fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
-           fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
-}
-
-/* Newton (eqs. 91-94) from u with a backtracking line search on |F|^2; at most
- * `budget` evaluations, counted in *evals.  Returns 1 when converged (e: the
- * state at u). */
-static int newton(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                  double scale, double u[2], struct eval *e, int budget, int *evals)
-{
-    struct eval trial;
-    keep_admissible(in, u);
-    int used = 1;
-    if (!evaluate(m, in, scale, u[0], u[1], e)) {
-        *evals += used;
+    const struct eval *e = state;
+    const double det = e->dF[0][0] * e->dF[1][1] - e->dF[0][1] * e->dF[1][0];
+    if (!(fabs(det) > 0.0) || !isfinite(det))
         return 0;
-    }
-    while (!converged(e)) {
-        if (used >= budget) {
-            *evals += used;
-            return 0;
-        }
-        const double det = e->dF[0][0] * e->dF[1][1] - e->dF[0][1] * e->dF[1][0];
-        if (!(fabs(det) > 0.0) || !isfinite(det)) {
-            *evals += used;
-            return 0;
-        }
-        const double d[2] = {(-e->F[0] * e->dF[1][1] + e->F[1] * e->dF[0][1]) / det,
-                             (-e->F[1] * e->dF[0][0] + e->F[0] * e->dF[1][0]) / det};
-        double lambda = 1.0;
-        int moved = 0;
-        while (used < budget && lambda >= 1e-6) {
-            double v[2] = {u[0] + lambda * d[0], u[1] + lambda * d[1]};
-            keep_admissible(in, v);
-            used++;
-            if (evaluate(m, in, scale, v[0], v[1], &trial) &&
-                trial.merit <= (1.0 - 1e-4 * lambda) * e->merit) {
-                u[0] = v[0];
-                u[1] = v[1];
-                *e = trial;
-                moved = 1;
-                break;
-            }
-            lambda *= 0.5;
-        }
-        if (!moved) {
-            *evals += used;
-            return 0;
-        }
-    }
-    *evals += used;
-    return 1;
-}
-
-static struct tlsph_porous_input scaled_trial(const struct tlsph_porous_input *in, double s)
-{
-    struct tlsph_porous_input sub = *in;
-    const double lnJ = log(in->J);
-    sub.q_trial = s * in->q_trial;
-    sub.lnJp = lnJ - s * (lnJ - in->lnJp);
-    return sub;
+    d[0] = (-e->F[0] * e->dF[1][1] + e->F[1] * e->dF[0][1]) / det;
+    d[1] = (-e->F[1] * e->dF[0][0] + e->F[0] * e->dF[1][0]) / det;
+    return isfinite(d[0]) && isfinite(d[1]);
 }
 
 static double trial_phi(const struct tlsph_material *m, const struct tlsph_porous_input *in,
@@ -347,77 +268,45 @@ static double trial_phi(const struct tlsph_material *m, const struct tlsph_porou
            (1.0 + g[POR_Q3] * fs * fs);
 }
 
-static double strain_scale(const struct tlsph_porous_input *in, double p)
-{
-    return (in->q_trial + in->J * fabs(p)) / (3.0 * in->G);
-}
+static const struct tlsph_porous_solver solver =
+    TLSPH_POROUS_SOLVER(2, TLSPH_POROUS_MAX_ITERATIONS, struct eval);
 
 int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         struct tlsph_porous_result *out)
 {
-    double yield = in->yield;
-    if (!(yield > 0.0)) {
-        struct tlsph_flow fl;
-        m->strength->flow(m, in->eps_M, 0.0, in->T, &fl);
-        yield = fl.stress;
-    }
-    double p_tr, K_tr;
-    const double phi_tr = trial_phi(m, in, yield, &p_tr, &K_tr);
-    *out = (struct tlsph_porous_result){.f = in->f, .T = in->T, .sigma_M = yield, .p = p_tr,
-                                        .K_t = K_tr, .phi = phi_tr, .yield = yield,
-                                        .converged = 1};
+    double yield, p_tr, K_tr;
+    const double phi_tr = tlsph_porous_trial_phi(&solver, m, in, &yield, &p_tr, &K_tr);
+    *out = (struct tlsph_porous_result){.flow = {.f = in->f, .T = in->T, .converged = 1},
+                                        .sigma_M = yield, .p = p_tr, .K_t = K_tr,
+                                        .phi = phi_tr, .yield = yield};
     if (!(phi_tr > 0.0))
         return 0; /* inside or on the surface: elastic */
     out->yield = 0.0;
 
-    const double scale = strain_scale(in, p_tr);
     double u[2];
-    struct eval e;
+    struct eval e, scratch;
     int evals = 0;
-    first_guess(m, in, yield, p_tr, K_tr, u);
-    int ok = newton(m, in, scale, u, &e, TLSPH_POROUS_MAX_ITERATIONS, &evals);
-    /* continuation through scaled trial states (gtn_return.c): the last solve
-     * is the step's own system, so a converged result is the exact step */
-    for (int n = 4; !ok && n <= 64; n *= 4) {
-        double v[2] = {0.0, 0.0};
-        int flowing = 0;
-        ok = 1;
-        for (int k = 1; k <= n && ok; k++) {
-            const struct tlsph_porous_input sub = scaled_trial(in, (double)k / n);
-            double p, K_t;
-            if (!(trial_phi(m, &sub, yield, &p, &K_t) > 0.0))
-                continue;
-            if (!flowing)
-                first_guess(m, &sub, yield, p, K_t, v);
-            flowing = 1;
-            ok = newton(m, &sub, strain_scale(&sub, p), v, &e, TLSPH_POROUS_MAX_ITERATIONS,
-                        &evals);
-        }
-        if (ok) {
-            u[0] = v[0];
-            u[1] = v[1];
-        }
-    }
-    out->iterations = evals;
-    out->converged = ok;
+    const int ok = tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+    out->flow.iterations = evals;
+    out->flow.converged = ok;
     if (!ok) {
         /* nothing of a failed solve is kept: the state stays that of the
          * start, finite, and the run is stopped by the stability contract */
         out->phi = phi_tr;
         return 1;
     }
-    out->a = u[0];
-    out->b = u[1];
-    out->dM = e.dM;
-    out->f = e.f;
+    out->flow.dv = u[0];
+    out->flow.dq = u[1];
+    out->flow.dM = e.dM;
+    out->flow.f = e.f;
     out->df_growth = e.c0 - in->f;
     out->df_nucleated = e.N;
     out->df_shear = e.kappa * e.f;
-    out->T = e.T;
+    out->flow.T = e.T;
     out->sigma_M = e.sM;
     out->p = e.p;
     out->K_t = e.K_t;
-    out->work = e.W;
+    out->flow.work = e.W;
     out->phi = e.F[1];
     return 1;
 }

@@ -49,44 +49,29 @@
  * residual evaluations per solve, a backtracking line search, and when Newton
  * fails from the frozen first guess, continuation through trial states scaled
  * k/n (n = 4, 16, 64) as in gtn_return.c; a point that still does not converge
- * is reported (result .converged = 0, the stability contract stops the run).
+ * is reported (result .flow.converged = 0, the stability contract stops the run).
  * With f = 0, no nucleation and no shear it is the J2 radial return.
  *
  * Units: SI. */
 #ifndef TLSPH_DAMAGE_POROUS_RETURN_H
 #define TLSPH_DAMAGE_POROUS_RETURN_H
 
+#include "material/damage/porous_step.h"
 #include "scene/scene.h"
 
 #define TLSPH_POROUS_MAX_ITERATIONS 40
 
-struct tlsph_porous_input {
-    double q_trial; /* von Mises value of the trial Kirchhoff deviator, Pa */
-    double omega;   /* omega(sigma) of the trial deviator (eq. 50), in [0, 1] */
-    double J;       /* det F, 1 */
-    double lnJp;    /* tr Ep at the start of the step, 1 */
-    double e;       /* specific internal energy for the EOS, J/kg */
-    double G;       /* shear modulus, Pa */
-    double eps_M;   /* matrix plastic strain at the start of the step, 1 */
-    double f;       /* void fraction at the start of the step, 1 */
-    double T;       /* temperature at the start of the step, K (ignored without heating) */
-    double dt;      /* time step, s (0 treats the plastic rate as 0) */
-    double heating; /* chi/(rho0 C_p), K per J/m^3 of reference volume; 0 = no heating */
-    double yield;   /* sigma_M(eps_M, 0, T) when known (> 0), else 0 */
-};
 
 struct tlsph_porous_result {
-    double a, b, dM;   /* plastic volume, deviatoric and matrix strain increments, 1 */
-    double f;          /* void fraction at the end of the step, 1 */
-    double df_growth, df_nucleated, df_shear; /* its three parts over the step, 1 */
-    double T;          /* temperature at the end, K */
+    /* dq = b, dv = a, dM (all 0 after an elastic step), f and T at the end, the
+     * plastic work per unit reference volume (J/m^3), the residual evaluations
+     * after the yield check, converged (0 when the solve failed) */
+    struct tlsph_porous_flow flow;
+    double df_growth, df_nucleated, df_shear; /* the three parts of f's change, 1 */
     double sigma_M;    /* matrix flow stress at the end, Pa */
     double p, K_t;     /* EOS pressure and tangent bulk modulus at the end, Pa */
-    double work;       /* plastic work per unit reference volume, J/m^3 */
     double phi;        /* yield function at the end (about 0 after flow, < 0 if elastic) */
     double yield;      /* after an elastic step: sigma_M(eps_M, 0, T) to cache; else 0 */
-    int iterations;    /* residual evaluations after the yield check */
-    int converged;     /* 1, or 0 when the solve failed */
 };
 
 /* m: a material whose damage model is of the porous family (porous.h).
