@@ -39,6 +39,13 @@
  *     outer equations equals central finite differences within 1e-5 relative
  *     (the FD truncation), for every model, with nucleation active and on the
  *     Omega ramp.
+ *  8. Returns from states met in a sheared block (engine run, sm_gurson,
+ *     Table 1): voids nearly closed under 3.5 GPa pressure while nucleation
+ *     goes on (the root has f_n + growth < 0 < f), and f = 1e-10 under
+ *     12 GPa, where cosh(3/2 y) ~ 5e7 makes the yield function a narrow
+ *     valley in (a, b) (Newton fails; the reduced solve of porous_return.c
+ *     converges): both converge with |Phi| <= 1e-8 (Phi from the result's
+ *     stress invariants) and f >= 0.
  *  7. Paper 000's gtn and this update solve the same backward-Euler system
  *     when q3 = q1^2 (growth exact, nucleation integrated exactly, shear term
  *     implicit with omega of the trial deviator): along the same loading path
@@ -434,9 +441,41 @@ START_TEST(paper_000_gtn_and_this_update_agree)
 }
 END_TEST
 
+START_TEST(returns_under_high_pressure_with_voids_closing)
+{
+    const struct tlsph_material m = porous("sm_gurson", 0.0025, "");
+    const double G = m.shear_modulus;
+    const struct tlsph_porous_input cases[] = {
+        {.q_trial = 589595047.42577052, .omega = 0.7888942556382077, .J = 0.97182676569286308,
+         .lnJp = -0.0079263670302083498, .e = 26645.432258950379, .G = G,
+         .eps_M = 0.39762266553695341, .f = 2.8927860065262886e-06, .dt = 1.1824357274361994e-08},
+        {.q_trial = 904995818.56580973, .omega = 0.47752163549002813, .J = 0.91585852125640055,
+         .lnJp = -0.022245124314191456, .e = 107464.97930193436, .G = G,
+         .eps_M = 0.81380894880225374, .f = 1.0703555163799003e-10, .dt = 9.5283862638615958e-09},
+    };
+    const double *g = m.damage.params;
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        struct tlsph_porous_result out;
+        ck_assert(tlsph_porous_return(&m, &cases[c], &out));
+        const struct tlsph_porous_input *in = &cases[c];
+        const double sM = S0 + HM * (in->eps_M + out.flow.dM);
+        const double se = (in->q_trial - 3.0 * G * out.flow.dq) / in->J, sm = -out.p;
+        const double fs = fstar(g, out.flow.f);
+        const double phi = se * se / (sM * sM) + 2.0 * g[POR_Q1] * fs * cosh(1.5 * g[POR_Q2] * sm / sM) -
+                           1.0 - g[POR_Q3] * fs * fs;
+        printf("high pressure %zu: p %.2f GPa, f %.3g -> %.3g, %d evaluations, |Phi| %.1e\n", c,
+               out.p / 1e9, in->f, out.flow.f, out.flow.iterations, fabs(phi));
+        ck_assert_msg(out.flow.converged, "case %zu not converged", c);
+        ck_assert(out.flow.f >= 0.0);
+        ck_assert_msg(fabs(phi) <= 1e-8, "case %zu: Phi = %g", c, phi);
+    }
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  one_step_returns_satisfy_the_yield_condition,
                  void_growth_follows_the_closed_form_rate,
                  shear_term_vanishes_in_axisymmetric_states_and_peaks_in_shear,
                  m_gurson_switches_at_t1_and_t2, newton_jacobian_is_the_derivative_of_the_residuals,
-                 paper_000_gtn_and_this_update_agree)
+                 paper_000_gtn_and_this_update_agree,
+                 returns_under_high_pressure_with_voids_closing)

@@ -149,8 +149,10 @@ static int solve3(double A[3][3], double b[3], double d[3])
  * reverse (dq <= q_tr/(3G)), 0 <= f < 1 (f >= 0 also excludes a spurious root
  * with f < 0, where "negative voids" shrink in tension), and dM stays
  * positive (some hardening laws have an infinite slope at eps_M = 0). */
-static void keep_admissible(const struct tlsph_porous_input *in, double scale, double u[3])
+static void keep_admissible(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                            double scale, double u[3])
 {
+    (void)m;
     const double dq_max = in->q_trial / (3.0 * in->G);
     u[0] = fmin(fmax(u[0], 0.0), dq_max);
     u[1] = fmin(fmax(u[1], 0.0), 1.0 - 1e-9);

@@ -19,7 +19,9 @@ struct eval {
     double W, T;           /* plastic work per reference volume, temperature */
     double dM, f, sM;      /* internal state at the end: matrix strain increment, f, sigma_M */
     double N, kappa, c0;   /* nucleated part, k_w omega Omega b, f_n + growth part */
+
     double F[2], dF[2][2]; /* residuals (F1 / scale, F2) and d F_i / d (a, b)_k */
+    double G0, dG0[2];     /* F1 - lambda F2 with the f* dependence taken out, for Newton */
     double size[2];        /* size of the terms of each residual */
     double floor[2];       /* what the resolution of the unknowns moves it by */
 };
@@ -126,11 +128,10 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
     }
     if (!(e->kappa < 1.0))
         return 0;
-    /* growth: f_n + (1 - f_n)(1 - exp(-a)) */
+    /* growth: f_n + (1 - f_n)(1 - exp(-a)); negative when the step closes
+     * more than the voids it starts with (nucleation may make up for it) */
     e->c0 = in->f - (1.0 - in->f) * expm1(-a);
     const double c0_a = (1.0 - in->f) * exp(-a);
-    if (!(e->c0 >= 0.0))
-        return 0;
 
     /* internal variables and their derivatives with respect to (a, b) */
     struct matrix_slopes sl = {0};
@@ -160,7 +161,11 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
         f_k[0] = (c0_a + e->f * kappa_a) / (1.0 - e->kappa);
         f_k[1] = e->f * kappa_b / (1.0 - e->kappa);
     }
-    if (!(e->f < 1.0) || !(e->sM > 0.0))
+    /* f within the solver's tolerance of 0 (relative to the terms c0 + N it is
+     * the difference of) is 0: the voids have closed */
+    if (fabs(e->f) <= TOLERANCE * (fabs(e->c0) + e->N))
+        e->f = 0.0;
+    if (!(e->f >= 0.0 && e->f < 1.0) || !(e->sM > 0.0))
         return 0;
     const double W_k[2] = {W_a, W_b}, dM_k[2] = {dM_a, dM_b};
     double sM_k[2];
@@ -176,13 +181,26 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
     const double c = 3.0 * q1 * q2;
     e->F[1] = x * x + 2.0 * q1 * fs * ch - 1.0 - q3 * fs * fs;
     e->F[0] = (2.0 * x * a - c * fs * sh * b) / scale;
+    /* Each derivative is a part through the stress and sigma_M (A) plus one
+     * through f* (B fs_k).  Under high pressure with f* near 0, cosh makes B of
+     * both residuals huge and the two rows of the Jacobian nearly parallel
+     * (measured: a determinant cancelling to 1e-12 of its terms, Newton
+     * stalling, in a sheared block at 12 GPa pressure).  Newton therefore
+     * works on F1 - lambda F2, lambda = B1/B2, whose derivative A1 - lambda A2
+     * is formed without the f* parts: the same roots, a well-conditioned
+     * system. */
+    const double B1 = -c * sh * b / scale, B2 = 2.0 * q1 * ch - 2.0 * q3 * fs;
+    const double lambda = fabs(B2) > 0.0 ? B1 / B2 : 0.0;
+    e->G0 = e->F[0] - lambda * e->F[1];
     for (int k = 0; k < 2; k++) {
         const double fs_k = fs_f * f_k[k];
-        e->dF[1][k] = 2.0 * x * x_k[k] + 2.0 * q1 * fs_k * ch + c * fs * sh * y_k[k] -
-                      2.0 * q3 * fs * fs_k;
-        e->dF[0][k] = (2.0 * x_k[k] * a + (k == 0 ? 2.0 * x : -c * fs * sh) -
-                       c * b * (fs_k * sh + fs * ch * 1.5 * q2 * y_k[k])) /
-                      scale;
+        const double A2 = 2.0 * x * x_k[k] + c * fs * sh * y_k[k];
+        const double A1 = (2.0 * x_k[k] * a + (k == 0 ? 2.0 * x : -c * fs * sh) -
+                           c * b * fs * ch * 1.5 * q2 * y_k[k]) /
+                          scale;
+        e->dF[1][k] = A2 + B2 * fs_k;
+        e->dF[0][k] = A1 + B1 * fs_k;
+        e->dG0[k] = A1 - lambda * A2;
     }
     /* round-off floors: the size of the terms of each residual, and what the
      * resolution of the unknowns moves it by -- b relative, a absolute: the EOS
@@ -191,7 +209,7 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
     e->size[0] = (fabs(2.0 * x * a) + fabs(c * fs * sh * b)) / scale;
     for (int i = 0; i < 2; i++)
         e->floor[i] = 4.0 * DBL_EPSILON * (fabs(e->dF[i][0]) * (1.0 + fabs(a)) + fabs(e->dF[i][1] * b));
-    e->head.merit = e->F[0] * e->F[0] + e->F[1] * e->F[1];
+    e->head.merit = e->G0 * e->G0 + e->F[1] * e->F[1];
     return isfinite(e->head.merit);
 }
 
@@ -219,12 +237,20 @@ int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_por
 }
 
 /* The unknowns stay where the state means something: the deviator does not
- * reverse (0 <= b <= q_tr/(3G)) and the voids do not close below none
- * (f_n + growth >= 0: a >= ln(1 - f_n)). */
-static void keep_admissible(const struct tlsph_porous_input *in, double scale, double *u)
+ * reverse (0 <= b <= q_tr/(3G)), and the voids do not close beyond what the
+ * step can nucleate: f = f_n + growth + nucleated >= 0 needs
+ * a >= ln(1 - f_n) - ln(1 + N), bounded here by the most N can be (f_N); the
+ * iterate itself refuses f < 0.  Under strong pressure the voids of the step
+ * start can close while new ones nucleate: the root then has
+ * f_n + growth < 0 < f (measured: a sheared block of sm_gurson at 3.5 GPa
+ * pressure, f_n = 2.9e-6). */
+static void keep_admissible(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                            double scale, double *u)
 {
     (void)scale;
-    u[0] = fmax(u[0], log1p(-in->f));
+    const double fN = fmax(m->damage.params[POR_FN], 0.0);
+    /* no voids and none to nucleate: no plastic volume change at all (J2) */
+    u[0] = in->f == 0.0 && fN == 0.0 ? 0.0 : fmax(u[0], log1p(-in->f) - log1p(fN));
     u[1] = fmin(fmax(u[1], 0.0), in->q_trial / (3.0 * in->G));
 }
 
@@ -241,19 +267,20 @@ static void first_guess(const struct tlsph_material *m, const struct tlsph_porou
     double x;
     const double y = tlsph_porous_frozen_root(1.0 + q3 * fs * fs, 2.0 * q1 * fs, q1, q2, fs, x_tr,
                                               y_tr, cG, cK, &x);
-    u[0] = (y_tr - y) * cK;
+    /* not beyond closing the voids of the start: f >= 0 there whatever nucleates */
+    u[0] = fmax((y_tr - y) * cK, log1p(-in->f));
     u[1] = fmax(x_tr - x, 0.0) * cG;
 }
 
-/* The Newton step at a state (eqs. 93-94): dF d = -F. */
+/* The Newton step at a state (eqs. 93-94), on (F1 - lambda F2, F2). */
 static int direction(const void *state, double *d)
 {
     const struct eval *e = state;
-    const double det = e->dF[0][0] * e->dF[1][1] - e->dF[0][1] * e->dF[1][0];
+    const double det = e->dG0[0] * e->dF[1][1] - e->dG0[1] * e->dF[1][0];
     if (!(fabs(det) > 0.0) || !isfinite(det))
         return 0;
-    d[0] = (-e->F[0] * e->dF[1][1] + e->F[1] * e->dF[0][1]) / det;
-    d[1] = (-e->F[1] * e->dF[0][0] + e->F[0] * e->dF[1][0]) / det;
+    d[0] = (-e->G0 * e->dF[1][1] + e->F[1] * e->dG0[1]) / det;
+    d[1] = (-e->F[1] * e->dG0[0] + e->G0 * e->dF[1][0]) / det;
     return isfinite(d[0]) && isfinite(d[1]);
 }
 
@@ -271,6 +298,82 @@ static double trial_phi(const struct tlsph_material *m, const struct tlsph_porou
 static const struct tlsph_porous_solver solver =
     TLSPH_POROUS_SOLVER(2, TLSPH_POROUS_MAX_ITERATIONS, struct eval);
 
+/* The fallback when Newton and continuation fail: the same two equations
+ * solved one after the other.  Under pressures of many sigma_M with f near
+ * 0, cosh(3/2 q2 y) is huge (1e7 at 12 GPa over 1 GPa): the yield function is
+ * then steep in a (through f) and its zero set a narrow curved valley in
+ * (a, b), along which Newton's linear model fails within a fraction of a step
+ * (measured: a sheared sm_gurson block, 12 GPa pressure, f 1e-10).  Here a is
+ * kept on the valley floor, F2(a, b) = 0, by a 1-D Newton in a at each b, and
+ * normality F1 - lambda F2 = F1 there is solved by Newton in b along the floor
+ * (its slope dG/db - dG/da F2_b/F2_a).  Both are safeguarded by halving; at
+ * most REDUCED_BUDGET evaluations.  Returns 1 when converged (e, u). */
+#define REDUCED_BUDGET 400
+
+static int project(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                   double scale, double u[2], struct eval *e, int *used)
+{
+    keep_admissible(m, in, scale, u);
+    evaluate(m, in, scale, u, e);
+    (*used)++;
+    if (!e->head.ok)
+        return 0;
+    for (int it = 0; it < 40 && *used < REDUCED_BUDGET; it++) {
+        if (fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1])
+            return 1;
+        double da = -e->F[1] / e->dF[1][0];
+        int moved = 0;
+        for (int h = 0; h < 40 && *used < REDUCED_BUDGET && !moved; h++, da *= 0.5) {
+            struct eval t;
+            double v[2] = {u[0] + da, u[1]};
+            keep_admissible(m, in, scale, v);
+            evaluate(m, in, scale, v, &t);
+            (*used)++;
+            if (t.head.ok && fabs(t.F[1]) < fabs(e->F[1])) {
+                u[0] = v[0];
+                *e = t;
+                moved = 1;
+            }
+        }
+        if (!moved)
+            return fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
+    }
+    return fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
+}
+
+static int reduced_solve(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                         double yield, double p_tr, double K_tr, double u[2], struct eval *e,
+                         int *evals)
+{
+    const double scale = tlsph_porous_strain_scale(in, p_tr);
+    int used = 0, ok = 0;
+    first_guess(m, in, yield, p_tr, K_tr, u);
+    u[0] = fmax(u[0], log1p(-in->f)); /* start where f >= 0 whatever nucleates */
+    if (project(m, in, scale, u, e, &used)) {
+        while (!e->head.done && used < REDUCED_BUDGET) {
+            const double slope = e->dG0[1] - e->dG0[0] * e->dF[1][1] / e->dF[1][0];
+            double db = -e->G0 / slope;
+            int moved = 0;
+            for (int h = 0; h < 40 && used < REDUCED_BUDGET && !moved; h++, db *= 0.5) {
+                struct eval t;
+                /* start a on the valley's tangent */
+                double v[2] = {u[0] - e->dF[1][1] / e->dF[1][0] * db, u[1] + db};
+                if (project(m, in, scale, v, &t, &used) && fabs(t.G0) < fabs(e->G0)) {
+                    u[0] = v[0];
+                    u[1] = v[1];
+                    *e = t;
+                    moved = 1;
+                }
+            }
+            if (!moved || !isfinite(slope))
+                break;
+        }
+        ok = e->head.done;
+    }
+    *evals += used;
+    return ok;
+}
+
 int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         struct tlsph_porous_result *out)
 {
@@ -286,7 +389,9 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
     double u[2];
     struct eval e, scratch;
     int evals = 0;
-    const int ok = tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+    const int ok =
+        tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals) ||
+        reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals);
     out->flow.iterations = evals;
     out->flow.converged = ok;
     if (!ok) {

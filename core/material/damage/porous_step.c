@@ -149,7 +149,7 @@ static int newton(const struct tlsph_porous_solver *sv, const struct tlsph_mater
                   void *trial, int *evals)
 {
     const struct tlsph_porous_iterate *e = state, *t = trial;
-    sv->admissible(in, scale, u);
+    sv->admissible(m, in, scale, u);
     sv->evaluate(m, in, scale, u, state);
     int used = 1, ok = e->ok;
     while (ok && !e->done) {
@@ -166,7 +166,7 @@ static int newton(const struct tlsph_porous_solver *sv, const struct tlsph_mater
             double v[4];
             for (int k = 0; k < sv->n; k++)
                 v[k] = u[k] + lambda * d[k];
-            sv->admissible(in, scale, v);
+            sv->admissible(m, in, scale, v);
             sv->evaluate(m, in, scale, v, trial);
             used++;
             if (t->ok && isfinite(t->merit) && t->merit <= (1.0 - 1e-4 * lambda) * e->merit) {

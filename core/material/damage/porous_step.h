@@ -110,7 +110,8 @@ struct tlsph_porous_solver {
     void (*first_guess)(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         double yield, double p, double K_t, double *u);
     /* Clamps u into the admissible set. */
-    void (*admissible)(const struct tlsph_porous_input *in, double scale, double *u);
+    void (*admissible)(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                       double scale, double *u);
     /* The state at u (residuals scaled by `scale`, their Jacobian, the head). */
     void (*evaluate)(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                      double scale, const double *u, void *state);
