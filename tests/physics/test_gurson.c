@@ -46,6 +46,11 @@
  *     valley in (a, b) (Newton fails; the reduced solve of porous_return.c
  *     converges): both converge with |Phi| <= 1e-8 (Phi from the result's
  *     stress invariants) and f >= 0.
+ *  9. A point near the collapse of its surface (f 0.1287, collapse at 0.1289
+ *     for Table 1's q's, 3 % of its shear strength left) under a strongly
+ *     dilating step (J 1.144, the state of a sheared gtn_aravas block) has no
+ *     end-of-step state: it fractures (D = 1, no stress) and the step counts
+ *     as converged, instead of stopping the run.
  *  7. Paper 000's gtn and this update solve the same backward-Euler system
  *     when q3 = q1^2 (growth exact, nucleation integrated exactly, shear term
  *     implicit with omega of the trial deviator): along the same loading path
@@ -472,10 +477,31 @@ START_TEST(returns_under_high_pressure_with_voids_closing)
 }
 END_TEST
 
+START_TEST(a_collapsing_point_fractures)
+{
+    const struct tlsph_material m = porous("gtn_aravas", 0.0025, ",\"fracture_criterion\":\"plastic_strain\"");
+    struct tlsph_point_state s = start(&m);
+    const double lnJp = 0.13466875930188588, lnJ = log(1.1443528466466431);
+    s.void_fraction = 0.12873682355366625;
+    s.eps_p = 0.18201882005057066;
+    s.plastic_strain[0] = s.plastic_strain[3] = s.plastic_strain[5] = lnJp / 3.0;
+    const double e = 34169082.548813708 / (3.0 * m.shear_modulus);
+    double F[9];
+    F_log(lnJ, e, AXI, F);
+    struct tlsph_point_result r;
+    tlsph_point_update(&m, F, 8065.45, 1.6216809245559107e-08, &s, &r);
+    printf("collapsing point: D %g, converged %d, |sigma| %g\n", s.damage, r.converged,
+           von_mises(r.sigma));
+    ck_assert(s.damage == 1.0 && r.converged);
+    for (int c = 0; c < 6; c++)
+        ck_assert(r.sigma[c] == 0.0);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  one_step_returns_satisfy_the_yield_condition,
                  void_growth_follows_the_closed_form_rate,
                  shear_term_vanishes_in_axisymmetric_states_and_peaks_in_shear,
                  m_gurson_switches_at_t1_and_t2, newton_jacobian_is_the_derivative_of_the_residuals,
                  paper_000_gtn_and_this_update_agree,
-                 returns_under_high_pressure_with_voids_closing)
+                 returns_under_high_pressure_with_voids_closing, a_collapsing_point_fractures)
