@@ -7,11 +7,19 @@
 #include "run/model.h"
 
 /* At t = 0 no two bodies may overlap: the lattice cells of two particles of
- * different bodies (edge s_i, s_j) may touch but not interpenetrate, i.e.
- * r >= (s_i + s_j)/2 up to round-off.  Overlapping bodies would start with a
+ * different bodies (edge s_i, s_j) may touch but not interpenetrate.  The
+ * rule, with a touching tolerance: a pair is accepted when
+ *   r >= (1 - TOUCH_TOLERANCE) (s_i + s_j)/2,
+ * so bodies placed face to face (cells touching, particles exactly one
+ * spacing apart, or closer by the round-off of their lattices' origins,
+ * ~1e-16 of the coordinates) pass, while an overlap of a micrometre per metre
+ * of spacing or more is refused.  Overlapping bodies would start with a
  * contact force that no motion caused, an explosion of their overlap's
  * energy.  Looks at the candidate pairs (closer than R_i + R_j + skin), which
- * hold every such pair unless a law's radius is far below half the spacing. */
+ * hold every such pair unless a law's radius is far below half the spacing;
+ * pairs within one body are the body's own business (its lattice). */
+#define TOUCH_TOLERANCE 1e-6
+
 static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
 {
     const struct tlsph_contact *c = m->contact;
@@ -23,14 +31,14 @@ static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
         for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
             const size_t j = (size_t)c->j[k];
             const size_t a = (size_t)m->p.body[i], b = (size_t)m->p.body[j];
-            if (a > b)
-                continue; /* each pair once */
+            if (a >= b)
+                continue; /* each pair of different bodies once */
             const double touch = 0.5 * (s->bodies[a].spacing + s->bodies[b].spacing);
             double r2 = 0.0;
             for (int d = 0; d < 3; d++)
                 r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
             const double depth = (touch - sqrt(r2)) / touch;
-            if (depth <= 1e-9)
+            if (depth <= TOUCH_TOLERANCE)
                 continue;
             if (pairs++ == 0 || depth > worst) {
                 worst = depth;

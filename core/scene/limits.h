@@ -65,6 +65,7 @@
 #define TLSPH_DEFAULT_FRAMES                20L
 #define TLSPH_DEFAULT_SERIES_EVERY          10L /* steps */
 #define TLSPH_DEFAULT_TAYLOR_QUINNEY        0.9
+#define TLSPH_DEFAULT_CONTACT               1 /* enabled (where it can act) */
 #define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
 /* Deepest contact overlap / (R_i + R_j) the stability contract accepts: deeper,
  * two particles are about to pass through each other (tunnelling), so the run

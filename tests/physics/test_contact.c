@@ -40,8 +40,9 @@
  * - The body contact-force series (core/io/fields.c "contacts"): its
  *   trapezoid over the steps is the target bar's momentum change, to 1e-12
  *   (the kicks apply exactly dt/2 (F_n + F_n+1)).
- * - A scene with two bodies and no contact block allocates no contact state
- *   and lists no contact module. */
+ * - A scene with two bodies and contact switched off ("enabled": false; the
+ *   default is on, test_contact_default) allocates no contact state and lists
+ *   no contact module. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -406,7 +407,8 @@ START_TEST(no_contact_block_no_contact_state)
                        "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
                        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}},"
                        "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
-                       "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}]}";
+                       "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}],"
+                       "\"contact\":{\"enabled\":false}}";
     struct tlsph_model *m = build_model(json);
     ck_assert(m->contact == NULL);
     for (int k = 0; k < m->nmodules; k++)
