@@ -95,6 +95,17 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
         spacing = fmax(spacing, s->bodies[b].spacing);
     }
     c->skin = s->contact.skin * spacing;
+    /* contact within a body: only where material can separate */
+    c->all_particles = s->nbodies > 1;
+    if (m->p.damage) {
+        c->touch = tlsph_alloc(m, n, sizeof *c->touch);
+        c->reach = tlsph_alloc(m, n, sizeof *c->reach);
+        if (!c->touch || !c->reach) {
+            tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+            return -1;
+        }
+        tlsph_contact_touch_setup(m, c);
+    }
     if (tlsph_contact_search(m, c, 1) != 0) {
         tlsph_errors_add(err, "/contact", "out of memory for the contact search");
         return -1;
@@ -115,6 +126,8 @@ void tlsph_contact_free(struct tlsph_model *m)
     free(c->order);
     free(c->cell_start);
     free(c->f_old);
+    free(c->touch);
+    free(c->reach);
     free(c);
     m->contact = NULL;
 }
@@ -158,7 +171,9 @@ void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2])
     for (size_t i = 0; i < m->p.n; i++)
         for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
             const size_t j = (size_t)c->j[k];
-            const double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            if (m->p.body[i] == m->p.body[j])
+                reach *= c->reach[i] < c->reach[j] ? c->reach[i] : c->reach[j];
             double r2 = 0.0;
             for (int d = 0; d < 3; d++)
                 r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);

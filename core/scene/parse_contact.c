@@ -3,17 +3,23 @@
  *
  * Contact is on by default wherever it can act: in a scene of more than one
  * body (two bodies passing through each other is never what a user meant)
- * the default law runs without any block.  "enabled": false switches it off
+ * the default law runs without any block, and so it does in a scene with a
+ * damage model, whose broken parts may meet.  "enabled": false switches it off
  * (the law is still validated, so a typo is reported).  A block that enables
  * contact where it cannot act (one body) is refused, since the engine
- * refuses settings that have no effect. */
+ * refuses settings that have no effect.  Materials and bodies are parsed
+ * before. */
 #include "contact/contact.h"
 #include "scene/parse_internal.h"
 
-/* Can particles that do not share a reference neighbourhood meet? */
+/* Can particles that are not linked as a continuum meet?  Those of different
+ * bodies, and the separated parts of a body that can break (a damage model). */
 static int contact_can_act(const struct tlsph_scene *s)
 {
-    return s->nbodies > 1;
+    int damage = 0;
+    for (size_t k = 0; k < s->nmaterials; k++)
+        damage |= s->materials[k].damage.model != NULL;
+    return s->nbodies > 1 || damage;
 }
 
 int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
@@ -30,8 +36,9 @@ int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_
     int bad = 0;
     if (obj && s->contact.enabled && !can) {
         tlsph_errors_add(err, "/contact",
-                         "contact has no effect with one body: it acts between different bodies "
-                         "only; remove the block or add a body");
+                         "contact has no effect in a scene of one body without damage: it acts "
+                         "between different bodies and between the separated parts of a broken "
+                         "body; remove the block, add a body or a damage model");
         bad = 1;
     }
     const json_t *law = obj ? json_object_get(obj, "law") : NULL;
