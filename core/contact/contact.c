@@ -2,9 +2,12 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact/state.h"
 #include "run/model.h"
+#include "scene/limits.h"
+#include "util/names.h"
 
 /* At t = 0 no two bodies may overlap: the lattice cells of two particles of
  * different bodies (edge s_i, s_j) may touch but not interpenetrate.  The
@@ -63,6 +66,45 @@ static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
     return -1;
 }
 
+/* The body pairs with a force series (state.h): every pair of different
+ * bodies when there are at most TLSPH_MAX_CONTACT_PAIR_SERIES, named
+ * "<a>--<b>" where that is a valid name (util/names.h: at most 63
+ * characters) unique among the bodies and the other pairs ("" otherwise). */
+static int pair_setup(struct tlsph_model *m, struct tlsph_contact *c)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const size_t nb = s->nbodies, np = nb * (nb - 1) / 2;
+    if (np == 0 || np > TLSPH_MAX_CONTACT_PAIR_SERIES)
+        return 0;
+    c->pair = tlsph_alloc(m, np, sizeof *c->pair);
+    c->pair_name = tlsph_alloc(m, np, sizeof *c->pair_name);
+    if (!c->pair || !c->pair_name)
+        return -1;
+    c->npairs = np;
+    size_t k = 0;
+    for (size_t a = 0; a < nb; a++)
+        for (size_t b = a + 1; b < nb; b++, k++) {
+            c->pair[k][0] = (int32_t)a;
+            c->pair[k][1] = (int32_t)b;
+            char *name = c->pair_name[k];
+            const int len = snprintf(name, sizeof c->pair_name[k], "%s--%s", s->bodies[a].name,
+                                     s->bodies[b].name);
+            if (len < 0 || (size_t)len >= sizeof c->pair_name[k] || !tlsph_name_ok(name))
+                name[0] = '\0';
+        }
+    /* a name taken by a body or by another pair names no pair */
+    for (k = 0; k < np; k++) {
+        int taken = 0;
+        for (size_t b = 0; b < nb && !taken; b++)
+            taken = strcmp(c->pair_name[k], s->bodies[b].name) == 0;
+        for (size_t q = 0; q < np && !taken; q++)
+            taken = q != k && strcmp(c->pair_name[k], c->pair_name[q]) == 0;
+        if (taken)
+            c->pair_name[k][0] = '\0';
+    }
+    return 0;
+}
+
 int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
 {
     const struct tlsph_scene *s = &m->scene;
@@ -95,6 +137,10 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
         spacing = fmax(spacing, s->bodies[b].spacing);
     }
     c->skin = s->contact.skin * spacing;
+    if (pair_setup(m, c) != 0) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
     /* contact within a body: only where material can separate */
     c->all_particles = s->nbodies > 1;
     if (m->p.damage) {
@@ -127,6 +173,9 @@ void tlsph_contact_free(struct tlsph_model *m)
     free(c->cell_start);
     free(c->f_old);
     free(c->touch);
+    free(c->s_pair);
+    free(c->pair);
+    free(c->pair_name);
     free(c->reach);
     free(c);
     m->contact = NULL;
@@ -145,6 +194,33 @@ void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[
     for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
         for (int c = 0; c < 3; c++)
             out[c] += f[3 * i + c];
+}
+
+size_t tlsph_contact_pairs(const struct tlsph_model *m)
+{
+    return m->contact->npairs;
+}
+
+const char *tlsph_contact_pair_name(const struct tlsph_model *m, size_t k)
+{
+    const char *name = m->contact->pair_name[k];
+    return name[0] ? name : NULL;
+}
+
+void tlsph_contact_pair_force(const struct tlsph_model *m, size_t k, double out[3])
+{
+    const struct tlsph_contact *c = m->contact;
+    const int32_t a = c->pair[k][0], b = c->pair[k][1];
+    const double *x = m->p.x;
+    out[0] = out[1] = out[2] = 0.0;
+    for (size_t i = m->body_begin[a]; i < m->body_end[a]; i++)
+        for (int64_t q = c->start[i]; q < c->start[i + 1]; q++) {
+            const size_t j = (size_t)c->j[q];
+            if (m->p.body[j] != b || c->s_pair[q] == 0.0)
+                continue;
+            for (int d = 0; d < 3; d++)
+                out[d] -= c->s_pair[q] * (x[3 * j + d] - x[3 * i + d]);
+        }
 }
 
 size_t tlsph_contact_active(const struct tlsph_model *m)

@@ -108,6 +108,16 @@ struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m);
  * N (N/m in 2-D) [3]: the sum of its particles' contact forces. */
 void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[3]);
 
+/* Body pairs with a contact-force series: k < tlsph_contact_pairs(m), the
+ * pairs (a, b), a < b, in scene order; none when there would be more than
+ * TLSPH_MAX_CONTACT_PAIR_SERIES (scene/limits.h).  The name "<a>--<b>", or
+ * NULL when that is not a valid name unique among the bodies and pairs (then
+ * the pair has no series).  The force on body a from body b in the last
+ * evaluation, N (N/m in 2-D) [3]; on b it is the opposite. */
+size_t tlsph_contact_pairs(const struct tlsph_model *m);
+const char *tlsph_contact_pair_name(const struct tlsph_model *m, size_t k);
+void tlsph_contact_pair_force(const struct tlsph_model *m, size_t k, double out[3]);
+
 /* Pairs in contact (overlapping) in the last evaluation. */
 size_t tlsph_contact_active(const struct tlsph_model *m);
 /* Searches made so far (the first at setup included). */

@@ -35,8 +35,10 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
     const double mi = mass[i];
     double f0 = 0.0, f1 = 0.0, f2 = 0.0, dt2 = INFINITY, deepest = 0.0;
     size_t active = 0;
+    double *restrict s_pair = c->s_pair;
     for (int64_t k = start[i]; k < start[i + 1]; k++) {
         const size_t j = (size_t)cand[k];
+        s_pair[k] = 0.0;
         const struct tlsph_contact_body *bj = &c->bodies[body[j]];
         const double d0 = x[3 * j] - xi0, d1 = x[3 * j + 1] - xi1, d2 = x[3 * j + 2] - xi2;
         const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
@@ -60,6 +62,7 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
         const double depth = (reach - r) / reach;
         deepest = depth > deepest ? depth : deepest;
         const double s = p.force / r;
+        s_pair[k] = s;
         f0 -= s * d0;
         f1 -= s * d1;
         f2 -= s * d2;

@@ -200,7 +200,8 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     start[0] = 0;
     for (size_t i = 0; i < n; i++)
         start[i + 1] += start[i];
-    if (reserve(m, (void **)&c->j, &c->cap, (size_t)start[n], sizeof *c->j) != 0) {
+    if (reserve(m, (void **)&c->j, &c->cap, (size_t)start[n], sizeof *c->j) != 0 ||
+        reserve(m, (void **)&c->s_pair, &c->s_cap, (size_t)start[n], sizeof *c->s_pair) != 0) {
         memset(start, 0, (n + 1) * sizeof *start);
         return -1;
     }
@@ -208,6 +209,8 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     for (size_t i = 0; i < n; i++)
         scan(m, c, &g, i, c->j + start[i]);
     memcpy(c->x_search, x, 3 * n * sizeof *x);
+    /* no force from the new candidates until the next evaluation */
+    memset(c->s_pair, 0, (size_t)start[n] * sizeof *c->s_pair);
     c->searches++;
     c->search_seconds += tlsph_monotonic_seconds() - t0;
     return 0;

@@ -45,6 +45,11 @@ struct tlsph_contact {
     int64_t *start; /* [n+1] */
     int32_t *j;     /* [cap] */
     size_t cap;
+    /* F / r of each candidate entry in the last evaluation (0: not in
+     * contact), N/m [s_cap >= start[n]]: the force on i from j[k] was
+     * -s_pair[k] (x_j - x_i), which the pair series sum (tlsph_contact_pair_force) */
+    double *s_pair;
+    size_t s_cap;
     double *x_search; /* positions at the last search, m [3n] */
 
     /* cell list of the last search, reused by the next one */
@@ -54,6 +59,13 @@ struct tlsph_contact {
     size_t cell_cap;     /* entries allocated in cell_start */
 
     double *f_old; /* contact force of the last evaluation, N [3n] (trapezoidal work) */
+
+    /* Body pairs with a force series (a < b, scene order; none when there
+     * would be more than TLSPH_MAX_CONTACT_PAIR_SERIES): names "<a>--<b>",
+     * "" where that is not a valid, unique name (no series) */
+    size_t npairs;
+    int32_t (*pair)[2];
+    char (*pair_name)[64];
 
     long searches;
     double search_seconds, phase_seconds; /* wall-clock, s (contact.h) */

@@ -71,5 +71,9 @@
  * two particles are about to pass through each other (tunnelling), so the run
  * stops (contact_penetration) instead of going on silently wrong. */
 #define TLSPH_CONTACT_MAX_OVERLAP           0.5
+/* Body pairs with a contact-force series: all pairs of different bodies when
+ * there are at most this many (12 bodies give 66: a 12-body scene has none);
+ * beyond, only the per-body series (docs/output.md). */
+#define TLSPH_MAX_CONTACT_PAIR_SERIES       66
 
 #endif

@@ -169,6 +169,25 @@ def check_series_group(g, rows, where, live):
     return lengths
 
 
+NAME_RULE = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]{0,62}\Z")
+
+
+def contact_items(scene):
+    """The contact family's items (docs/output.md): none without contact (on by
+    default with more than one body or a damage model, off with "enabled":
+    false); else every body, then the pairs <a>--<b> (at most 66 pairs; a pair
+    name that breaks the naming rule or is taken names nothing)."""
+    bodies = [b["name"] for b in scene.get("bodies", [])]
+    damage = any("damage" in m for m in scene.get("materials", {}).values())
+    if scene.get("contact", {}).get("enabled", True) is False or (len(bodies) < 2 and not damage):
+        return []
+    pairs = ["%s--%s" % (a, b) for i, a in enumerate(bodies) for b in bodies[i + 1:]]
+    if len(pairs) > 66:
+        pairs = []
+    names = [p for p in pairs if NAME_RULE.match(p) and p not in bodies and pairs.count(p) == 1]
+    return bodies + names
+
+
 def check_series(f, series, families, scene, live):
     obs = f["observables"]
     lengths = check_series_group(obs, series, "/observables", live)
@@ -181,7 +200,7 @@ def check_series(f, series, families, scene, live):
              "gauges": [g["name"] for g in out.get("gauges", [])],
              "sections": [c["name"] for c in out.get("sections", [])],
              "walls": walls,
-             "contacts": [b["name"] for b in scene.get("bodies", [])] if "contact" in scene else []}
+             "contacts": contact_items(scene)}
     check("groups" in obs, "/observables/groups exists")
     for family, names in items.items():
         if not names:
