@@ -83,6 +83,12 @@ const char *tlsph_contact_names(void);
 /* The default law (a "contact" block without "law"). */
 const struct tlsph_contact_law *tlsph_contact_default(void);
 
+/* The validation's estimate of the contact step, before any particle exists
+ * (estimate.c): the smallest sqrt(m* / k) of two particles of bodies that
+ * can meet, at the deepest overlap the stability contract accepts; s, before
+ * the CFL factor; INFINITY without contact.  pair: the two bodies (a <= b). */
+double tlsph_contact_step_estimate(const struct tlsph_scene *s, size_t pair[2]);
+
 /* Setup (after the particles exist): per-body constants, the first search.
  * 0, or -1 with err (out of memory). */
 int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err);

@@ -10,8 +10,19 @@
  *   of a lattice origin), are accepted; 0.1 spacing into each other is refused
  *   with the pointer of the later body (/bodies/1); the same overlap with
  *   contact off is accepted (bodies that pass through each other may start
- *   overlapped). */
+ *   overlapped).
+ * - The validation's first-step estimate includes the contact step
+ *   (core/contact/estimate.c): two 3-D steel blocks with a stiff pin-ball law
+ *   (radius_factor 1, K_p = 1e4): the estimate is cfl x sqrt(m_eff / k) with, by
+ *   hand, R = k h = support_factor x spacing / 2, the overlap delta =
+ *   max(0.5 (2R), 2R - spacing), k = K_p 3/2 (G/2) sqrt(R/2 delta),
+ *   m_eff = rho spacing^3 / 2, to 1e-12, and it is shorter than the material step
+ *   (cfl x spacing / c); with the default penalty law between equal steel
+ *   blocks the contact does not bind (line form: 1.13 spacing / c for nu = 0,
+ *   longer than the material step for any nu) and the estimate is the
+ *   material step, the same as with contact off. */
 #include <check.h>
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -120,6 +131,60 @@ START_TEST(touching_bodies_accepted_overlapping_refused)
 }
 END_TEST
 
+/* Two 3-D steel blocks of 4 x 4 x 4 mm, face to face, with the given contact
+ * block (or none); returns the validation's first step. */
+static double validated_step(const char *contact, struct tlsph_scene *out)
+{
+    char json[2048];
+    snprintf(json, sizeof json,
+             "{\"dimension\":3,\"time\":{\"end\":1e-6,\"cfl\":0.3},"
+             "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
+             "\"poisson_ratio\":0.3}},"
+             "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
+             "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0.004]}}},"
+             "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
+             "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0.004]}}}]"
+             "%s%s}",
+             contact ? ",\"contact\":" : "", contact ? contact : "");
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    const int rc = tlsph_scene_parse(json, strlen(json), out, &err);
+    for (size_t k = 0; k < err.count; k++)
+        fprintf(stderr, "scene error: %s: %s\n", err.items[k].pointer, err.items[k].message);
+    tlsph_errors_free(&err);
+    ck_assert_int_eq(rc, 0);
+    return out->estimated_dt;
+}
+
+START_TEST(validation_estimates_the_contact_step)
+{
+    struct tlsph_scene s;
+    const double off = validated_step("{\"enabled\":false}", &s);
+    const struct tlsph_material *mat = &s.materials[0];
+    const double material = s.cfl * 0.001 / mat->wave_speed;
+    const double G = mat->shear_modulus, rho = mat->density, support = s.support_factor;
+    tlsph_scene_free(&s);
+    ck_assert_msg(fabs(off / material - 1.0) < 1e-12, "no contact: %.15g, material %.15g", off,
+                  material);
+    const double penalty = validated_step(NULL, &s);
+    tlsph_scene_free(&s);
+    ck_assert_msg(penalty == off, "default penalty binds: %.15g vs %.15g", penalty, off);
+
+    const double est = validated_step(
+        "{\"law\":{\"type\":\"pinball\",\"radius_factor\":1,\"scale_factor\":1e4}}", &s);
+    const double cfl = s.cfl;
+    tlsph_scene_free(&s);
+    const double R = 0.5 * support * 0.001, delta = fmax(0.5 * 2.0 * R, 2.0 * R - 0.001);
+    const double k = 1e4 * 1.5 * (G / 2.0) * sqrt(R / 2.0 * delta);
+    const double expect = cfl * sqrt(0.5 * rho * 1e-9 / k);
+    fprintf(stderr, "validation step: pin-ball K_p 1e4 %.6e s (by hand %.6e s), material %.6e s\n",
+            est, expect, material);
+    ck_assert_msg(fabs(est / expect - 1.0) < 1e-12, "estimate %.15g, by hand %.15g", est, expect);
+    ck_assert(est < material);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("contact_default", 120, two_bodies_get_contact_by_default,
                  one_body_without_damage_has_no_contact,
-                 touching_bodies_accepted_overlapping_refused)
+                 touching_bodies_accepted_overlapping_refused,
+                 validation_estimates_the_contact_step)

@@ -384,6 +384,15 @@ def final(docs, outdir, scene_path):
                   "peak_memory_bytes", "bytes_per_particle"):
             v = float(cost[k])
             check(math.isfinite(v) and v > 0, "/cost %s = %g positive" % (k, v))
+        contact_attrs = ("contact_searches", "contact_search_share", "contact_phase_share")
+        if contact_items(scene):
+            for k in contact_attrs:
+                v = float(cost[k])
+                check(math.isfinite(v) and 0 <= v and (k == "contact_searches" or v < 1),
+                      "/cost %s = %g" % (k, v))
+            check(int(cost["contact_searches"]) >= 1, "/cost contact_searches >= 1")
+        else:
+            check(not any(k in cost for k in contact_attrs), "no /cost contact attributes")
         check(int(cost["particles"]) == N, "/cost particles == N")
         check(int(cost["steps"]) >= steps[-1], "/cost steps >= last frame step")
         check(text(f["diagnostics"].attrs["status"]) == "successful", "/diagnostics status successful")
