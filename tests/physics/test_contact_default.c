@@ -1,9 +1,9 @@
 /* Contact on by default (core/scene/parse_contact.c, docs/contact.md).
  *
  * - Two bodies without a "contact" block get the default contact (penalty
- *   law, its module listed); "contact": {"enabled": false} switches it off
- *   (no state, no module, no contact work); a one-body scene without damage
- *   has no contact phase at all (m->contact NULL).
+ *   law, its module listed; "contact": {"enabled": false} switches it off:
+ *   test_contact); a one-body scene without damage has no contact phase at
+ *   all (m->contact NULL).
  * - The t = 0 touching rule: particles of different bodies are accepted when
  *   r >= (1 - 1e-6)(s_i + s_j)/2.  Two 4 x 4 mm blocks face to face, 1 mm
  *   spacing: exactly one spacing apart, and closer by 1e-13 m (the round-off
@@ -53,25 +53,6 @@ static int has_module(const struct tlsph_model *m, const char *name)
     return 0;
 }
 
-/* Parses and builds json; returns the model or NULL with the first error's
- * pointer in ptr. */
-static struct tlsph_model *try_build(const char *json, char *ptr, size_t size)
-{
-    struct tlsph_errors err;
-    tlsph_errors_init(&err);
-    struct tlsph_scene scene;
-    struct tlsph_model *m = NULL;
-    if (tlsph_scene_parse(json, strlen(json), &scene, &err) == 0)
-        tlsph_model_create(&scene, &m, &err);
-    ptr[0] = '\0';
-    if (err.count > 0) {
-        snprintf(ptr, size, "%s", err.items[0].pointer);
-        fprintf(stderr, "refused: %s: %s\n", err.items[0].pointer, err.items[0].message);
-    }
-    tlsph_errors_free(&err);
-    return m;
-}
-
 START_TEST(two_bodies_get_contact_by_default)
 {
     char json[2048];
@@ -80,15 +61,7 @@ START_TEST(two_bodies_get_contact_by_default)
     ck_assert(m->contact != NULL);
     ck_assert(has_module(m, "contact:penalty_hertz"));
     tlsph_model_free(m);
-
-    two_blocks(json, sizeof json, 0.004, "{\"enabled\":false}");
-    m = build_model(json);
-    ck_assert(m->contact == NULL);
-    for (int k = 0; k < m->nmodules; k++)
-        ck_assert_msg(strncmp(m->modules[k], "contact:", 8) != 0, "module %s", m->modules[k]);
-    run_until(m, 1e-6);
-    ck_assert(m->energy.contact == 0.0);
-    tlsph_model_free(m);
+    /* "enabled": false: test_contact, no_contact_block_no_contact_state */
 }
 END_TEST
 
@@ -112,7 +85,7 @@ START_TEST(touching_bodies_accepted_overlapping_refused)
     const double touching[] = {0.004, 0.004 - 1e-13};
     for (size_t k = 0; k < 2; k++) {
         two_blocks(json, sizeof json, touching[k], NULL);
-        struct tlsph_model *m = try_build(json, ptr, sizeof ptr);
+        struct tlsph_model *m = try_build_model(json, ptr, sizeof ptr);
         ck_assert_msg(m != NULL, "face-to-face blocks (origin %.17g) refused at %s", touching[k],
                       ptr);
         ck_assert(m->contact != NULL);
@@ -120,12 +93,12 @@ START_TEST(touching_bodies_accepted_overlapping_refused)
     }
     /* 0.1 spacing into each other */
     two_blocks(json, sizeof json, 0.0039, NULL);
-    struct tlsph_model *m = try_build(json, ptr, sizeof ptr);
+    struct tlsph_model *m = try_build_model(json, ptr, sizeof ptr);
     ck_assert(m == NULL);
     ck_assert_str_eq(ptr, "/bodies/1");
     /* without contact the overlap is the user's business */
     two_blocks(json, sizeof json, 0.0039, "{\"enabled\":false}");
-    m = try_build(json, ptr, sizeof ptr);
+    m = try_build_model(json, ptr, sizeof ptr);
     ck_assert(m != NULL);
     tlsph_model_free(m);
 }

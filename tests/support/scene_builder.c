@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-struct tlsph_model *build_model(const char *json)
+struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size)
 {
     struct tlsph_errors err;
     tlsph_errors_init(&err);
@@ -17,7 +17,16 @@ struct tlsph_model *build_model(const char *json)
         tlsph_model_create(&scene, &m, &err);
     for (size_t k = 0; k < err.count; k++)
         fprintf(stderr, "scene error: %s: %s\n", err.items[k].pointer, err.items[k].message);
+    if (size > 0)
+        snprintf(pointer, size, "%s", err.count > 0 ? err.items[0].pointer : "");
     tlsph_errors_free(&err);
+    return m;
+}
+
+struct tlsph_model *build_model(const char *json)
+{
+    char pointer[256];
+    struct tlsph_model *m = try_build_model(json, pointer, sizeof pointer);
     ck_assert_msg(m != NULL, "test scene rejected");
     return m;
 }

@@ -6,6 +6,9 @@
 #include "run/model.h"
 
 struct tlsph_model *build_model(const char *json);
+/* The same without failing: the model, or NULL with the first error's JSON
+ * pointer in pointer (every error printed). */
+struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size);
 /* The model of examples/<name>.json (under $top_srcdir, else "."), with the
  * first body's spacing (m) replaced when spacing > 0. */
 struct tlsph_model *build_example(const char *name, double spacing);
