@@ -3,7 +3,6 @@
 #ifndef TLSPH_CONTACT_STATE_H
 #define TLSPH_CONTACT_STATE_H
 
-#include <math.h>
 #include <stddef.h>
 #include <stdint.h>
 
@@ -16,6 +15,7 @@ struct tlsph_contact {
     double params[4];                   /* the law's parameters (scene) */
     enum tlsph_contact_variant variant; /* the pair loop (law->variant) */
     double skin;                        /* m */
+    double max_radius;                  /* largest contact radius, m */
 
     /* Contact within a body (scenes with a damage model): only particles that
      * can touch enter such a pair, flagged in touch[] (NULL without damage):
@@ -23,7 +23,7 @@ struct tlsph_contact {
      * fail (tlsph_contact_watch).  all_particles: the grid holds every
      * particle (more than one body: pairs of different bodies need no flag),
      * else only the flagged ones. */
-    uint8_t *touch;    /* [n] */
+    uint8_t *touch; /* [n] */
     /* Reach factor of each particle, 1, [n] with touch: a pair of one body
      * touches at min(reach_i, reach_j) x (R_i + R_j).  1 at setup (the
      * lattice: no two flagged particles closer than R_i + R_j); when a
@@ -36,9 +36,8 @@ struct tlsph_contact {
      * spacing: a reach of one spacing would release a force, and energy,
      * that no motion caused). */
     double *reach;
-    size_t touching;   /* particles flagged */
+    size_t touching; /* particles flagged */
     int all_particles;
-    double max_radius;                  /* largest contact radius, m */
 
     /* Candidates: the pairs of i are j[start[i] .. start[i+1]-1], every pair
      * listed from both sides (gather form: each particle sums its own). */
@@ -82,10 +81,10 @@ struct tlsph_contact {
 int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int force);
 
 /* touch[] flags */
-#define TLSPH_TOUCH_SURFACE 1u     /* fewer reference neighbours than the body's interior */
-#define TLSPH_TOUCH_FAILED 2u      /* failed (D = 1): seen by the watch */
+#define TLSPH_TOUCH_SURFACE     1u /* fewer reference neighbours than the body's interior */
+#define TLSPH_TOUCH_FAILED      2u /* failed (D = 1): seen by the watch */
 #define TLSPH_TOUCH_NEAR_FAILED 4u /* a reference neighbour failed: a crack face */
-#define TLSPH_TOUCH_NEW 8u         /* flagged anew since the last settle */
+#define TLSPH_TOUCH_NEW         8u /* flagged anew since the last settle */
 
 /* touch.c: flags the surface layer of the damaged bodies (setup, touch
  * allocated and zero). */

@@ -40,11 +40,11 @@ static void fill_cost(const struct tlsph_model *m, double wall, struct tlsph_cos
 
 static json_t *cost_json(const struct tlsph_cost *c)
 {
-    json_t *o = json_pack("{s:I, s:I, s:I, s:f, s:f, s:I, s:f}", "particles", (json_int_t)c->particles,
-                     "pairs", (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds",
-                     c->wall_seconds, "particle_steps_per_second", c->particle_steps_per_second,
-                     "peak_memory_bytes", (json_int_t)c->peak_memory_bytes, "bytes_per_particle",
-                     c->bytes_per_particle);
+    json_t *o = json_pack(
+        "{s:I, s:I, s:I, s:f, s:f, s:I, s:f}", "particles", (json_int_t)c->particles, "pairs",
+        (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds", c->wall_seconds,
+        "particle_steps_per_second", c->particle_steps_per_second, "peak_memory_bytes",
+        (json_int_t)c->peak_memory_bytes, "bytes_per_particle", c->bytes_per_particle);
     if (o && c->contact) {
         json_object_set_new(o, "contact_searches", json_integer(c->contact_searches));
         json_object_set_new(o, "contact_search_share", json_real(c->contact_search_share));

@@ -47,7 +47,7 @@
 #include "support/scene_builder.h"
 
 #define SPACING 0.0005
-#define MID 0.01
+#define MID     0.01
 
 static void scene(char *out, size_t size, int contact)
 {
@@ -66,11 +66,11 @@ static void scene(char *out, size_t size, int contact)
 }
 
 struct outcome {
-    double min_gap;     /* smallest distance between the two parts after t1, spacings */
-    double momentum;    /* largest |P| / sum m|v| */
-    double balance;     /* largest |balance| / initial kinetic energy */
-    size_t failed;      /* at t1 */
-    double gap_at_t1;   /* the parts' smallest distance at t1, spacings */
+    double min_gap;   /* smallest distance between the two parts after t1, spacings */
+    double momentum;  /* largest |P| / sum m|v| */
+    double balance;   /* largest |balance| / initial kinetic energy */
+    size_t failed;    /* at t1 */
+    double gap_at_t1; /* the parts' smallest distance at t1, spacings */
 };
 
 /* Smallest distance between an intact particle left of the middle and one
@@ -119,8 +119,10 @@ static void check_filter(struct tlsph_model *m)
     }
     free(linked);
     const size_t total = check_candidates(m, same_body_admitted);
-    fprintf(stderr, "filter: %zu of %zu particles can touch, %zu candidate entries, brute force "
-                    "agrees\n", c->touching, n, total);
+    fprintf(stderr,
+            "filter: %zu of %zu particles can touch, %zu candidate entries, brute force "
+            "agrees\n",
+            c->touching, n, total);
     ck_assert(total > 0);
 }
 
@@ -177,8 +179,7 @@ END_TEST
 START_TEST(without_contact_the_parts_pass_through)
 {
     const struct outcome off = fragments(0);
-    ck_assert_msg(off.min_gap < 0.2, "parts kept %.3f spacings apart without contact",
-                  off.min_gap);
+    ck_assert_msg(off.min_gap < 0.2, "parts kept %.3f spacings apart without contact", off.min_gap);
 }
 END_TEST
 

@@ -135,8 +135,8 @@ START_TEST(too_fast_is_reported)
         tlsph_model_step(m);
         stopped = tlsph_model_check(m, &d) != 0;
     }
-    fprintf(stderr, "2500 m/s: %s after %ld steps: %s (%g > %g)\n",
-            stopped ? "stopped" : "ran", m->step, stopped ? d.quantity : "-", d.value, d.limit);
+    fprintf(stderr, "2500 m/s: %s after %ld steps: %s (%g > %g)\n", stopped ? "stopped" : "ran",
+            m->step, stopped ? d.quantity : "-", d.value, d.limit);
     ck_assert(stopped);
     ck_assert_str_eq(d.quantity, "contact_penetration");
     tlsph_model_free(m);
