@@ -30,36 +30,33 @@
 #include "support/check_main.h"
 #include "support/scene_builder.h"
 
-/* Two steel blocks, the second's lattice origin at x = origin (m), and the
- * given contact block (or none: NULL). */
-static void two_blocks(char *out, size_t size, double origin, const char *contact)
+/* One or two steel blocks of 4 x 4 mm, the second's lattice origin at x =
+ * origin (m), and the given contact block (or none: NULL). */
+static void blocks(char *out, size_t size, int two, double origin, const char *contact)
 {
+    char second[512] = "";
+    if (two)
+        snprintf(second, sizeof second,
+                 ",{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
+                 "\"origin\":[%.17g,0,0],"
+                 "\"geometry\":{\"box\":{\"min\":[%.17g,0,0],\"max\":[0.008,0.004,0]}}}",
+                 origin, origin);
     snprintf(out, size,
              "{\"dimension\":2,\"time\":{\"end\":1e-6},"
              "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
              "\"poisson_ratio\":0.3}},"
              "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
-             "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}},"
-             "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,\"origin\":[%.17g,0,0],"
-             "\"geometry\":{\"box\":{\"min\":[%.17g,0,0],\"max\":[0.008,0.004,0]}}}]%s%s}",
-             origin, origin, contact ? ",\"contact\":" : "", contact ? contact : "");
-}
-
-static int has_module(const struct tlsph_model *m, const char *name)
-{
-    for (int k = 0; k < m->nmodules; k++)
-        if (strcmp(m->modules[k], name) == 0)
-            return 1;
-    return 0;
+             "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}}%s]%s%s}",
+             second, contact ? ",\"contact\":" : "", contact ? contact : "");
 }
 
 START_TEST(two_bodies_get_contact_by_default)
 {
     char json[2048];
-    two_blocks(json, sizeof json, 0.004, NULL);
+    blocks(json, sizeof json, 1, 0.004, NULL);
     struct tlsph_model *m = build_model(json);
     ck_assert(m->contact != NULL);
-    ck_assert(has_module(m, "contact:penalty_hertz"));
+    ck_assert(model_has_module(m, "contact:penalty_hertz"));
     tlsph_model_free(m);
     /* "enabled": false: test_contact, no_contact_block_no_contact_state */
 }
@@ -67,11 +64,8 @@ END_TEST
 
 START_TEST(one_body_without_damage_has_no_contact)
 {
-    const char *json = "{\"dimension\":2,\"time\":{\"end\":1e-6},"
-                       "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
-                       "\"poisson_ratio\":0.3}},"
-                       "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
-                       "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}}]}";
+    char json[2048];
+    blocks(json, sizeof json, 0, 0.0, NULL);
     struct tlsph_model *m = build_model(json);
     ck_assert(m->contact == NULL);
     tlsph_model_free(m);
@@ -84,7 +78,7 @@ START_TEST(touching_bodies_accepted_overlapping_refused)
     /* exactly one spacing apart, and 1e-13 m closer (round-off) */
     const double touching[] = {0.004, 0.004 - 1e-13};
     for (size_t k = 0; k < 2; k++) {
-        two_blocks(json, sizeof json, touching[k], NULL);
+        blocks(json, sizeof json, 1, touching[k], NULL);
         struct tlsph_model *m = try_build_model(json, ptr, sizeof ptr);
         ck_assert_msg(m != NULL, "face-to-face blocks (origin %.17g) refused at %s", touching[k],
                       ptr);
@@ -92,12 +86,12 @@ START_TEST(touching_bodies_accepted_overlapping_refused)
         tlsph_model_free(m);
     }
     /* 0.1 spacing into each other */
-    two_blocks(json, sizeof json, 0.0039, NULL);
+    blocks(json, sizeof json, 1, 0.0039, NULL);
     struct tlsph_model *m = try_build_model(json, ptr, sizeof ptr);
     ck_assert(m == NULL);
     ck_assert_str_eq(ptr, "/bodies/1");
     /* without contact the overlap is the user's business */
-    two_blocks(json, sizeof json, 0.0039, "{\"enabled\":false}");
+    blocks(json, sizeof json, 1, 0.0039, "{\"enabled\":false}");
     m = try_build_model(json, ptr, sizeof ptr);
     ck_assert(m != NULL);
     tlsph_model_free(m);

@@ -186,14 +186,6 @@ START_TEST(arrested_particles_stop_and_their_energy_is_booked)
 }
 END_TEST
 
-static int has_module(const struct tlsph_model *m, const char *name)
-{
-    for (int k = 0; k < m->nmodules; k++)
-        if (strcmp(m->modules[k], name) == 0)
-            return 1;
-    return 0;
-}
-
 START_TEST(only_damaging_scenes_pay_for_damage)
 {
     /* the same bar without its damage block: no damage array, no damage module */
@@ -208,12 +200,12 @@ START_TEST(only_damaging_scenes_pay_for_damage)
     struct tlsph_model *damaged = build_model(scene("damage_aware", "free"));
     ck_assert(plain->p.damage == NULL && plain->p.damage_init == NULL &&
               plain->p.crack_gradient == NULL);
-    ck_assert(!has_module(plain, "damage:johnson_cook") &&
-              !has_module(plain, "approximation:damage_aware"));
-    ck_assert(has_module(damaged, "damage:johnson_cook") &&
-              has_module(damaged, "damage:evolution_linear") &&
-              has_module(damaged, "approximation:damage_aware") &&
-              has_module(damaged, "failure:free"));
+    ck_assert(!model_has_module(plain, "damage:johnson_cook") &&
+              !model_has_module(plain, "approximation:damage_aware"));
+    ck_assert(model_has_module(damaged, "damage:johnson_cook") &&
+              model_has_module(damaged, "damage:evolution_linear") &&
+              model_has_module(damaged, "approximation:damage_aware") &&
+              model_has_module(damaged, "failure:free"));
     const double per_particle =
         (double)(damaged->bytes_allocated - plain->bytes_allocated) / (double)plain->p.n;
     printf("damage costs %.1f bytes per particle (D, D_init, untransmitted gradient)\n",

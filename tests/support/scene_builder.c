@@ -59,6 +59,14 @@ void run_until(struct tlsph_model *m, double t_end)
     }
 }
 
+int model_has_module(const struct tlsph_model *m, const char *name)
+{
+    for (int k = 0; k < m->nmodules; k++)
+        if (strcmp(m->modules[k], name) == 0)
+            return 1;
+    return 0;
+}
+
 double momentum_scale(const struct tlsph_model *m)
 {
     double s = 0.0;
