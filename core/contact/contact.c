@@ -156,6 +156,10 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
         tlsph_errors_add(err, "/contact", "out of memory for the contact search");
         return -1;
     }
+    /* a law whose radii reach past the nearest non-neighbours (a pin-ball of
+     * radius factor near 1) would start the surface pairs of a body overlapped */
+    if (c->touch)
+        tlsph_contact_settle(m, c);
     return check_start(m, err);
 }
 

@@ -25,9 +25,10 @@ struct tlsph_contact {
      * else only the flagged ones. */
     uint8_t *touch; /* [n] */
     /* Reach factor of each particle, 1, [n] with touch: a pair of one body
-     * touches at min(reach_i, reach_j) x (R_i + R_j).  1 at setup (the
-     * lattice: no two flagged particles closer than R_i + R_j); when a
-     * particle is flagged (it or a neighbour failed), it is lowered to the
+     * touches at min(reach_i, reach_j) x (R_i + R_j).  1 at setup, unless a
+     * law's radii reach past the nearest non-neighbours (a pin-ball of radius
+     * factor near 1); when a particle is flagged (the surface layer at
+     * setup, later as it or a neighbour fails), it is lowered to the
      * pair distance / (R_i + R_j) of any of its new candidates already
      * closer (tlsph_contact_settle), so every pair starts its contact
      * without overlap and the force rises only with a later approach.  Thus

@@ -33,8 +33,8 @@ void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c)
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
             full = start[i + 1] - start[i] > full ? start[i + 1] - start[i] : full;
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
-            if (start[i + 1] - start[i] < full)
-                c->touch[i] |= TLSPH_TOUCH_SURFACE;
+            if (start[i + 1] - start[i] < full) /* settled after the first search */
+                c->touch[i] |= TLSPH_TOUCH_SURFACE | TLSPH_TOUCH_NEW;
     }
     c->touching = 0;
     for (size_t i = 0; i < m->p.n; i++) {

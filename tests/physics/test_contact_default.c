@@ -20,12 +20,20 @@
  *   (cfl x spacing / c); with the default penalty law between equal steel
  *   blocks the contact does not bind (line form: 1.13 spacing / c for nu = 0,
  *   longer than the material step for any nu) and the estimate is the
- *   material step, the same as with contact off. */
+ *   material step, the same as with contact off.
+ * - A damaging body with a pin-ball of radius factor 1.2 (balls of 1.2 h,
+ *   reaching past the nearest non-neighbours at 2 spacings): its surface
+ *   pairs start without contact (no pair overlapping, no contact force at
+ *   setup) because their reach factors were lowered to their distance
+ *   (contact/touch.c tlsph_contact_settle); some factor is below 1, so the
+ *   rule acted. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
 
+#include "contact/contact.h"
+#include "contact/state.h"
 #include "run/model.h"
 #include "support/check_main.h"
 #include "support/scene_builder.h"
@@ -151,7 +159,39 @@ START_TEST(validation_estimates_the_contact_step)
 }
 END_TEST
 
+START_TEST(a_body_does_not_start_in_contact_with_itself)
+{
+    const char *json =
+        "{\"dimension\":2,\"time\":{\"end\":1e-6},"
+        "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2e11,"
+        "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
+        "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
+        "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.05,\"d2\":0,\"d3\":0}}},"
+        "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
+        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.008,0.004,0]}}}],"
+        "\"contact\":{\"law\":{\"type\":\"pinball\",\"radius_factor\":1.2,"
+        "\"scale_factor\":100}}}";
+    struct tlsph_model *m = build_model(json);
+    const struct tlsph_contact *c = m->contact;
+    ck_assert(c != NULL && c->touch != NULL);
+    double lowest = 1.0, force = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        lowest = fmin(lowest, c->reach[i]);
+        force = fmax(force, fabs(c->f_old[3 * i]) + fabs(c->f_old[3 * i + 1]));
+    }
+    fprintf(stderr, "pin-ball 1.2 h in one body: %zu candidates, lowest reach factor %.4f, "
+                    "%zu pairs in contact, largest contact force %g N/m\n",
+            tlsph_contact_candidates(m), lowest, tlsph_contact_active(m), force);
+    ck_assert(tlsph_contact_candidates(m) > 0);
+    ck_assert(lowest < 1.0);
+    ck_assert_uint_eq(tlsph_contact_active(m), 0);
+    ck_assert(force == 0.0);
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("contact_default", 120, two_bodies_get_contact_by_default,
                  one_body_without_damage_has_no_contact,
                  touching_bodies_accepted_overlapping_refused,
-                 validation_estimates_the_contact_step)
+                 validation_estimates_the_contact_step,
+                 a_body_does_not_start_in_contact_with_itself)
