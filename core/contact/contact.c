@@ -2,16 +2,27 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "contact/state.h"
 #include "run/model.h"
+#include "scene/limits.h"
+#include "util/names.h"
 
 /* At t = 0 no two bodies may overlap: the lattice cells of two particles of
- * different bodies (edge s_i, s_j) may touch but not interpenetrate, i.e.
- * r >= (s_i + s_j)/2 up to round-off.  Overlapping bodies would start with a
+ * different bodies (edge s_i, s_j) may touch but not interpenetrate.  The
+ * rule, with a touching tolerance: a pair is accepted when
+ *   r >= (1 - TOUCH_TOLERANCE) (s_i + s_j)/2,
+ * so bodies placed face to face (cells touching, particles exactly one
+ * spacing apart, or closer by the round-off of their lattices' origins,
+ * ~1e-16 of the coordinates) pass, while an overlap of a micrometre per metre
+ * of spacing or more is refused.  Overlapping bodies would start with a
  * contact force that no motion caused, an explosion of their overlap's
  * energy.  Looks at the candidate pairs (closer than R_i + R_j + skin), which
- * hold every such pair unless a law's radius is far below half the spacing. */
+ * hold every such pair unless a law's radius is far below half the spacing;
+ * pairs within one body are the body's own business (its lattice). */
+#define TOUCH_TOLERANCE 1e-6
+
 static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
 {
     const struct tlsph_contact *c = m->contact;
@@ -23,14 +34,14 @@ static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
         for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
             const size_t j = (size_t)c->j[k];
             const size_t a = (size_t)m->p.body[i], b = (size_t)m->p.body[j];
-            if (a > b)
-                continue; /* each pair once */
+            if (a >= b)
+                continue; /* each pair of different bodies once */
             const double touch = 0.5 * (s->bodies[a].spacing + s->bodies[b].spacing);
             double r2 = 0.0;
             for (int d = 0; d < 3; d++)
                 r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);
             const double depth = (touch - sqrt(r2)) / touch;
-            if (depth <= 1e-9)
+            if (depth <= TOUCH_TOLERANCE)
                 continue;
             if (pairs++ == 0 || depth > worst) {
                 worst = depth;
@@ -53,6 +64,45 @@ static int check_start(const struct tlsph_model *m, struct tlsph_errors *err)
                      s->bodies[bj].name, s->bodies[bi].name, pairs, gap,
                      gap / s->bodies[bj].spacing, X[0], X[1], X[2]);
     return -1;
+}
+
+/* The body pairs with a force series (state.h): every pair of different
+ * bodies when there are at most TLSPH_MAX_CONTACT_PAIR_SERIES, named
+ * "<a>--<b>" where that is a valid name (util/names.h: at most 63
+ * characters) unique among the bodies and the other pairs ("" otherwise). */
+static int pair_setup(struct tlsph_model *m, struct tlsph_contact *c)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const size_t nb = s->nbodies, np = nb * (nb - 1) / 2;
+    if (np == 0 || np > TLSPH_MAX_CONTACT_PAIR_SERIES)
+        return 0;
+    c->pair = tlsph_alloc(m, np, sizeof *c->pair);
+    c->pair_name = tlsph_alloc(m, np, sizeof *c->pair_name);
+    if (!c->pair || !c->pair_name)
+        return -1;
+    c->npairs = np;
+    size_t k = 0;
+    for (size_t a = 0; a < nb; a++)
+        for (size_t b = a + 1; b < nb; b++, k++) {
+            c->pair[k][0] = (int32_t)a;
+            c->pair[k][1] = (int32_t)b;
+            char *name = c->pair_name[k];
+            const int len = snprintf(name, sizeof c->pair_name[k], "%s--%s", s->bodies[a].name,
+                                     s->bodies[b].name);
+            if (len < 0 || (size_t)len >= sizeof c->pair_name[k] || !tlsph_name_ok(name))
+                name[0] = '\0';
+        }
+    /* a name taken by a body or by another pair names no pair */
+    for (k = 0; k < np; k++) {
+        int taken = 0;
+        for (size_t b = 0; b < nb && !taken; b++)
+            taken = strcmp(c->pair_name[k], s->bodies[b].name) == 0;
+        for (size_t q = 0; q < np && !taken; q++)
+            taken = q != k && strcmp(c->pair_name[k], c->pair_name[q]) == 0;
+        if (taken)
+            c->pair_name[k][0] = '\0';
+    }
+    return 0;
 }
 
 int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
@@ -87,10 +137,29 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
         spacing = fmax(spacing, s->bodies[b].spacing);
     }
     c->skin = s->contact.skin * spacing;
+    if (pair_setup(m, c) != 0) {
+        tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+        return -1;
+    }
+    /* contact within a body: only where material can separate */
+    c->all_particles = s->nbodies > 1;
+    if (m->p.damage) {
+        c->touch = tlsph_alloc(m, n, sizeof *c->touch);
+        c->reach = tlsph_alloc(m, n, sizeof *c->reach);
+        if (!c->touch || !c->reach) {
+            tlsph_errors_add(err, "/contact", "out of memory for the contact search");
+            return -1;
+        }
+        tlsph_contact_touch_setup(m, c);
+    }
     if (tlsph_contact_search(m, c, 1) != 0) {
         tlsph_errors_add(err, "/contact", "out of memory for the contact search");
         return -1;
     }
+    /* a law whose radii reach past the nearest non-neighbours (a pin-ball of
+     * radius factor near 1) would start the surface pairs of a body overlapped */
+    if (c->touch)
+        tlsph_contact_settle(m, c);
     return check_start(m, err);
 }
 
@@ -107,6 +176,11 @@ void tlsph_contact_free(struct tlsph_model *m)
     free(c->order);
     free(c->cell_start);
     free(c->f_old);
+    free(c->touch);
+    free(c->s_pair);
+    free(c->pair);
+    free(c->pair_name);
+    free(c->reach);
     free(c);
     m->contact = NULL;
 }
@@ -124,6 +198,33 @@ void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[
     for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
         for (int c = 0; c < 3; c++)
             out[c] += f[3 * i + c];
+}
+
+size_t tlsph_contact_pairs(const struct tlsph_model *m)
+{
+    return m->contact->npairs;
+}
+
+const char *tlsph_contact_pair_name(const struct tlsph_model *m, size_t k)
+{
+    const char *name = m->contact->pair_name[k];
+    return name[0] ? name : NULL;
+}
+
+void tlsph_contact_pair_force(const struct tlsph_model *m, size_t k, double out[3])
+{
+    const struct tlsph_contact *c = m->contact;
+    const int32_t a = c->pair[k][0], b = c->pair[k][1];
+    const double *x = m->p.x;
+    out[0] = out[1] = out[2] = 0.0;
+    for (size_t i = m->body_begin[a]; i < m->body_end[a]; i++)
+        for (int64_t q = c->start[i]; q < c->start[i + 1]; q++) {
+            const size_t j = (size_t)c->j[q];
+            if (m->p.body[j] != b || c->s_pair[q] == 0.0)
+                continue;
+            for (int d = 0; d < 3; d++)
+                out[d] -= c->s_pair[q] * (x[3 * j + d] - x[3 * i + d]);
+        }
 }
 
 size_t tlsph_contact_active(const struct tlsph_model *m)
@@ -150,7 +251,9 @@ void tlsph_contact_deepest_pair(const struct tlsph_model *m, int64_t ids[2])
     for (size_t i = 0; i < m->p.n; i++)
         for (int64_t k = c->start[i]; k < c->start[i + 1]; k++) {
             const size_t j = (size_t)c->j[k];
-            const double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            double reach = c->bodies[m->p.body[i]].radius + c->bodies[m->p.body[j]].radius;
+            if (m->p.body[i] == m->p.body[j])
+                reach *= c->reach[i] < c->reach[j] ? c->reach[i] : c->reach[j];
             double r2 = 0.0;
             for (int d = 0; d < 3; d++)
                 r2 += (x[3 * j + d] - x[3 * i + d]) * (x[3 * j + d] - x[3 * i + d]);

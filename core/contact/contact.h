@@ -83,6 +83,12 @@ const char *tlsph_contact_names(void);
 /* The default law (a "contact" block without "law"). */
 const struct tlsph_contact_law *tlsph_contact_default(void);
 
+/* The validation's estimate of the contact step, before any particle exists
+ * (estimate.c): the smallest sqrt(m* / k) of two particles of bodies that
+ * can meet, at the deepest overlap the stability contract accepts; s, before
+ * the CFL factor; INFINITY without contact.  pair: the two bodies (a <= b). */
+double tlsph_contact_step_estimate(const struct tlsph_scene *s, size_t pair[2]);
+
 /* Setup (after the particles exist): per-body constants, the first search.
  * 0, or -1 with err (out of memory). */
 int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err);
@@ -107,6 +113,16 @@ struct tlsph_contact_cost tlsph_contact_cost(const struct tlsph_model *m);
 /* The contact force on body b from the other bodies in the last evaluation,
  * N (N/m in 2-D) [3]: the sum of its particles' contact forces. */
 void tlsph_contact_body_force(const struct tlsph_model *m, size_t b, double out[3]);
+
+/* Body pairs with a contact-force series: k < tlsph_contact_pairs(m), the
+ * pairs (a, b), a < b, in scene order; none when there would be more than
+ * TLSPH_MAX_CONTACT_PAIR_SERIES (scene/limits.h).  The name "<a>--<b>", or
+ * NULL when that is not a valid name unique among the bodies and pairs (then
+ * the pair has no series).  The force on body a from body b in the last
+ * evaluation, N (N/m in 2-D) [3]; on b it is the opposite. */
+size_t tlsph_contact_pairs(const struct tlsph_model *m);
+const char *tlsph_contact_pair_name(const struct tlsph_model *m, size_t k);
+void tlsph_contact_pair_force(const struct tlsph_model *m, size_t k, double out[3]);
 
 /* Pairs in contact (overlapping) in the last evaluation. */
 size_t tlsph_contact_active(const struct tlsph_model *m);

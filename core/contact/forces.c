@@ -35,12 +35,16 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
     const double mi = mass[i];
     double f0 = 0.0, f1 = 0.0, f2 = 0.0, dt2 = INFINITY, deepest = 0.0;
     size_t active = 0;
+    double *restrict s_pair = c->s_pair;
     for (int64_t k = start[i]; k < start[i + 1]; k++) {
         const size_t j = (size_t)cand[k];
+        s_pair[k] = 0.0;
         const struct tlsph_contact_body *bj = &c->bodies[body[j]];
         const double d0 = x[3 * j] - xi0, d1 = x[3 * j + 1] - xi1, d2 = x[3 * j + 2] - xi2;
         const double r2 = d0 * d0 + d1 * d1 + d2 * d2;
-        const double reach = bi->radius + bj->radius;
+        double reach = bi->radius + bj->radius;
+        if (body[j] == body[i]) /* two parts of one body (contact/state.h) */
+            reach *= c->reach[i] < c->reach[j] ? c->reach[i] : c->reach[j];
         /* no direction at r = 0: such a pair pushes no way */
         if (r2 >= reach * reach || r2 == 0.0)
             continue;
@@ -58,6 +62,7 @@ contact_particle(struct tlsph_model *m, const struct tlsph_contact *c, size_t i,
         const double depth = (reach - r) / reach;
         deepest = depth > deepest ? depth : deepest;
         const double s = p.force / r;
+        s_pair[k] = s;
         f0 -= s * d0;
         f1 -= s * d1;
         f2 -= s * d2;
@@ -115,8 +120,12 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
 {
     struct tlsph_contact *c = m->contact;
     const double t0 = tlsph_monotonic_seconds();
-    if (tlsph_contact_search(m, c, 0) != 0)
+    /* particles failed since the last evaluation: their pairs are candidates now */
+    const int fresh = c->touch && tlsph_contact_watch(m, c) > 0;
+    if (tlsph_contact_search(m, c, fresh) != 0)
         c->failed = 1;
+    else if (fresh)
+        tlsph_contact_settle(m, c);
     const struct contact_sums s = loops[c->variant](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
     c->active = s.active / 2;
     c->max_overlap = s.overlap > c->max_overlap ? s.overlap : c->max_overlap;

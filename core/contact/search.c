@@ -23,12 +23,22 @@
 #include "util/clock.h"
 #include "util/parallel.h"
 
-/* May i and j touch?  Today: particles of different bodies.  Contact between
- * the separated parts of one body (a pair that is not a reference neighbour,
- * or whose link is broken) is the next filter to add here. */
-static inline int contact_candidate(const int32_t *body, size_t i, size_t j)
+/* May i and j touch?  Particles of different bodies always; two of one body
+ * (only with a damage model, touch != NULL) when both are flagged as able to
+ * touch and the pair is not a continuum (tlsph_contact_same_body_pair). */
+static inline int contact_candidate(const struct tlsph_particles *p, const uint8_t *touch, size_t i,
+                                    size_t j)
 {
-    return body[i] != body[j];
+    if (p->body[i] != p->body[j])
+        return 1;
+    return touch && touch[i] && touch[j] && tlsph_contact_same_body_pair(p, i, j);
+}
+
+/* Is i in the grid: every particle with more than one body, else only those
+ * that can touch. */
+static inline int in_grid(const struct tlsph_contact *c, size_t i)
+{
+    return c->all_particles || c->touch[i];
 }
 
 struct grid {
@@ -69,6 +79,8 @@ static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, c
 {
     const double *x = m->p.x;
     const int32_t *body = m->p.body;
+    if (!in_grid(c, i))
+        return 0;
     const double ri = c->bodies[body[i]].radius + c->skin;
     const int64_t home = c->key[i];
     const int zr = g->dim == 3 ? 1 : 0;
@@ -79,7 +91,7 @@ static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, c
                 const int64_t cell = home + (dz * g->dims[1] + dy) * g->dims[0] + dx;
                 for (int64_t k = c->cell_start[cell]; k < c->cell_start[cell + 1]; k++) {
                     const size_t j = (size_t)c->order[k];
-                    if (j == i || !contact_candidate(body, i, j))
+                    if (j == i || !contact_candidate(&m->p, c->touch, i, j))
                         continue;
                     const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
                                  d2 = x[3 * j + 2] - x[3 * i + 2];
@@ -138,7 +150,7 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     for (int d = 0; d < 3; d++)
         g.lo[d] = INFINITY;
     for (size_t i = 0; i < n; i++)
-        for (int d = 0; d < 3; d++) {
+        for (int d = 0; d < 3 && in_grid(c, i); d++) {
             /* a run gone unstable: no cell for such a particle; the previous
              * candidates stay until the stability contract stops the run
              * (non_finite) */
@@ -147,6 +159,13 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
             g.lo[d] = fmin(g.lo[d], x[3 * i + d]);
             hi[d] = fmax(hi[d], x[3 * i + d]);
         }
+    if (!(g.lo[0] <= hi[0])) { /* no particle can touch yet: no candidate */
+        memset(c->start, 0, (n + 1) * sizeof *c->start);
+        memcpy(c->x_search, x, 3 * n * sizeof *x);
+        c->searches++;
+        c->search_seconds += tlsph_monotonic_seconds() - t0;
+        return 0;
+    }
     double cell = 2.0 * c->max_radius + c->skin;
     while (grid_layout(&g, hi, cell, 4.0 * (double)n + 64.0) > 4.0 * (double)n + 64.0)
         cell *= 2.0;
@@ -157,12 +176,16 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     /* counting sort by cell, stable: index order within a cell */
     memset(c->cell_start, 0, (cells + 1) * sizeof *c->cell_start);
     for (size_t i = 0; i < n; i++) {
+        if (!in_grid(c, i))
+            continue;
         c->key[i] = grid_key(&g, x + 3 * i);
         c->cell_start[c->key[i] + 1]++;
     }
     for (size_t k = 0; k < cells; k++)
         c->cell_start[k + 1] += c->cell_start[k];
     for (size_t i = 0; i < n; i++) { /* cell_start[key] counts up to the next cell's start */
+        if (!in_grid(c, i))
+            continue;
         const int64_t k = c->key[i];
         c->order[c->cell_start[k]++] = (int32_t)i;
     }
@@ -177,7 +200,8 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     start[0] = 0;
     for (size_t i = 0; i < n; i++)
         start[i + 1] += start[i];
-    if (reserve(m, (void **)&c->j, &c->cap, (size_t)start[n], sizeof *c->j) != 0) {
+    if (reserve(m, (void **)&c->j, &c->cap, (size_t)start[n], sizeof *c->j) != 0 ||
+        reserve(m, (void **)&c->s_pair, &c->s_cap, (size_t)start[n], sizeof *c->s_pair) != 0) {
         memset(start, 0, (n + 1) * sizeof *start);
         return -1;
     }
@@ -185,6 +209,8 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
     for (size_t i = 0; i < n; i++)
         scan(m, c, &g, i, c->j + start[i]);
     memcpy(c->x_search, x, 3 * n * sizeof *x);
+    /* no force from the new candidates until the next evaluation */
+    memset(c->s_pair, 0, (size_t)start[n] * sizeof *c->s_pair);
     c->searches++;
     c->search_seconds += tlsph_monotonic_seconds() - t0;
     return 0;

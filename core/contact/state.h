@@ -7,6 +7,7 @@
 #include <stdint.h>
 
 #include "contact/contact.h"
+#include "run/model.h"
 
 struct tlsph_contact {
     const struct tlsph_contact_law *law;
@@ -16,11 +17,39 @@ struct tlsph_contact {
     double skin;                        /* m */
     double max_radius;                  /* largest contact radius, m */
 
+    /* Contact within a body (scenes with a damage model): only particles that
+     * can touch enter such a pair, flagged in touch[] (NULL without damage):
+     * TOUCH_SURFACE at setup, TOUCH_FAILED and TOUCH_NEAR_FAILED as particles
+     * fail (tlsph_contact_watch).  all_particles: the grid holds every
+     * particle (more than one body: pairs of different bodies need no flag),
+     * else only the flagged ones. */
+    uint8_t *touch; /* [n] */
+    /* Reach factor of each particle, 1, [n] with touch: a pair of one body
+     * touches at min(reach_i, reach_j) x (R_i + R_j).  1 at setup, unless a
+     * law's radii reach past the nearest non-neighbours (a pin-ball of radius
+     * factor near 1); when a particle is flagged (the surface layer at
+     * setup, later as it or a neighbour fails), it is lowered to the
+     * pair distance / (R_i + R_j) of any of its new candidates already
+     * closer (tlsph_contact_settle), so every pair starts its contact
+     * without overlap and the force rises only with a later approach.  Thus
+     * contact does not push apart the still-compact material around a failed
+     * particle (a necking bar's lateral neighbours sit closer than a
+     * spacing: a reach of one spacing would release a force, and energy,
+     * that no motion caused). */
+    double *reach;
+    size_t touching; /* particles flagged */
+    int all_particles;
+
     /* Candidates: the pairs of i are j[start[i] .. start[i+1]-1], every pair
      * listed from both sides (gather form: each particle sums its own). */
     int64_t *start; /* [n+1] */
     int32_t *j;     /* [cap] */
     size_t cap;
+    /* F / r of each candidate entry in the last evaluation (0: not in
+     * contact), N/m [s_cap >= start[n]]: the force on i from j[k] was
+     * -s_pair[k] (x_j - x_i), which the pair series sum (tlsph_contact_pair_force) */
+    double *s_pair;
+    size_t s_cap;
     double *x_search; /* positions at the last search, m [3n] */
 
     /* cell list of the last search, reused by the next one */
@@ -30,6 +59,13 @@ struct tlsph_contact {
     size_t cell_cap;     /* entries allocated in cell_start */
 
     double *f_old; /* contact force of the last evaluation, N [3n] (trapezoidal work) */
+
+    /* Body pairs with a force series (a < b, scene order; none when there
+     * would be more than TLSPH_MAX_CONTACT_PAIR_SERIES): names "<a>--<b>",
+     * "" where that is not a valid, unique name (no series) */
+    size_t npairs;
+    int32_t (*pair)[2];
+    char (*pair_name)[64];
 
     long searches;
     double search_seconds, phase_seconds; /* wall-clock, s (contact.h) */
@@ -44,5 +80,50 @@ struct tlsph_contact {
  * the skin since the last one (or when force is set).  Returns 0, or -1 out of
  * memory (then no candidate is left: the run must stop). */
 int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int force);
+
+/* touch[] flags */
+#define TLSPH_TOUCH_SURFACE     1u /* fewer reference neighbours than the body's interior */
+#define TLSPH_TOUCH_FAILED      2u /* failed (D = 1): seen by the watch */
+#define TLSPH_TOUCH_NEAR_FAILED 4u /* a reference neighbour failed: a crack face */
+#define TLSPH_TOUCH_NEW         8u /* flagged anew since the last settle */
+
+/* touch.c: flags the surface layer of the damaged bodies (setup, touch
+ * allocated and zero). */
+void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c);
+/* Flags the particles that failed since the last call and their reference
+ * neighbours (TLSPH_TOUCH_NEW on each whose flags changed); returns how many
+ * failed since (a new search is due: their pairs are candidates now). */
+size_t tlsph_contact_watch(struct tlsph_model *m, struct tlsph_contact *c);
+/* After that search: lowers the reach factor of every particle flagged anew
+ * so that none of its pairs within its body starts overlapped, and clears
+ * TLSPH_TOUCH_NEW.  Serial, in index order (deterministic). */
+void tlsph_contact_settle(struct tlsph_model *m, struct tlsph_contact *c);
+
+/* Are i and j (same body) reference neighbours?  The test of the reference
+ * search (sph/neighbors.c), the same operations in the same order: |X_ij| <
+ * h_i + h_j; symmetric in i, j. */
+static inline __attribute__((always_inline)) int
+tlsph_contact_reference_pair(const struct tlsph_particles *p, size_t i, size_t j)
+{
+    const double *X = p->X;
+    const double dx = X[3 * j] - X[3 * i], dy = X[3 * j + 1] - X[3 * i + 1],
+                 dz = X[3 * j + 2] - X[3 * i + 2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    const double rc = p->h[i] + p->h[j];
+    return r2 < rc * rc;
+}
+
+/* Does the pair i, j of one body interact by contact?  When they are not
+ * reference neighbours (parts of the body that the reference neighbourhood
+ * never linked: fragments, folds), or when their link is broken: one of them
+ * failed (D = 1), so the pair exchanges no stress force (damage_aware.h eq.
+ * 35: a failed particle carries no stress and its partner's stress is weighed
+ * by 1 - D = 0; pseudo_spring.h: the kernel is scaled by 0).  A pair of intact
+ * (D < 1) reference neighbours is still a continuum: never in contact. */
+static inline __attribute__((always_inline)) int
+tlsph_contact_same_body_pair(const struct tlsph_particles *p, size_t i, size_t j)
+{
+    return !tlsph_contact_reference_pair(p, i, j) || p->damage[i] >= 1.0 || p->damage[j] >= 1.0;
+}
 
 #endif

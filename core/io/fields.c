@@ -372,23 +372,32 @@ static const struct tlsph_series_column wall_columns[] = {
     {"torque", 3, "N m", "torque of that force about the wall's point", NULL, NULL},
 };
 
+/* Items: every body (the force from the other bodies), then the body pairs
+ * "<a>--<b>" (the force on a from b; contact.h tlsph_contact_pairs). */
 static const struct tlsph_series_column contact_columns[] = {
-    {"force", 3, "N", "contact force on the body from the other bodies (last force evaluation)",
+    {"force", 3, "N",
+     "contact force on the body from the other bodies, or for a pair <a>--<b> on body a from "
+     "body b (last force evaluation)",
      NULL, NULL},
 };
 
 static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
 static size_t contact_count(const struct tlsph_model *m)
 {
-    return m->contact ? m->scene.nbodies : 0;
+    return m->contact ? m->scene.nbodies + tlsph_contact_pairs(m) : 0;
 }
 static const char *contact_item(const struct tlsph_model *m, size_t k)
 {
-    return m->scene.bodies[k].name;
+    const size_t nb = m->scene.nbodies;
+    return k < nb ? m->scene.bodies[k].name : tlsph_contact_pair_name(m, k - nb);
 }
 static void contact_values(const struct tlsph_model *m, size_t k, double *out)
 {
-    tlsph_contact_body_force(m, k, out);
+    const size_t nb = m->scene.nbodies;
+    if (k < nb)
+        tlsph_contact_body_force(m, k, out);
+    else
+        tlsph_contact_pair_force(m, k - nb, out);
 }
 static size_t gauge_count(const struct tlsph_model *m) { return m->scene.ngauges; }
 static size_t section_count(const struct tlsph_model *m) { return m->scene.nsections; }

@@ -337,7 +337,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     if (tlsph_boundary_select(m, err) != 0 || tlsph_boundary_check(m, err) != 0 ||
         tlsph_measures_init(m, err) != 0)
         goto fail;
-    /* only a scene with a contact block: the others allocate and run nothing */
+    /* only a scene where contact can act (parse_contact.c): the others allocate
+     * and run nothing */
     if (m->scene.contact.law && tlsph_contact_create(m, err) != 0)
         goto fail;
     select_modules(m);

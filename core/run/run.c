@@ -29,15 +29,28 @@ static void fill_cost(const struct tlsph_model *m, double wall, struct tlsph_cos
     c->particle_steps_per_second = wall > 0 ? (double)m->p.n * (double)m->step / wall : 0.0;
     c->peak_memory_bytes = peak_rss_bytes();
     c->bytes_per_particle = m->p.n ? (double)m->bytes_allocated / (double)m->p.n : 0.0;
+    c->contact = m->contact != NULL;
+    if (c->contact) {
+        const struct tlsph_contact_cost cc = tlsph_contact_cost(m);
+        c->contact_searches = cc.searches;
+        c->contact_search_share = wall > 0 ? cc.search_seconds / wall : 0.0;
+        c->contact_phase_share = wall > 0 ? cc.phase_seconds / wall : 0.0;
+    }
 }
 
 static json_t *cost_json(const struct tlsph_cost *c)
 {
-    return json_pack("{s:I, s:I, s:I, s:f, s:f, s:I, s:f}", "particles", (json_int_t)c->particles,
-                     "pairs", (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds",
-                     c->wall_seconds, "particle_steps_per_second", c->particle_steps_per_second,
-                     "peak_memory_bytes", (json_int_t)c->peak_memory_bytes, "bytes_per_particle",
-                     c->bytes_per_particle);
+    json_t *o = json_pack(
+        "{s:I, s:I, s:I, s:f, s:f, s:I, s:f}", "particles", (json_int_t)c->particles, "pairs",
+        (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds", c->wall_seconds,
+        "particle_steps_per_second", c->particle_steps_per_second, "peak_memory_bytes",
+        (json_int_t)c->peak_memory_bytes, "bytes_per_particle", c->bytes_per_particle);
+    if (o && c->contact) {
+        json_object_set_new(o, "contact_searches", json_integer(c->contact_searches));
+        json_object_set_new(o, "contact_search_share", json_real(c->contact_search_share));
+        json_object_set_new(o, "contact_phase_share", json_real(c->contact_phase_share));
+    }
+    return o;
 }
 
 static json_t *diagnostic_json(const struct tlsph_diagnostic *d)

@@ -8,6 +8,10 @@
  * rho0) and |v| its fastest initial speed (check_values.c).  The run needs about
  * end / dt steps; validation refuses a scene that needs more than
  * TLSPH_MAX_STEPS (scene/limits.h) and has no time.max_steps to end it sooner.
+ * With contact the engine also keeps the step below sqrt(m* / k) of every
+ * pair in contact (core/contact/forces.c); the estimate includes the stiffest
+ * contact the run may see (core/contact/estimate.c), so a stiff law (a
+ * pin-ball with a large K_p) is counted before the run.
  * The step changes as the bodies deform, so this is an estimate: the run
  * itself stops when its own projection passes the limit (core/run/stability.c).
  *
@@ -21,6 +25,7 @@
 #include <math.h>
 #include <stdlib.h>
 
+#include "contact/contact.h"
 #include "material/eos/eos.h"
 #include "scene/parse_internal.h"
 
@@ -84,6 +89,11 @@ int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *f
             c_limiting = c;
         }
     }
+    size_t pair[2] = {0, 0};
+    const double dt_contact = tlsph_contact_step_estimate(s, pair);
+    const int contact_limits = dt_contact < dt_cfl;
+    if (contact_limits)
+        dt_cfl = dt_contact;
     const double dt = s->fixed_dt > 0.0 ? s->fixed_dt : s->cfl * dt_cfl;
     /* A step longer than the frame interval ends at the next frame time instead. */
     const double steps = end / fmin(dt, frame_interval);
@@ -97,6 +107,18 @@ int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *f
                          "(/time/step), above the limit of %ld steps; shorten the end time, "
                          "lengthen the step, or set /time/max_steps to end the run sooner",
                          end, steps, dt, TLSPH_MAX_STEPS);
+        return -1;
+    }
+    if (contact_limits) {
+        tlsph_errors_add(err, "/time/end",
+                         "'end' = %g s needs about %.3g time steps of about %g s, above the limit "
+                         "of %ld steps: the step is /time/cfl %g x the contact step %g s between "
+                         "bodies '%s' and '%s' (sqrt(m*/k) of two particles at the deepest overlap "
+                         "the stability contract accepts; /contact/law: a softer law or a smaller "
+                         "scale factor lengthens it); shorten the end time, or set "
+                         "/time/max_steps to end the run sooner",
+                         end, steps, dt, TLSPH_MAX_STEPS, s->cfl, dt_contact,
+                         s->bodies[pair[0]].name, s->bodies[pair[1]].name);
         return -1;
     }
     const struct tlsph_body *body = &s->bodies[limiting];

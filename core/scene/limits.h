@@ -65,10 +65,15 @@
 #define TLSPH_DEFAULT_FRAMES                20L
 #define TLSPH_DEFAULT_SERIES_EVERY          10L /* steps */
 #define TLSPH_DEFAULT_TAYLOR_QUINNEY        0.9
+#define TLSPH_DEFAULT_CONTACT               1 /* enabled (where it can act) */
 #define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
 /* Deepest contact overlap / (R_i + R_j) the stability contract accepts: deeper,
  * two particles are about to pass through each other (tunnelling), so the run
  * stops (contact_penetration) instead of going on silently wrong. */
 #define TLSPH_CONTACT_MAX_OVERLAP           0.5
+/* Body pairs with a contact-force series: all pairs of different bodies when
+ * there are at most this many (12 bodies give 66: a 12-body scene has none);
+ * beyond, only the per-body series (docs/output.md). */
+#define TLSPH_MAX_CONTACT_PAIR_SERIES       66
 
 #endif

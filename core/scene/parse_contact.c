@@ -1,30 +1,47 @@
 /* The scene's "contact" block: its own keys (scene_keys.c) and the law, whose
  * parameters its file in core/contact/ reads.
  *
- * A contact block in a scene of one body is refused: contact acts between
- * different bodies only (contact between the separated parts of a broken body
- * is not implemented yet), so the block would have no effect, and the
- * engine refuses settings that have none. */
+ * Contact is on by default wherever it can act: in a scene of more than one
+ * body (two bodies passing through each other is never what a user meant)
+ * the default law runs without any block, and so it does in a scene with a
+ * damage model, whose broken parts may meet.  "enabled": false switches it off
+ * (the law is still validated, so a typo is reported).  A block that enables
+ * contact where it cannot act (one body) is refused, since the engine
+ * refuses settings that have no effect.  Materials and bodies are parsed
+ * before. */
 #include "contact/contact.h"
 #include "scene/parse_internal.h"
+
+/* Can particles that are not linked as a continuum meet?  Those of different
+ * bodies, and the separated parts of a body that can break (a damage model). */
+static int contact_can_act(const struct tlsph_scene *s)
+{
+    int damage = 0;
+    for (size_t k = 0; k < s->nmaterials; k++)
+        damage |= s->materials[k].damage.model != NULL;
+    return s->nbodies > 1 || damage;
+}
 
 int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
 {
     const json_t *obj = json_object_get(root, "contact");
-    if (!obj)
-        return 0;
-    const struct tlsph_key_target to = {.base = s};
-    if (tlsph_keys_member(root, &tlsph_scene_keys, "contact", "", &to, err) < 0)
-        return -1;
+    if (obj) {
+        const struct tlsph_key_target to = {.base = s};
+        if (tlsph_keys_member(root, &tlsph_scene_keys, "contact", "", &to, err) < 0)
+            return -1;
+    }
+    const int can = contact_can_act(s);
+    if (!obj && !can)
+        return 0; /* nothing allocated, nothing run */
     int bad = 0;
-    if (s->nbodies < 2) {
+    if (obj && s->contact.enabled && !can) {
         tlsph_errors_add(err, "/contact",
-                         "contact has no effect with one body: it acts between different bodies "
-                         "only (contact between the parts of a broken body is not implemented "
-                         "yet); remove the block or add a body");
+                         "contact has no effect in a scene of one body without damage: it acts "
+                         "between different bodies and between the separated parts of a broken "
+                         "body; remove the block, add a body or a damage model");
         bad = 1;
     }
-    const json_t *law = json_object_get(obj, "law");
+    const json_t *law = obj ? json_object_get(obj, "law") : NULL;
     const struct tlsph_contact_law *model = tlsph_contact_default();
     if (law) {
         char type[64];
@@ -43,7 +60,7 @@ int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_
             return -1;
         }
     }
-    s->contact.law = model;
     bad |= model->parse(law, &s->contact, "/contact/law", err) != 0;
+    s->contact.law = s->contact.enabled ? model : NULL;
     return bad ? -1 : 0;
 }

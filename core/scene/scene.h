@@ -163,11 +163,13 @@ struct tlsph_section {
     double thickness;             /* m */
 };
 
-/* Contact between bodies ("contact" block, core/contact/): present when
- * law != NULL, which needs at least two bodies.  Without the block, bodies
- * pass through each other. */
+/* Contact between bodies and between the separated parts of a body
+ * ("contact" block, core/contact/): on when law != NULL.  On by default
+ * (without the block) in a scene of more than one body or with a damage
+ * model; "enabled": false switches it off. */
 struct tlsph_contact_settings {
     const struct tlsph_contact_law *law; /* NULL: no contact */
+    int enabled;                  /* "enabled" (default 1); 0 leaves law NULL */
     double params[4];             /* the law's parameters, meaning fixed by the law */
     int choice;                   /* the law's choice key, meaning fixed by the law
                                      (penalty: its form, enum tlsph_penalty_form) */

@@ -265,6 +265,11 @@ const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL
 /* ------------------------------------------------------------------ contact */
 
 static const struct tlsph_key contact_keys[] = {
+    {.name = "enabled", .kind = BOOLEAN, .flags = DEFAULT, .def = TLSPH_DEFAULT_CONTACT,
+     .offset = AT(contact.enabled),
+     .description = "false: no contact, bodies and fragments pass through each other; "
+                    "default true (contact is on in every scene of more than one body or "
+                    "with a damage model)"},
     {.name = "law", .kind = TLSPH_KEY_OBJECT, .flags = CALLER,
      .description = "the contact law: {\"type\": name, ...parameters}; absent = penalty with "
                     "its defaults"},
@@ -307,7 +312,8 @@ static const struct tlsph_key scene_keys[] = {
     {.name = "boundary_conditions", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
      .description = "supports and loads"},
     {.name = "contact", .kind = TLSPH_KEY_OBJECT, .flags = CALLER, .table = &tlsph_contact_keys,
-     .description = "contact between bodies; absent = bodies pass through each other"},
+     .description = "contact between bodies and fragments; absent = the default contact "
+                    "(penalty) when the scene has more than one body or a damage model"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 

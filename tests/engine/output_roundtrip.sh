@@ -163,9 +163,9 @@ with Result(sys.argv[2]) as r:
         gstress.max() / 1e6, inside.sum(), sec["damage/value"][k]))
 EOF
 
-# contact output (docs/output.md, docs/contact.md): the contact series only with a
-# contact block, and the module named; the bars of examples/two-bars.json touch
-# and part.
+# contact output (docs/output.md, docs/contact.md): the contact series only with
+# contact, and the module named; the bars of examples/two-bars.json touch and
+# part; the pair series striker--target is the force between them.
 CSCENE=$top_srcdir/examples/two-bars.json
 echo "== contact scene $CSCENE"
 "$RUN" "$CSCENE" -o "$TMP/contact" --quiet || fail "tlsph-run on the contact scene"
@@ -181,7 +181,18 @@ with Result(sys.argv[2]) as r:
     work = r.series("contact_energy")[1]
     assert pairs.max() > 0 and pairs[-1] == 0, "the bars did not touch and part"
     assert work.max() > 0, "no contact work booked"
-    print("contact output: up to %d pairs, peak contact work %.3g J" % (pairs.max(), work.max()))
+    # the body pair's series (docs/output.md): with two bodies the force on the
+    # striker from the target is the striker's contact force, and the opposite
+    # of the target's (f_ij = -f_ji: to round-off of the forces' size)
+    fp = r.series("contacts/striker--target/force")[1]
+    fs = r.series("contacts/striker/force")[1]
+    ft = r.series("contacts/target/force")[1]
+    scale = abs(fs).max()
+    assert scale > 0, "no contact force in the series"
+    assert abs(fp - fs).max() <= 1e-12 * scale, "pair series differs from the striker's"
+    assert abs(fp + ft).max() <= 1e-12 * scale, "pair series is not the opposite of the target's"
+    print("contact output: up to %d pairs, peak contact work %.3g J, peak pair force %.4g N/m"
+          % (pairs.max(), work.max(), scale))
 EOF
 
 factor=8

@@ -40,8 +40,9 @@
  * - The body contact-force series (core/io/fields.c "contacts"): its
  *   trapezoid over the steps is the target bar's momentum change, to 1e-12
  *   (the kicks apply exactly dt/2 (F_n + F_n+1)).
- * - A scene with two bodies and no contact block allocates no contact state
- *   and lists no contact module. */
+ * - A scene with two bodies and contact switched off ("enabled": false; the
+ *   default is on, test_contact_default) allocates no contact state and lists
+ *   no contact module. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -51,6 +52,7 @@
 #include "contact/contact.h"
 #include "contact/state.h"
 #include "support/check_main.h"
+#include "support/contact_lists.h"
 #include "support/scene_builder.h"
 
 /* x momentum of body b, kg m/s (per metre in 2-D), and its mass, kg. */
@@ -291,44 +293,18 @@ START_TEST(damped_oblique_impact_in_3d)
 }
 END_TEST
 
-static int cmp_int32(const void *a, const void *b)
+/* Brute force: all pairs of different bodies (closer than R_i + R_j + skin). */
+static int different_bodies(const struct tlsph_model *m, size_t i, size_t j)
 {
-    const int32_t x = *(const int32_t *)a, y = *(const int32_t *)b;
-    return (x > y) - (x < y);
+    return m->p.body[i] != m->p.body[j];
 }
 
 /* Compares every particle's candidates with all pairs of different bodies
  * closer than R_i + R_j + skin; returns the number of candidate entries. */
 static size_t compare_with_brute_force(const struct tlsph_model *m, const struct tlsph_contact *c)
 {
-    const size_t n = m->p.n;
-    size_t total = 0;
-    int32_t *want = malloc(n * sizeof *want), *got = malloc(n * sizeof *got);
-    ck_assert(want && got);
-    for (size_t i = 0; i < n; i++) {
-        size_t k = 0;
-        const double ri = c->bodies[m->p.body[i]].radius + c->skin;
-        for (size_t j = 0; j < n; j++) {
-            if (j == i || m->p.body[j] == m->p.body[i])
-                continue;
-            const double reach = ri + c->bodies[m->p.body[j]].radius;
-            double r2 = 0.0;
-            for (int d = 0; d < 3; d++)
-                r2 += (m->p.x[3 * j + d] - m->p.x[3 * i + d]) *
-                      (m->p.x[3 * j + d] - m->p.x[3 * i + d]);
-            if (r2 < reach * reach)
-                want[k++] = (int32_t)j;
-        }
-        const size_t have = (size_t)(c->start[i + 1] - c->start[i]);
-        ck_assert_msg(have == k, "particle %zu: %zu candidates, brute force %zu", i, have, k);
-        memcpy(got, c->j + c->start[i], have * sizeof *got);
-        qsort(got, have, sizeof *got, cmp_int32);
-        ck_assert(memcmp(got, want, k * sizeof *got) == 0);
-        total += k;
-    }
-    free(want);
-    free(got);
-    return total;
+    (void)c;
+    return check_candidates(m, different_bodies);
 }
 
 START_TEST(search_matches_brute_force)
@@ -406,7 +382,8 @@ START_TEST(no_contact_block_no_contact_state)
                        "\"bodies\":[{\"name\":\"a\",\"material\":\"steel\",\"spacing\":0.001,"
                        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0]}}},"
                        "{\"name\":\"b\",\"material\":\"steel\",\"spacing\":0.001,"
-                       "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}]}";
+                       "\"geometry\":{\"box\":{\"min\":[0.004,0,0],\"max\":[0.008,0.004,0]}}}],"
+                       "\"contact\":{\"enabled\":false}}";
     struct tlsph_model *m = build_model(json);
     ck_assert(m->contact == NULL);
     for (int k = 0; k < m->nmodules; k++)

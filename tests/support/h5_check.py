@@ -169,6 +169,25 @@ def check_series_group(g, rows, where, live):
     return lengths
 
 
+NAME_RULE = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]{0,62}\Z")
+
+
+def contact_items(scene):
+    """The contact family's items (docs/output.md): none without contact (on by
+    default with more than one body or a damage model, off with "enabled":
+    false); else every body, then the pairs <a>--<b> (at most 66 pairs; a pair
+    name that breaks the naming rule or is taken names nothing)."""
+    bodies = [b["name"] for b in scene.get("bodies", [])]
+    damage = any("damage" in m for m in scene.get("materials", {}).values())
+    if scene.get("contact", {}).get("enabled", True) is False or (len(bodies) < 2 and not damage):
+        return []
+    pairs = ["%s--%s" % (a, b) for i, a in enumerate(bodies) for b in bodies[i + 1:]]
+    if len(pairs) > 66:
+        pairs = []
+    names = [p for p in pairs if NAME_RULE.match(p) and p not in bodies and pairs.count(p) == 1]
+    return bodies + names
+
+
 def check_series(f, series, families, scene, live):
     obs = f["observables"]
     lengths = check_series_group(obs, series, "/observables", live)
@@ -181,7 +200,7 @@ def check_series(f, series, families, scene, live):
              "gauges": [g["name"] for g in out.get("gauges", [])],
              "sections": [c["name"] for c in out.get("sections", [])],
              "walls": walls,
-             "contacts": [b["name"] for b in scene.get("bodies", [])] if "contact" in scene else []}
+             "contacts": contact_items(scene)}
     check("groups" in obs, "/observables/groups exists")
     for family, names in items.items():
         if not names:
@@ -365,6 +384,15 @@ def final(docs, outdir, scene_path):
                   "peak_memory_bytes", "bytes_per_particle"):
             v = float(cost[k])
             check(math.isfinite(v) and v > 0, "/cost %s = %g positive" % (k, v))
+        contact_attrs = ("contact_searches", "contact_search_share", "contact_phase_share")
+        if contact_items(scene):
+            for k in contact_attrs:
+                v = float(cost[k])
+                check(math.isfinite(v) and 0 <= v and (k == "contact_searches" or v < 1),
+                      "/cost %s = %g" % (k, v))
+            check(int(cost["contact_searches"]) >= 1, "/cost contact_searches >= 1")
+        else:
+            check(not any(k in cost for k in contact_attrs), "no /cost contact attributes")
         check(int(cost["particles"]) == N, "/cost particles == N")
         check(int(cost["steps"]) >= steps[-1], "/cost steps >= last frame step")
         check(text(f["diagnostics"].attrs["status"]) == "successful", "/diagnostics status successful")

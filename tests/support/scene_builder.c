@@ -7,7 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-struct tlsph_model *build_model(const char *json)
+struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size)
 {
     struct tlsph_errors err;
     tlsph_errors_init(&err);
@@ -17,7 +17,16 @@ struct tlsph_model *build_model(const char *json)
         tlsph_model_create(&scene, &m, &err);
     for (size_t k = 0; k < err.count; k++)
         fprintf(stderr, "scene error: %s: %s\n", err.items[k].pointer, err.items[k].message);
+    if (size > 0)
+        snprintf(pointer, size, "%s", err.count > 0 ? err.items[0].pointer : "");
     tlsph_errors_free(&err);
+    return m;
+}
+
+struct tlsph_model *build_model(const char *json)
+{
+    char pointer[256];
+    struct tlsph_model *m = try_build_model(json, pointer, sizeof pointer);
     ck_assert_msg(m != NULL, "test scene rejected");
     return m;
 }
@@ -48,6 +57,14 @@ void run_until(struct tlsph_model *m, double t_end)
         tlsph_model_step(m);
         ck_assert_msg(tlsph_model_check(m, &d) == 0, "unstable: %s", d.message);
     }
+}
+
+int model_has_module(const struct tlsph_model *m, const char *name)
+{
+    for (int k = 0; k < m->nmodules; k++)
+        if (strcmp(m->modules[k], name) == 0)
+            return 1;
+    return 0;
 }
 
 double momentum_scale(const struct tlsph_model *m)

@@ -6,12 +6,17 @@
 #include "run/model.h"
 
 struct tlsph_model *build_model(const char *json);
+/* The same without failing: the model, or NULL with the first error's JSON
+ * pointer in pointer (every error printed). */
+struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size);
 /* The model of examples/<name>.json (under $top_srcdir, else "."), with the
  * first body's spacing (m) replaced when spacing > 0. */
 struct tlsph_model *build_example(const char *name, double spacing);
 /* Runs steps until m->t >= t_end, calling the stability check every step;
  * fails the test if the model goes unstable. */
 void run_until(struct tlsph_model *m, double t_end);
+/* 1 when the model's list of active modules names name, else 0. */
+int model_has_module(const struct tlsph_model *m, const char *name);
 /* sum_i m_i |v_i|, kg m/s: the scale momentum drift is measured against. */
 double momentum_scale(const struct tlsph_model *m);
 

@@ -31,6 +31,12 @@ struct tlsph_cost {
     double particle_steps_per_second;
     size_t peak_memory_bytes; /* peak resident set of the process */
     double bytes_per_particle;
+    /* Only with contact (contact set; the others write none of these):
+     * searches made, and the shares of wall_seconds spent in the contact
+     * searches and in the whole contact phase (searches included), 1. */
+    int contact;
+    long contact_searches;
+    double contact_search_share, contact_phase_share;
 };
 
 /* No dataset of the file ever holds a value that is not finite (float32

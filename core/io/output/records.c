@@ -23,6 +23,9 @@ struct records {
     double wall_seconds, particle_steps_per_second;
     int64_t peak_memory_bytes;
     double bytes_per_particle;
+    int contact; /* the contact attributes exist (a run with contact) */
+    int64_t contact_searches;
+    double contact_search_share, contact_phase_share;
     /* /diagnostics */
     const char *status;
     int64_t step;
@@ -43,11 +46,14 @@ struct record_attr {
     enum tlsph_field_type type;  /* of a number */
     size_t count;                /* 0: scalar number; else a 1-D array of count */
     size_t string_size;          /* > 0: a const char * member, stored in this many bytes */
+    int contact_only;            /* written only for a run with contact */
 };
 
-#define NUMBER(group, member, t) {group, #member, offsetof(struct records, member), t, 0, 0}
+#define NUMBER(group, member, t) {group, #member, offsetof(struct records, member), t, 0, 0, 0}
 #define STRING(group, member, size) \
-    {group, #member, offsetof(struct records, member), TLSPH_FLOAT64, 0, size}
+    {group, #member, offsetof(struct records, member), TLSPH_FLOAT64, 0, size, 0}
+/* a /cost attribute of runs with contact only */
+#define CONTACT(member, t) {COST, #member, offsetof(struct records, member), t, 0, 0, 1}
 
 /* In the order of creation. */
 static const struct record_attr record_attrs[] = {
@@ -58,6 +64,9 @@ static const struct record_attr record_attrs[] = {
     NUMBER(COST, particle_steps_per_second, TLSPH_FLOAT64),
     NUMBER(COST, peak_memory_bytes, TLSPH_INT64),
     NUMBER(COST, bytes_per_particle, TLSPH_FLOAT64),
+    CONTACT(contact_searches, TLSPH_INT64),
+    CONTACT(contact_search_share, TLSPH_FLOAT64),
+    CONTACT(contact_phase_share, TLSPH_FLOAT64),
     STRING(DIAGNOSTICS, status, STATUS_LEN),
     NUMBER(DIAGNOSTICS, step, TLSPH_INT64),
     NUMBER(DIAGNOSTICS, time, TLSPH_FLOAT64),
@@ -65,7 +74,7 @@ static const struct record_attr record_attrs[] = {
     NUMBER(DIAGNOSTICS, value, TLSPH_FLOAT64),
     NUMBER(DIAGNOSTICS, limit, TLSPH_FLOAT64),
     NUMBER(DIAGNOSTICS, nids, TLSPH_INT64),
-    {DIAGNOSTICS, "ids", offsetof(struct records, ids), TLSPH_INT64, DIAG_IDS, 0},
+    {DIAGNOSTICS, "ids", offsetof(struct records, ids), TLSPH_INT64, DIAG_IDS, 0, 0},
     STRING(DIAGNOSTICS, message, MESSAGE_LEN),
 };
 
@@ -81,7 +90,7 @@ static int write_group(hid_t file, enum record_group group, int rewrite, const s
     int rc = 0;
     for (size_t i = 0; i < sizeof record_attrs / sizeof record_attrs[0] && rc == 0; i++) {
         const struct record_attr *a = &record_attrs[i];
-        if (a->group != group)
+        if (a->group != group || (a->contact_only && !r->contact))
             continue;
         const void *v = (const char *)r + a->offset;
         const struct tlsph_h5_type t = tlsph_h5_type(a->type);
@@ -119,7 +128,11 @@ int tlsph_records_create(hid_t file, const struct tlsph_model *m)
                         .wall_seconds = NAN,
                         .particle_steps_per_second = NAN,
                         .peak_memory_bytes = -1,
-                        .bytes_per_particle = NAN};
+                        .bytes_per_particle = NAN,
+                        .contact = m->contact != NULL,
+                        .contact_searches = -1,
+                        .contact_search_share = NAN,
+                        .contact_phase_share = NAN};
     no_diagnostic(&r, "running");
     if (write_group(file, COST, 0, &r) < 0 || write_group(file, DIAGNOSTICS, 0, &r) < 0)
         return -1;
@@ -138,6 +151,10 @@ int tlsph_records_write(hid_t file, const struct tlsph_cost *cost, const char *s
         r.particle_steps_per_second = cost->particle_steps_per_second;
         r.peak_memory_bytes = (int64_t)cost->peak_memory_bytes;
         r.bytes_per_particle = cost->bytes_per_particle;
+        r.contact = cost->contact;
+        r.contact_searches = cost->contact_searches;
+        r.contact_search_share = cost->contact_search_share;
+        r.contact_phase_share = cost->contact_phase_share;
         if (write_group(file, COST, 1, &r) < 0)
             return -1;
     }
