@@ -308,6 +308,9 @@ static const struct tlsph_key scene_keys[] = {
      .description = "supports and loads"},
     {.name = "contact", .kind = TLSPH_KEY_OBJECT, .flags = CALLER, .table = &tlsph_contact_keys,
      .description = "contact between bodies; absent = bodies pass through each other"},
+    {.name = "rigid_bodies", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
+     .table = &tlsph_rigid_body_keys,
+     .description = "rigid bodies (plane, box, sphere, cylinder, cone), prescribed or free"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 
