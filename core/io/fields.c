@@ -296,9 +296,8 @@ const struct tlsph_series_column tlsph_global_series[] = {
      "psi_eff dD V0 (part of internal_energy)",
      has_damage, sv_damage_work},
     {"contact_energy", 1, "J",
-     "work done against contact forces (between bodies and with rigid bodies): energy stored "
-     "in the overlaps plus what contact and friction dissipated; enters energy_balance like "
-     "hourglass_energy",
+     "work done against contact forces: energy stored in the overlaps plus what contact "
+     "dissipated; enters energy_balance like hourglass_energy",
      has_contact_work, sv_contact},
     {"contact_pairs", 1, "1", "number of particle pairs in contact (overlapping)", has_contact,
      sv_contact_pairs},
