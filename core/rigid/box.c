@@ -14,13 +14,11 @@
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     TLSPH_KEY_POINT("center", "centre"),
-    {.name = "half_sizes", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
-     .unit = "m", .description = "half the edge lengths [a, b, c] along the box's axes, each > 0; "
-                                 "c ignored in 2-D"},
-    {.name = "rotation", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "rad",
-     .description = "rotation vector (axis x angle) turning the box about its centre from the "
-                    "coordinate axes; absent = aligned; in 2-D only its z component may be "
-                    "non-zero"},
+    TLSPH_KEY_POINT("half_sizes", "half the edge lengths [a, b, c] along the box's axes, each > "
+                                  "0; c ignored in 2-D"),
+    TLSPH_RIGID_VECTOR("rotation", "rad", "rotation vector (axis x angle) turning the box about "
+                                          "its centre from the coordinate axes; absent = "
+                                          "aligned; in 2-D only its z component may be non-zero"),
 };
 static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/rigid_bodies/*/shape", "box", keys);
 /* clang-format on */
@@ -79,12 +77,4 @@ static double extent(const struct tlsph_rigid_spec *r)
     return sqrt(r->size[0] * r->size[0] + r->size[1] * r->size[1] + c * c);
 }
 
-const struct tlsph_rigid_shape tlsph_rigid_box = {
-    .name = "box",
-    .id = TLSPH_RIGID_BOX,
-    .has_volume = 1,
-    .keys = &table,
-    .parse = parse,
-    .mass_properties = mass_properties,
-    .extent = extent,
-};
+TLSPH_RIGID_SHAPE(box, TLSPH_RIGID_BOX, 1);

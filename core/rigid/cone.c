@@ -17,9 +17,7 @@ static const struct tlsph_key keys[] = {
     TLSPH_KEY_POINT("apex", "apex"),
     TLSPH_KEY_DIRECTION("axis", "axis from the apex to the base, any non-zero length (in the "
                                 "x-y plane in 2-D)"),
-    {.name = "height", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(1),
-     .description = "height from the apex to the base"},
+    TLSPH_RIGID_LENGTH("height", 1, "height from the apex to the base"),
     {.name = "radius", .kind = TLSPH_KEY_NUMBER, .range = {0.0, 0.0, JC_OPEN, JC_NONE},
      .unit = "m", .offset = TLSPH_PARAM(0),
      .description = "base radius; exactly one of radius and half_angle"},
@@ -50,11 +48,7 @@ static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const c
         r->size[0] = r->size[1] * tan(json_number_value(angle));
     const double h = r->size[1];
     r->size[2] = dim == 2 ? 2.0 * h / 3.0 : 0.75 * h; /* apex to centroid */
-    for (int k = 0; k < 3; k++)
-        r->centre[k] = apex[k] + r->size[2] * a[k];
-    if (dim == 2)
-        r->centre[2] = 0.0;
-    rigid_axes_from_z(a, r->axes);
+    rigid_place_on_axis(apex, a, r->size[2], dim, r->centre, r->axes);
     return 0;
 }
 
@@ -77,12 +71,4 @@ static double extent(const struct tlsph_rigid_spec *r)
     return fmax(za, sqrt(R * R + (h - za) * (h - za)));
 }
 
-const struct tlsph_rigid_shape tlsph_rigid_cone = {
-    .name = "cone",
-    .id = TLSPH_RIGID_CONE,
-    .has_volume = 1,
-    .keys = &table,
-    .parse = parse,
-    .mass_properties = mass_properties,
-    .extent = extent,
-};
+TLSPH_RIGID_SHAPE(cone, TLSPH_RIGID_CONE, 1);

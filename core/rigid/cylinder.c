@@ -16,12 +16,8 @@ static const struct tlsph_key keys[] = {
     TLSPH_KEY_POINT("base", "centre of the base disc"),
     TLSPH_KEY_DIRECTION("axis", "axis from the base, any non-zero length (in the x-y plane in "
                                 "2-D)"),
-    {.name = "radius", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(0),
-     .description = "radius"},
-    {.name = "length", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(1),
-     .description = "length along the axis, between the end caps"},
+    TLSPH_RIGID_LENGTH("radius", 0, "radius"),
+    TLSPH_RIGID_LENGTH("length", 1, "length along the axis, between the end caps"),
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/rigid_bodies/*/shape", "cylinder", keys);
@@ -37,11 +33,7 @@ static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const c
     if (tlsph_parse_direction(obj, "axis", dim, P, a, err) != 0 || bad)
         return -1;
     r->size[1] *= 0.5; /* half length */
-    for (int k = 0; k < 3; k++)
-        r->centre[k] = base[k] + r->size[1] * a[k];
-    if (dim == 2)
-        r->centre[2] = 0.0;
-    rigid_axes_from_z(a, r->axes);
+    rigid_place_on_axis(base, a, r->size[1], dim, r->centre, r->axes);
     return 0;
 }
 
@@ -63,12 +55,4 @@ static double extent(const struct tlsph_rigid_spec *r)
     return sqrt(r->size[0] * r->size[0] + r->size[1] * r->size[1]);
 }
 
-const struct tlsph_rigid_shape tlsph_rigid_cylinder = {
-    .name = "cylinder",
-    .id = TLSPH_RIGID_CYLINDER,
-    .has_volume = 1,
-    .keys = &table,
-    .parse = parse,
-    .mass_properties = mass_properties,
-    .extent = extent,
-};
+TLSPH_RIGID_SHAPE(cylinder, TLSPH_RIGID_CYLINDER, 1);

@@ -52,4 +52,16 @@ static inline void rigid_axes_from_z(const double a[3], double A[9])
     }
 }
 
+/* A shape along the unit axis a (cylinder, cone): its reference point at
+ * origin + offset a (z = 0 in 2-D, dim), its frame's z along a. */
+static inline void rigid_place_on_axis(const double origin[3], const double a[3], double offset,
+                                       int dim, double centre[3], double axes[9])
+{
+    for (int k = 0; k < 3; k++)
+        centre[k] = origin[k] + offset * a[k];
+    if (dim == 2)
+        centre[2] = 0.0;
+    rigid_axes_from_z(a, axes);
+}
+
 #endif

@@ -13,12 +13,11 @@
 /* clang-format off */
 static const struct tlsph_key prescribed_keys[] = {
     TLSPH_KEY_MODEL_TYPE,
-    {.name = "velocity", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "m/s",
-     .description = "velocity of the reference point, 3 items, each a number or an expression "
-                    "of t (s); absent = at rest"},
-    {.name = "angular_velocity", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER,
-     .unit = "rad/s", .description = "angular velocity about the reference point, 3 items, each "
-                                     "a number or an expression of t (s); absent = 0"},
+    TLSPH_RIGID_VECTOR("velocity", "m/s", "velocity of the reference point, 3 items, each a "
+                                          "number or an expression of t (s); absent = at rest"),
+    TLSPH_RIGID_VECTOR("angular_velocity", "rad/s", "angular velocity about the reference point, "
+                                                    "3 items, each a number or an expression of "
+                                                    "t (s); absent = 0"),
 };
 static const struct tlsph_key free_keys[] = {
     TLSPH_KEY_MODEL_TYPE,
@@ -29,15 +28,14 @@ static const struct tlsph_key free_keys[] = {
      .unit = "kg/m^3", .offset = TLSPH_KEY_NOWHERE,
      .description = "density: mass = density x the shape's volume; exactly one of mass and "
                     "density"},
-    {.name = "velocity", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "m/s",
-     .description = "initial velocity of the centroid, 3 numbers; absent = 0"},
-    {.name = "angular_velocity", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER,
-     .unit = "rad/s", .description = "initial angular velocity, 3 numbers (2-D: about z only); "
-                                     "absent = 0"},
-    {.name = "inertia", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "kg m^2",
-     .description = "inertia tensor about the centroid at t = 0, [xx, yy, zz, xy, xz, yz], "
-                    "positive definite (2-D: zz > 0, per metre, the others ignored); absent = "
-                    "the shape's, of uniform density"},
+    TLSPH_RIGID_VECTOR("velocity", "m/s", "initial velocity of the centroid, 3 numbers; absent "
+                                          "= 0"),
+    TLSPH_RIGID_VECTOR("angular_velocity", "rad/s", "initial angular velocity, 3 numbers (2-D: "
+                                                    "about z only); absent = 0"),
+    TLSPH_RIGID_VECTOR("inertia", "kg m^2", "inertia tensor about the centroid at t = 0, [xx, "
+                                            "yy, zz, xy, xz, yz], positive definite (2-D: zz > "
+                                            "0, per metre, the others ignored); absent = the "
+                                            "shape's, of uniform density"),
 };
 static const struct tlsph_key_table prescribed_table =
     TLSPH_KEY_TABLE("/rigid_bodies/*/motion", "prescribed", prescribed_keys);

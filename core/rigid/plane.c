@@ -45,12 +45,4 @@ static double extent(const struct tlsph_rigid_spec *r)
     return INFINITY;
 }
 
-const struct tlsph_rigid_shape tlsph_rigid_plane = {
-    .name = "plane",
-    .id = TLSPH_RIGID_PLANE,
-    .has_volume = 0,
-    .keys = &table,
-    .parse = parse,
-    .mass_properties = mass_properties,
-    .extent = extent,
-};
+TLSPH_RIGID_SHAPE(plane, TLSPH_RIGID_PLANE, 0);

@@ -92,6 +92,24 @@ struct tlsph_rigid_shape {
     double (*extent)(const struct tlsph_rigid_spec *r);
 };
 
+/* Key rows of the shapes' and motions' tables: a length > 0 read by the key
+ * reader into size[slot]; an optional vector read by the caller. */
+/* clang-format off */
+#define TLSPH_RIGID_LENGTH(key, slot, what)                                                     \
+    {.name = (key), .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,                      \
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(slot),          \
+     .description = (what)}
+#define TLSPH_RIGID_VECTOR(key, unit_, what)                                                    \
+    {.name = (key), .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = (unit_),        \
+     .description = (what)}
+/* A shape's descriptor from its file's static table, parse, mass_properties
+ * and extent: tlsph_rigid_<id>, named "id". */
+#define TLSPH_RIGID_SHAPE(id_, ID, volume)                                                      \
+    const struct tlsph_rigid_shape tlsph_rigid_##id_ = {                                        \
+        .name = #id_, .id = (ID), .has_volume = (volume), .keys = &table, .parse = parse,       \
+        .mass_properties = mass_properties, .extent = extent}
+/* clang-format on */
+
 /* The shape named name, or NULL; the names in table order. */
 const struct tlsph_rigid_shape *tlsph_rigid_shape_find(const char *name);
 const char *tlsph_rigid_shape_names(void);

@@ -11,9 +11,7 @@
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     TLSPH_KEY_POINT("center", "centre"),
-    {.name = "radius", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "m", .offset = TLSPH_PARAM(0),
-     .description = "radius"},
+    TLSPH_RIGID_LENGTH("radius", 0, "radius"),
 };
 static const struct tlsph_key_table table =
     TLSPH_KEY_TABLE("/rigid_bodies/*/shape", "sphere", keys);
@@ -49,12 +47,4 @@ static double extent(const struct tlsph_rigid_spec *r)
     return r->size[0];
 }
 
-const struct tlsph_rigid_shape tlsph_rigid_sphere = {
-    .name = "sphere",
-    .id = TLSPH_RIGID_SPHERE,
-    .has_volume = 1,
-    .keys = &table,
-    .parse = parse,
-    .mass_properties = mass_properties,
-    .extent = extent,
-};
+TLSPH_RIGID_SHAPE(sphere, TLSPH_RIGID_SPHERE, 1);
