@@ -26,8 +26,7 @@ static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/rigid_bodies/*/sha
 static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const char *P,
                  struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(obj, &table, P, err) != 0;
-    bad |= jc_vector(obj, "center", 1, 3, "m", P, r->centre, err) != 0;
+    int bad = tlsph_rigid_read_shape(obj, &table, "center", r->centre, r, P, err) != 0;
     char p[TLSPH_POINTER_MAX];
     if (jc_vector(obj, "half_sizes", 1, 3, "m", P, r->size, err) != 0)
         bad = 1;

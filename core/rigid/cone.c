@@ -15,8 +15,6 @@
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
     TLSPH_KEY_POINT("apex", "apex"),
-    TLSPH_KEY_DIRECTION("axis", "axis from the apex to the base, any non-zero length (in the "
-                                "x-y plane in 2-D)"),
     TLSPH_RIGID_LENGTH("height", 1, "height from the apex to the base"),
     {.name = "radius", .kind = TLSPH_KEY_NUMBER, .range = {0.0, 0.0, JC_OPEN, JC_NONE},
      .unit = "m", .offset = TLSPH_PARAM(0),
@@ -24,6 +22,8 @@ static const struct tlsph_key keys[] = {
     {.name = "half_angle", .kind = TLSPH_KEY_NUMBER, .range = {0.0, 1.5707963267948966, JC_OPEN,
      JC_OPEN}, .unit = "rad", .offset = TLSPH_KEY_NOWHERE,
      .description = "half the apex angle; exactly one of radius and half_angle"},
+    TLSPH_KEY_DIRECTION("axis", "axis from the apex to the base, any non-zero length (in the "
+                                "x-y plane in 2-D)"),
 };
 static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/rigid_bodies/*/shape", "cone", keys);
 /* clang-format on */
@@ -31,10 +31,8 @@ static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/rigid_bodies/*/sha
 static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const char *P,
                  struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(obj, &table, P, err) != 0;
     double apex[3], a[3];
-    bad |= jc_vector(obj, "apex", 1, 3, "m", P, apex, err) != 0;
-    bad |= tlsph_keys_values(obj, &table, P, &(struct tlsph_key_target){.base = r->size}, err) != 0;
+    int bad = tlsph_rigid_read_shape(obj, &table, "apex", apex, r, P, err) != 0;
     const json_t *radius = json_object_get(obj, "radius"), *angle = json_object_get(obj, "half_angle");
     if (!radius == !angle) {
         tlsph_errors_add(err, P, "a cone needs exactly one of 'radius' (m) and 'half_angle' "

@@ -26,10 +26,8 @@ static const struct tlsph_key_table table =
 static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const char *P,
                  struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(obj, &table, P, err) != 0;
     double base[3], a[3];
-    bad |= jc_vector(obj, "base", 1, 3, "m", P, base, err) != 0;
-    bad |= tlsph_keys_values(obj, &table, P, &(struct tlsph_key_target){.base = r->size}, err) != 0;
+    const int bad = tlsph_rigid_read_shape(obj, &table, "base", base, r, P, err) != 0;
     if (tlsph_parse_direction(obj, "axis", dim, P, a, err) != 0 || bad)
         return -1;
     r->size[1] *= 0.5; /* half length */

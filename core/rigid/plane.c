@@ -21,8 +21,7 @@ static const struct tlsph_key_table table = TLSPH_KEY_TABLE("/rigid_bodies/*/sha
 static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const char *P,
                  struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(obj, &table, P, err) != 0;
-    bad |= jc_vector(obj, "point", 1, 3, "m", P, r->centre, err) != 0;
+    const int bad = tlsph_rigid_read_shape(obj, &table, "point", r->centre, r, P, err) != 0;
     double n[3];
     if (tlsph_parse_direction(obj, "normal", dim, P, n, err) != 0)
         return -1;

@@ -110,6 +110,13 @@ struct tlsph_rigid_shape {
         .mass_properties = mass_properties, .extent = extent}
 /* clang-format on */
 
+/* For the shapes' parse: reports the keys of obj that t does not list, reads
+ * the point at key into point (m) and t's lengths into r->size; 0, or -1
+ * after an error (all of them reported). */
+int tlsph_rigid_read_shape(const json_t *obj, const struct tlsph_key_table *t, const char *key,
+                           double point[3], struct tlsph_rigid_spec *r, const char *pointer,
+                           struct tlsph_errors *err);
+
 /* The shape named name, or NULL; the names in table order. */
 const struct tlsph_rigid_shape *tlsph_rigid_shape_find(const char *name);
 const char *tlsph_rigid_shape_names(void);

@@ -20,9 +20,7 @@ static const struct tlsph_key_table table =
 static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const char *P,
                  struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(obj, &table, P, err) != 0;
-    bad |= jc_vector(obj, "center", 1, 3, "m", P, r->centre, err) != 0;
-    bad |= tlsph_keys_values(obj, &table, P, &(struct tlsph_key_target){.base = r->size}, err) != 0;
+    const int bad = tlsph_rigid_read_shape(obj, &table, "center", r->centre, r, P, err) != 0;
     if (dim == 2)
         r->centre[2] = 0.0;
     const double z[3] = {0.0, 0.0, 1.0};
