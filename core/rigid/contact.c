@@ -133,6 +133,7 @@ int tlsph_rigid_search(struct tlsph_model *m, struct tlsph_rigid *r, int force)
             return 0;
     }
     memcpy(r->x_search, x, 3 * n * sizeof *x);
+    r->searches++;
     size_t at = 0;
     for (size_t j = 0; j < r->nb; j++) {
         struct tlsph_rigid_body *k = &r->b[j];

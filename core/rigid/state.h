@@ -44,6 +44,7 @@ struct tlsph_rigid {
     double max_overlap; /* deepest delta / R since the stability contract looked */
     size_t active;      /* particle-body contacts in the last evaluation */
     int failed;         /* a search ran out of memory */
+    long searches;      /* searches made (the first at setup included) */
 };
 
 /* Searches again when the particles and bodies moved too far since the last

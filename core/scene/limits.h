@@ -69,7 +69,8 @@
 #define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
 /* Deepest contact overlap / (R_i + R_j) the stability contract accepts: deeper,
  * two particles are about to pass through each other (tunnelling), so the run
- * stops (contact_penetration) instead of going on silently wrong. */
+ * stops (contact_penetration) instead of going on silently wrong.  The same
+ * bound holds for a particle on a rigid body, overlap / R (rigid_penetration). */
 #define TLSPH_CONTACT_MAX_OVERLAP           0.5
 
 #endif
