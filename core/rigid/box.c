@@ -44,8 +44,9 @@ static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const c
     bad |= rc < 0;
     if (rc == 0 && dim == 2 && (w[0] != 0.0 || w[1] != 0.0)) {
         tlsph_pointer_join(p, sizeof p, P, "rotation");
-        tlsph_errors_add(err, p, "in a 2-D scene a box turns about z only: the x and y "
-                                 "components of 'rotation' must be 0 (rad)");
+        tlsph_errors_add(err, p,
+                         "in a 2-D scene a box turns about z only: the x and y "
+                         "components of 'rotation' must be 0 (rad)");
         bad = 1;
     }
     rigid_rotation(w, r->axes);

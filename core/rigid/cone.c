@@ -33,10 +33,12 @@ static int parse(const json_t *obj, int dim, struct tlsph_rigid_spec *r, const c
 {
     double apex[3], a[3];
     int bad = tlsph_rigid_read_shape(obj, &table, "apex", apex, r, P, err) != 0;
-    const json_t *radius = json_object_get(obj, "radius"), *angle = json_object_get(obj, "half_angle");
+    const json_t *radius = json_object_get(obj, "radius"),
+                 *angle = json_object_get(obj, "half_angle");
     if (!radius == !angle) {
-        tlsph_errors_add(err, P, "a cone needs exactly one of 'radius' (m) and 'half_angle' "
-                                 "(rad), got %s",
+        tlsph_errors_add(err, P,
+                         "a cone needs exactly one of 'radius' (m) and 'half_angle' "
+                         "(rad), got %s",
                          radius ? "both" : "neither");
         bad = 1;
     }

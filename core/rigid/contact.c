@@ -39,6 +39,7 @@
 #include "rigid/shapes.h"
 #include "rigid/state.h"
 #include "run/model.h"
+#include "util/clock.h"
 #include "util/parallel.h"
 
 /* The shape frame in the world now, R = Q axes (columns: the local axes). */
@@ -274,8 +275,8 @@ RIGID_LOOP(sphere_loop, rigid_sphere_distance)
 RIGID_LOOP(cylinder_loop, rigid_cylinder_distance)
 RIGID_LOOP(cone_loop, rigid_cone_distance)
 static const rigid_shape_loop loops[TLSPH_RIGID_SHAPES] = {
-    [TLSPH_RIGID_PLANE] = plane_loop,       [TLSPH_RIGID_BOX] = box_loop,
-    [TLSPH_RIGID_SPHERE] = sphere_loop,     [TLSPH_RIGID_CYLINDER] = cylinder_loop,
+    [TLSPH_RIGID_PLANE] = plane_loop,   [TLSPH_RIGID_BOX] = box_loop,
+    [TLSPH_RIGID_SPHERE] = sphere_loop, [TLSPH_RIGID_CYLINDER] = cylinder_loop,
     [TLSPH_RIGID_CONE] = cone_loop,
 };
 
@@ -283,6 +284,7 @@ void tlsph_rigid_forces(struct tlsph_model *m, double dt)
 {
     struct tlsph_rigid *r = m->rigid;
     const size_t n = m->p.n;
+    const double t0 = tlsph_monotonic_seconds();
     if (tlsph_rigid_search(m, r, 0) != 0)
         r->failed = 1;
     memset(r->f, 0, 3 * n * sizeof *r->f);
@@ -329,4 +331,5 @@ void tlsph_rigid_forces(struct tlsph_model *m, double dt)
         const double dtc = sqrt(dt2);
         m->dt_cfl = dtc < m->dt_cfl ? dtc : m->dt_cfl;
     }
+    r->phase_seconds += tlsph_monotonic_seconds() - t0;
 }

@@ -74,8 +74,9 @@ static int parse_expressions(const json_t *obj, const char *key, const char *uni
     if (!v)
         return 0;
     if (!json_is_array(v) || json_array_size(v) != 3) {
-        tlsph_errors_add(err, p, "'%s' must be an array of 3 items, each a number (%s) or an "
-                                 "expression string of t (s)",
+        tlsph_errors_add(err, p,
+                         "'%s' must be an array of 3 items, each a number (%s) or an "
+                         "expression string of t (s)",
                          key, unit);
         return -1;
     }
@@ -93,8 +94,9 @@ static int parse_expressions(const json_t *obj, const char *key, const char *uni
         if (skip[k]) {
             const double t0 = 0.0;
             if (!ex[k].constant || tlsph_expr_eval(&ex[k], &t0) != 0.0) {
-                tlsph_errors_add(err, q, "in a 2-D scene this component of '%s' must be null "
-                                         "or 0 (%s): the motion stays in the x-y plane",
+                tlsph_errors_add(err, q,
+                                 "in a 2-D scene this component of '%s' must be null "
+                                 "or 0 (%s): the motion stays in the x-y plane",
                                  key, unit);
                 bad = 1;
             }
@@ -122,8 +124,9 @@ static int parse_vector(const json_t *obj, const char *key, const char *unit, co
             char p[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
             tlsph_pointer_join(p, sizeof p, P, key);
             tlsph_pointer_index(q, sizeof q, p, (size_t)k);
-            tlsph_errors_add(err, q, "in a 2-D scene this component of '%s' must be 0 (%s): "
-                                     "the motion stays in the x-y plane",
+            tlsph_errors_add(err, q,
+                             "in a 2-D scene this component of '%s' must be 0 (%s): "
+                             "the motion stays in the x-y plane",
                              key, unit);
             return -1;
         }
@@ -144,7 +147,8 @@ static int free_inertia(const json_t *obj, const struct tlsph_scene *s, struct t
         const double I[9] = {g[0], g[3], g[4], g[3], g[1], g[5], g[4], g[5], g[2]};
         double lam[3], Q[9];
         sym3_eigen(I, lam, Q);
-        const int ok = s->dimension == 2 ? g[2] > 0.0 : lam[0] > 0.0 && lam[1] > 0.0 && lam[2] > 0.0;
+        const int ok =
+            s->dimension == 2 ? g[2] > 0.0 : lam[0] > 0.0 && lam[1] > 0.0 && lam[2] > 0.0;
         if (!ok) {
             char p[TLSPH_POINTER_MAX];
             tlsph_pointer_join(p, sizeof p, P, "inertia");
@@ -177,16 +181,18 @@ static int parse_free(const json_t *obj, const struct tlsph_scene *s, struct tls
                       struct tlsph_errors *err)
 {
     if (!r->shape->has_volume) {
-        tlsph_key_error(err, P, "type", "a %s has no volume and cannot move freely: use "
-                                         "\"prescribed\" motion",
+        tlsph_key_error(err, P, "type",
+                        "a %s has no volume and cannot move freely: use "
+                        "\"prescribed\" motion",
                         r->shape->name);
         return -1;
     }
     int bad = tlsph_keys_read(obj, &free_table, P, &(struct tlsph_key_target){.base = r}, err) != 0;
     const json_t *mass = json_object_get(obj, "mass"), *rho = json_object_get(obj, "density");
     if (!mass == !rho) {
-        tlsph_errors_add(err, P, "a free rigid body needs exactly one of 'mass' (kg; kg/m in 2-D) "
-                                 "and 'density' (kg/m^3), got %s",
+        tlsph_errors_add(err, P,
+                         "a free rigid body needs exactly one of 'mass' (kg; kg/m in 2-D) "
+                         "and 'density' (kg/m^3), got %s",
                          mass ? "both" : "neither");
         return -1;
     }
@@ -212,8 +218,9 @@ int tlsph_rigid_parse_motion(const json_t *entry, const struct tlsph_scene *s,
     if (!obj)
         return 0; /* at rest */
     if (!json_is_object(obj)) {
-        tlsph_errors_add(err, P, "'motion' must be an object {\"type\": \"prescribed\" | \"free\", "
-                                 "...}, got %s",
+        tlsph_errors_add(err, P,
+                         "'motion' must be an object {\"type\": \"prescribed\" | \"free\", "
+                         "...}, got %s",
                          jc_type_name(obj));
         return -1;
     }

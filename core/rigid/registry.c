@@ -31,6 +31,7 @@ int tlsph_rigid_read_shape(const json_t *obj, const struct tlsph_key_table *t, c
 {
     int bad = tlsph_keys_unknown(obj, t, pointer, err) != 0;
     bad |= jc_vector(obj, key, 1, 3, "m", pointer, point, err) != 0;
-    bad |= tlsph_keys_values(obj, t, pointer, &(struct tlsph_key_target){.base = r->size}, err) != 0;
+    bad |=
+        tlsph_keys_values(obj, t, pointer, &(struct tlsph_key_target){.base = r->size}, err) != 0;
     return bad ? -1 : 0;
 }

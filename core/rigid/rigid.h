@@ -83,8 +83,8 @@ struct tlsph_rigid_shape {
     const struct tlsph_key_table *keys;
     /* Reads obj into r's centre, axes and size (dimension 2 or 3); reports
      * under pointer; 0 or -1. */
-    int (*parse)(const json_t *obj, int dimension, struct tlsph_rigid_spec *r,
-                 const char *pointer, struct tlsph_errors *err);
+    int (*parse)(const json_t *obj, int dimension, struct tlsph_rigid_spec *r, const char *pointer,
+                 struct tlsph_errors *err);
     /* Volume (m^3; area x 1 m in 2-D) and the inertia about c per unit mass in
      * the shape's frame, diagonal (m^2; in 2-D only [2], about z). */
     double (*mass_properties)(const struct tlsph_rigid_spec *r, int dimension, double inertia[3]);
@@ -183,6 +183,15 @@ void tlsph_rigid_report(const struct tlsph_model *m, size_t k, struct tlsph_rigi
  * particle (id) and the rigid body (index) overlapping most now, looked for
  * only when the overlap passed TLSPH_CONTACT_MAX_OVERLAP (else -1).  The stability contract stops a run past TLSPH_CONTACT_MAX_OVERLAP. */
 double tlsph_rigid_take_overlap(struct tlsph_model *m, int64_t *id, long *body);
+/* What the rigid-body phase cost so far: searches (the first at setup
+ * included), and the wall-clock seconds of the phase, searches included. */
+struct tlsph_rigid_cost {
+    long searches;
+    double phase_seconds;
+    size_t candidates; /* particle-body candidates now */
+};
+struct tlsph_rigid_cost tlsph_rigid_cost(const struct tlsph_model *m);
+
 /* Particles in contact with a rigid body in the last evaluation. */
 size_t tlsph_rigid_active(const struct tlsph_model *m);
 /* 1 when a search ran out of memory (the run must stop: the stability

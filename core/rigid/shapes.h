@@ -24,9 +24,8 @@
 
 #include <math.h>
 
-static inline __attribute__((always_inline)) double rigid_plane_distance(const double *size,
-                                                                         const double y[3],
-                                                                         double n[3])
+static inline __attribute__((always_inline)) double
+rigid_plane_distance(const double *size, const double y[3], double n[3])
 {
     (void)size;
     n[0] = 0.0;
@@ -35,9 +34,8 @@ static inline __attribute__((always_inline)) double rigid_plane_distance(const d
     return y[2];
 }
 
-static inline __attribute__((always_inline)) double rigid_box_distance(const double *size,
-                                                                       const double y[3],
-                                                                       double n[3])
+static inline __attribute__((always_inline)) double
+rigid_box_distance(const double *size, const double y[3], double n[3])
 {
     double q[3], o[3], out2 = 0.0, inner = -INFINITY;
     int face = 0;
@@ -62,9 +60,8 @@ static inline __attribute__((always_inline)) double rigid_box_distance(const dou
     return inner;
 }
 
-static inline __attribute__((always_inline)) double rigid_sphere_distance(const double *size,
-                                                                          const double y[3],
-                                                                          double n[3])
+static inline __attribute__((always_inline)) double
+rigid_sphere_distance(const double *size, const double y[3], double n[3])
 {
     const double r = sqrt(y[0] * y[0] + y[1] * y[1] + y[2] * y[2]);
     if (r > 0.0) {
@@ -93,9 +90,8 @@ static inline __attribute__((always_inline)) void rigid_revolve(const double y[3
     n[2] = nz;
 }
 
-static inline __attribute__((always_inline)) double rigid_cylinder_distance(const double *size,
-                                                                            const double y[3],
-                                                                            double n[3])
+static inline __attribute__((always_inline)) double
+rigid_cylinder_distance(const double *size, const double y[3], double n[3])
 {
     const double rho = sqrt(y[0] * y[0] + y[1] * y[1]);
     const double q0 = rho - size[0], q1 = fabs(y[2]) - size[1];
@@ -116,9 +112,9 @@ static inline __attribute__((always_inline)) double rigid_cylinder_distance(cons
 
 /* Squared distance from (px, pz) to the segment a-b of the section, and the
  * closest point (cx, cz). */
-static inline __attribute__((always_inline)) double
-rigid_segment(double px, double pz, double ax, double az, double bx, double bz, double *cx,
-              double *cz)
+static inline __attribute__((always_inline)) double rigid_segment(double px, double pz, double ax,
+                                                                  double az, double bx, double bz,
+                                                                  double *cx, double *cz)
 {
     const double ex = bx - ax, ez = bz - az;
     double s = ((px - ax) * ex + (pz - az) * ez) / (ex * ex + ez * ez);
@@ -128,9 +124,8 @@ rigid_segment(double px, double pz, double ax, double az, double bx, double bz, 
     return (px - *cx) * (px - *cx) + (pz - *cz) * (pz - *cz);
 }
 
-static inline __attribute__((always_inline)) double rigid_cone_distance(const double *size,
-                                                                        const double y[3],
-                                                                        double n[3])
+static inline __attribute__((always_inline)) double
+rigid_cone_distance(const double *size, const double y[3], double n[3])
 {
     const double R = size[0], h = size[1];
     const double rho = sqrt(y[0] * y[0] + y[1] * y[1]);

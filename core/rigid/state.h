@@ -11,15 +11,15 @@
 
 struct tlsph_rigid_body {
     const struct tlsph_rigid_spec *spec;
-    int free;      /* moves under the particles' forces */
-    double c[3];   /* reference point, m */
-    double Q[9];   /* orientation, world from the t = 0 frame */
-    double V[3];   /* velocity of c, m/s (half-step during the force evaluation) */
-    double W[3];   /* angular velocity, rad/s (likewise) */
-    double L[3];   /* free: angular momentum about c, kg m^2/s */
-    double mass;   /* free: kg */
-    double Iinv0[9]; /* free: inverse inertia in the t = 0 frame, 1/(kg m^2) */
-    double extent; /* radius about c holding the shape, m (INFINITY: plane) */
+    int free;                  /* moves under the particles' forces */
+    double c[3];               /* reference point, m */
+    double Q[9];               /* orientation, world from the t = 0 frame */
+    double V[3];               /* velocity of c, m/s (half-step during the force evaluation) */
+    double W[3];               /* angular velocity, rad/s (likewise) */
+    double L[3];               /* free: angular momentum about c, kg m^2/s */
+    double mass;               /* free: kg */
+    double Iinv0[9];           /* free: inverse inertia in the t = 0 frame, 1/(kg m^2) */
+    double extent;             /* radius about c holding the shape, m (INFINITY: plane) */
     double F[3], T[3];         /* the particles' force and torque about c (last evaluation) */
     double F_old[3], T_old[3]; /* those of the evaluation before (trapezoidal work) */
     /* at the last search */
@@ -29,9 +29,9 @@ struct tlsph_rigid_body {
 
 struct tlsph_rigid {
     size_t nb;
-    struct tlsph_rigid_body *b;   /* [nb] */
-    double *radius;               /* contact radius R of each scene body's particles, m */
-    double *stiffness;            /* their contact stiffness against a rigid body, N/m (N/m^2 2-D) */
+    struct tlsph_rigid_body *b; /* [nb] */
+    double *radius;             /* contact radius R of each scene body's particles, m */
+    double *stiffness;          /* their contact stiffness against a rigid body, N/m (N/m^2 2-D) */
     /* candidates: the particles of body k are cand[start[k] .. start[k+1]-1] */
     int64_t *start; /* [nb + 1] */
     int32_t *cand;
@@ -44,7 +44,8 @@ struct tlsph_rigid {
     double max_overlap; /* deepest delta / R since the stability contract looked */
     size_t active;      /* particle-body contacts in the last evaluation */
     int failed;         /* a search ran out of memory */
-    long searches;      /* searches made (the first at setup included) */
+    long searches;        /* searches made (the first at setup included) */
+    double phase_seconds; /* wall-clock in the rigid phase of the steps, s */
 };
 
 /* Searches again when the particles and bodies moved too far since the last

@@ -7,6 +7,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "rigid/rigid.h"
 #include "io/output/output.h"
 #include "run/integrate.h"
 #include "run/progress.h"
@@ -254,6 +255,15 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 cc.phase_seconds,
                 cost.wall_seconds > 0 ? 100.0 * cc.phase_seconds / cost.wall_seconds : 0.0,
                 tlsph_contact_candidates(m) / 2);
+    }
+    if (o->log && m->rigid) {
+        const struct tlsph_rigid_cost rc = tlsph_rigid_cost(m);
+        fprintf(o->log,
+                "tlsph: rigid bodies: %ld searches, rigid phase %.3f s (%.1f %% of the run), "
+                "%zu particle-body candidates now\n",
+                rc.searches, rc.phase_seconds,
+                cost.wall_seconds > 0 ? 100.0 * rc.phase_seconds / cost.wall_seconds : 0.0,
+                rc.candidates);
     }
     if (o->log)
         fprintf(o->log,

@@ -97,8 +97,9 @@ int tlsph_parse_rigid_bodies(const json_t *root, struct tlsph_scene *s, struct t
             bad = 1;
         for (size_t j = 0; j < k; j++)
             if (r->name[0] && strcmp(s->rigid[j].name, r->name) == 0) {
-                tlsph_key_error(err, P, "name", "rigid body name '%s' is used twice (also at "
-                                                "/rigid_bodies/%zu)",
+                tlsph_key_error(err, P, "name",
+                                "rigid body name '%s' is used twice (also at "
+                                "/rigid_bodies/%zu)",
                                 r->name, j);
                 bad = 1;
             }

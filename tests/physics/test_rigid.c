@@ -47,17 +47,18 @@ static void expect(const struct tlsph_model *m, size_t k, double x, double y, do
 START_TEST(signed_distance_of_every_shape)
 {
     struct tlsph_model *m = shapes_model(
-        3, "{\"name\":\"p\",\"shape\":{\"type\":\"plane\",\"point\":[0,0,-5],\"normal\":[0,0,2]}},"
-           "{\"name\":\"b\",\"shape\":{\"type\":\"box\",\"center\":[0,0,0],\"half_sizes\":[1,2,3]}},"
-           "{\"name\":\"r\",\"shape\":{\"type\":\"box\",\"center\":[0,0,0],\"half_sizes\":[1,1,1],"
-           "\"rotation\":[0,0,0.78539816339744830962]}},"
-           "{\"name\":\"s\",\"shape\":{\"type\":\"sphere\",\"center\":[1,1,1],\"radius\":0.5}},"
-           "{\"name\":\"c\",\"shape\":{\"type\":\"cylinder\",\"base\":[0,0,0],\"axis\":[0,0,3],"
-           "\"radius\":1,\"length\":2}},"
-           "{\"name\":\"k\",\"shape\":{\"type\":\"cone\",\"apex\":[0,0,0],\"axis\":[0,0,1],"
-           "\"height\":1,\"radius\":1}},"
-           "{\"name\":\"h\",\"shape\":{\"type\":\"cone\",\"apex\":[0,0,0],\"axis\":[0,0,1],"
-           "\"height\":1,\"half_angle\":0.78539816339744830962}}");
+        3,
+        "{\"name\":\"p\",\"shape\":{\"type\":\"plane\",\"point\":[0,0,-5],\"normal\":[0,0,2]}},"
+        "{\"name\":\"b\",\"shape\":{\"type\":\"box\",\"center\":[0,0,0],\"half_sizes\":[1,2,3]}},"
+        "{\"name\":\"r\",\"shape\":{\"type\":\"box\",\"center\":[0,0,0],\"half_sizes\":[1,1,1],"
+        "\"rotation\":[0,0,0.78539816339744830962]}},"
+        "{\"name\":\"s\",\"shape\":{\"type\":\"sphere\",\"center\":[1,1,1],\"radius\":0.5}},"
+        "{\"name\":\"c\",\"shape\":{\"type\":\"cylinder\",\"base\":[0,0,0],\"axis\":[0,0,3],"
+        "\"radius\":1,\"length\":2}},"
+        "{\"name\":\"k\",\"shape\":{\"type\":\"cone\",\"apex\":[0,0,0],\"axis\":[0,0,1],"
+        "\"height\":1,\"radius\":1}},"
+        "{\"name\":\"h\",\"shape\":{\"type\":\"cone\",\"apex\":[0,0,0],\"axis\":[0,0,1],"
+        "\"height\":1,\"half_angle\":0.78539816339744830962}}");
     const double s2 = sqrt(0.5);
     /* plane: d = (x - point).n */
     expect(m, 0, 1, 2, 3, 8, 0, 0, 1);
@@ -175,8 +176,7 @@ START_TEST(drop_on_a_plane_matches_the_wall)
             "drop: impulse %.12g, momentum change %.12g N s/m; rebound momentum %.6g (wall "
             "%.6g) N s/m, p0 %.6g; peak force %.4g N/m; balance %.3g KE0, contact work "
             "%.4g KE0\n",
-            impulse[1], p1[1] - p0[1], p1[1], pw[1], p0[1], peak, worst,
-            m->energy.contact / ke0);
+            impulse[1], p1[1] - p0[1], p1[1], pw[1], p0[1], peak, worst, m->energy.contact / ke0);
     const double scale = fabs(p0[1]);
     for (int c = 0; c < 3; c++)
         ck_assert_msg(fabs(impulse[c] - (p1[c] - p0[c])) < 1e-10 * scale,
@@ -202,15 +202,15 @@ END_TEST
  * estimate is 0.8 of it here: for the line form the contact rarely binds). */
 START_TEST(single_particle_bounces_elastically)
 {
-    struct tlsph_model *m = build_model(
-        "{\"dimension\":2,\"time\":{\"end\":2e-6,\"cfl\":0.3},"
-        "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
-        "\"poisson_ratio\":0.3}},"
-        "\"bodies\":[{\"name\":\"dot\",\"material\":\"steel\",\"spacing\":0.001,"
-        "\"geometry\":{\"box\":{\"min\":[0,0.0000001,0],\"max\":[0.001,0.0010001,0]}},"
-        "\"initial_velocity\":[0,-1,0]}],"
-        "\"rigid_bodies\":[{\"name\":\"floor\",\"shape\":{\"type\":\"plane\","
-        "\"point\":[0,0,0],\"normal\":[0,1,0]}}]}");
+    struct tlsph_model *m =
+        build_model("{\"dimension\":2,\"time\":{\"end\":2e-6,\"cfl\":0.3},"
+                    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+                    "\"poisson_ratio\":0.3}},"
+                    "\"bodies\":[{\"name\":\"dot\",\"material\":\"steel\",\"spacing\":0.001,"
+                    "\"geometry\":{\"box\":{\"min\":[0,0.0000001,0],\"max\":[0.001,0.0010001,0]}},"
+                    "\"initial_velocity\":[0,-1,0]}],"
+                    "\"rigid_bodies\":[{\"name\":\"floor\",\"shape\":{\"type\":\"plane\","
+                    "\"point\":[0,0,0],\"normal\":[0,1,0]}}]}");
     ck_assert_uint_eq(m->p.n, 1);
     const double k = 0.25 * M_PI * 2.1e11 / (1.0 - 0.09), mass = m->p.mass[0];
     const double omega_inv = sqrt(mass / k);
@@ -389,8 +389,8 @@ START_TEST(free_sphere_oblique_with_friction_in_3d)
             "3-D oblique sphere: momentum drift %.3g of |P0|, torque exchange off by %.3g, "
             "total angular momentum drift %.3g of |P0| x 1 cm, spin %.4g rad/s, velocity "
             "(%.4g, %.4g, %.4g) m/s, balance %.3g KE0, contact work %.4g KE0, %ld steps\n",
-            momentum / pn, exchange, dh / (pn * 0.01), spin, r.velocity[0], r.velocity[1], r.velocity[2],
-            balance, m->energy.contact / ke0, m->step);
+            momentum / pn, exchange, dh / (pn * 0.01), spin, r.velocity[0], r.velocity[1],
+            r.velocity[2], balance, m->energy.contact / ke0, m->step);
     ck_assert(r.velocity[2] > -19.0);
     ck_assert_msg(momentum < 1e-12 * pn, "momentum drift %.3g of |P0|", momentum / pn);
     ck_assert_msg(exchange < 1e-12, "torque exchange off by %.3g", exchange);
@@ -561,8 +561,8 @@ static void push_indenter(const char *shape, const char *motion, double toleranc
     ck_assert_msg(flo >= 0.0 && fmax_ > 0.0, "force y in [%g, %g] N/m", flo, fmax_);
     ck_assert_msg(dmin > 0.0, "a particle centre entered the indenter (%.3g m)", dmin);
     ck_assert(m->energy.external_work > 0.0);
-    ck_assert_msg(balance < tolerance * m->energy.external_work,
-                  "energy balance %.3g of the work", balance / m->energy.external_work);
+    ck_assert_msg(balance < tolerance * m->energy.external_work, "energy balance %.3g of the work",
+                  balance / m->energy.external_work);
     tlsph_model_free(m);
 }
 
@@ -622,7 +622,8 @@ static void slide(double mu, double *decel, double *coulomb)
         tlsph_model_step(m);
         ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
         tlsph_rigid_report(m, 0, &r);
-        *coulomb = fmax(*coulomb, fabs(r.force[0] + mu * r.force[1]) / fmax(fabs(r.force[1]), 1e-300));
+        *coulomb =
+            fmax(*coulomb, fabs(r.force[0] + mu * r.force[1]) / fmax(fabs(r.force[1]), 1e-300));
     }
     tlsph_model_momentum(m, p1);
     *decel = (p0[0] - p1[0]) / mass / m->t;
@@ -653,15 +654,15 @@ END_TEST
  * and the plate, before any particle centre reaches the plate's far side. */
 START_TEST(tunnelling_through_a_thin_plate_is_reported)
 {
-    struct tlsph_model *m = build_model(
-        "{\"dimension\":2,\"time\":{\"end\":1e-5,\"cfl\":0.3},"
-        "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
-        "\"poisson_ratio\":0.3}},"
-        "\"bodies\":[{\"name\":\"block\",\"material\":\"steel\",\"spacing\":0.001,"
-        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.01,0.01,0]}},"
-        "\"initial_velocity\":[0,-3000,0]}],"
-        "\"rigid_bodies\":[{\"name\":\"thin_plate\",\"shape\":{\"type\":\"box\","
-        "\"center\":[0.005,-0.0002,0],\"half_sizes\":[0.02,0.0002,1]}}]}");
+    struct tlsph_model *m =
+        build_model("{\"dimension\":2,\"time\":{\"end\":1e-5,\"cfl\":0.3},"
+                    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+                    "\"poisson_ratio\":0.3}},"
+                    "\"bodies\":[{\"name\":\"block\",\"material\":\"steel\",\"spacing\":0.001,"
+                    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.01,0.01,0]}},"
+                    "\"initial_velocity\":[0,-3000,0]}],"
+                    "\"rigid_bodies\":[{\"name\":\"thin_plate\",\"shape\":{\"type\":\"box\","
+                    "\"center\":[0.005,-0.0002,0],\"half_sizes\":[0.02,0.0002,1]}}]}");
     struct tlsph_diagnostic d;
     int stopped = 0;
     double lowest = INFINITY;
@@ -683,8 +684,8 @@ START_TEST(tunnelling_through_a_thin_plate_is_reported)
 END_TEST
 
 TLSPH_CHECK_MAIN("rigid", 600, signed_distance_of_every_shape, drop_on_a_plane_matches_the_wall,
-                 single_particle_bounces_elastically,
-                 free_disc_strikes_a_block, free_sphere_oblique_with_friction_in_3d,
+                 single_particle_bounces_elastically, free_disc_strikes_a_block,
+                 free_sphere_oblique_with_friction_in_3d,
                  torque_free_rotation_keeps_its_angular_momentum,
                  prescribed_wedge_and_rectangle_push_into_a_block,
                  friction_decelerates_a_sliding_block_at_mu_g,
