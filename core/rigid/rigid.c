@@ -152,7 +152,7 @@ double tlsph_rigid_take_overlap(struct tlsph_model *m, int64_t *id, long *body)
 struct tlsph_rigid_cost tlsph_rigid_cost(const struct tlsph_model *m)
 {
     const struct tlsph_rigid *r = m->rigid;
-    return (struct tlsph_rigid_cost){r->searches, r->phase_seconds, (size_t)r->start[r->nb]};
+    return (struct tlsph_rigid_cost){r->searches, r->phase_seconds};
 }
 
 size_t tlsph_rigid_active(const struct tlsph_model *m)

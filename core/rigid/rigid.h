@@ -188,7 +188,6 @@ double tlsph_rigid_take_overlap(struct tlsph_model *m, int64_t *id, long *body);
 struct tlsph_rigid_cost {
     long searches;
     double phase_seconds;
-    size_t candidates; /* particle-body candidates now */
 };
 struct tlsph_rigid_cost tlsph_rigid_cost(const struct tlsph_model *m);
 

@@ -258,12 +258,10 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
     }
     if (o->log && m->rigid) {
         const struct tlsph_rigid_cost rc = tlsph_rigid_cost(m);
+        const double share = cost.wall_seconds > 0 ? rc.phase_seconds / cost.wall_seconds : 0.0;
         fprintf(o->log,
-                "tlsph: rigid bodies: %ld searches, rigid phase %.3f s (%.1f %% of the run), "
-                "%zu particle-body candidates now\n",
-                rc.searches, rc.phase_seconds,
-                cost.wall_seconds > 0 ? 100.0 * rc.phase_seconds / cost.wall_seconds : 0.0,
-                rc.candidates);
+                "tlsph: rigid bodies: %ld searches, rigid phase %.3f s (%.1f %% of the run)\n",
+                rc.searches, rc.phase_seconds, 100.0 * share);
     }
     if (o->log)
         fprintf(o->log,
