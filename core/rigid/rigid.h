@@ -181,7 +181,8 @@ void tlsph_rigid_report(const struct tlsph_model *m, size_t k, struct tlsph_rigi
 /* The deepest overlap / R of a particle on a rigid body in any evaluation
  * since the last call, which starts the next watch; *id and *body the
  * particle (id) and the rigid body (index) overlapping most now, looked for
- * only when the overlap passed TLSPH_CONTACT_MAX_OVERLAP (else -1).  The stability contract stops a run past TLSPH_CONTACT_MAX_OVERLAP. */
+ * only when the overlap passed TLSPH_CONTACT_MAX_OVERLAP (else -1).  The
+ * stability contract stops a run past that bound (rigid_penetration). */
 double tlsph_rigid_take_overlap(struct tlsph_model *m, int64_t *id, long *body);
 /* What the rigid-body phase cost so far: searches (the first at setup
  * included), and the wall-clock seconds of the phase, searches included. */
