@@ -7,6 +7,7 @@
 
 #include "bc/kind.h"
 #include "contact/contact.h"
+#include "rigid/rigid.h"
 #include "util/mat3.h"
 
 static void ex_id(const struct tlsph_model *m, void *out)
@@ -276,6 +277,16 @@ static void sv_initiated(const struct tlsph_model *m, double *o)
 static void sv_dt(const struct tlsph_model *m, double *o) { o[0] = m->dt; }
 
 static int has_contact(const struct tlsph_model *m) { return m->contact != NULL; }
+/* contact between bodies or with rigid bodies: both book contact_energy */
+static int has_contact_work(const struct tlsph_model *m)
+{
+    return m->contact != NULL || m->rigid != NULL;
+}
+static int has_rigid(const struct tlsph_model *m) { return m->rigid != NULL; }
+static void sv_rigid_contacts(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)tlsph_rigid_active(m);
+}
 static void sv_contact(const struct tlsph_model *m, double *o) { o[0] = m->energy.contact; }
 static void sv_contact_pairs(const struct tlsph_model *m, double *o)
 {
@@ -333,9 +344,11 @@ const struct tlsph_series_column tlsph_global_series[] = {
     {"contact_energy", 1, "J",
      "work done against contact forces: energy stored in the overlaps plus what contact "
      "dissipated; enters energy_balance like hourglass_energy",
-     has_contact, sv_contact},
+     has_contact_work, sv_contact},
     {"contact_pairs", 1, "1", "number of particle pairs in contact (overlapping)", has_contact,
      sv_contact_pairs},
+    {"rigid_contacts", 1, "1", "number of particles in contact with a rigid body (overlapping)",
+     has_rigid, sv_rigid_contacts},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
@@ -380,6 +393,37 @@ static const struct tlsph_series_column contact_columns[] = {
      "body b (last force evaluation)",
      NULL, NULL},
 };
+
+/* Rigid bodies (core/rigid/): their motion and what the particles exert on them. */
+static const struct tlsph_series_column rigid_columns[] = {
+    {"position", 3, "m", "the body's reference point (centroid; a plane: its point)", NULL, NULL},
+    {"velocity", 3, "m/s", "velocity of the reference point", NULL, NULL},
+    {"angular_velocity", 3, "rad/s", "angular velocity", NULL, NULL},
+    {"force", 3, "N", "contact force the particles exert on the body (last force evaluation)",
+     NULL, NULL},
+    {"torque", 3, "N m", "torque of those forces about the reference point", NULL, NULL},
+};
+
+static size_t rigid_count(const struct tlsph_model *m)
+{
+    return m->rigid ? m->scene.nrigid : 0;
+}
+static const char *rigid_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.rigid[k].name;
+}
+static void rigid_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    struct tlsph_rigid_report r;
+    tlsph_rigid_report(m, k, &r);
+    for (int c = 0; c < 3; c++) {
+        out[c] = r.position[c];
+        out[3 + c] = r.velocity[c];
+        out[6 + c] = r.angular_velocity[c];
+        out[9 + c] = r.force[c];
+        out[12 + c] = r.torque[c];
+    }
+}
 
 static size_t group_count(const struct tlsph_model *m) { return m->scene.nbcs; }
 static size_t contact_count(const struct tlsph_model *m)
@@ -465,6 +509,8 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_CONTACTS] = {"contacts", 0, contact_columns,
                                sizeof contact_columns / sizeof *contact_columns, contact_count,
                                contact_item, contact_values},
+    [TLSPH_FAMILY_RIGID] = {"rigid", 0, rigid_columns, sizeof rigid_columns / sizeof *rigid_columns,
+                            rigid_count, rigid_item, rigid_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

@@ -7,6 +7,7 @@
 #include "contact/contact.h"
 #include "material/constitutive.h"
 #include "material/failure.h"
+#include "rigid/rigid.h"
 #include "sph/forces.h"
 #include "sph/kinematics.h"
 #include "util/parallel.h"
@@ -21,6 +22,8 @@ void tlsph_evaluate(struct tlsph_model *m, double dt)
     const struct tlsph_force_power pw = tlsph_forces(m);
     if (m->contact)
         m->energy.contact -= dt * tlsph_contact_forces(m, dt);
+    if (m->rigid) /* books its own work: contact, and external for driven bodies */
+        tlsph_rigid_forces(m, dt);
     const double body_power = tlsph_boundary_forces(m);
     /* Work of the optional forces and body forces over the step, at the
      * half-step velocities: first order in dt, and these terms are small. */
@@ -83,6 +86,8 @@ double tlsph_kinetic_energy(const struct tlsph_model *m)
     for (size_t i = 0; i < m->p.n; i++)
         ke += 0.5 * m->p.mass[i] *
               (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+    if (m->rigid) /* the free rigid bodies' (translation and rotation) */
+        ke += tlsph_rigid_kinetic_energy(m);
     return ke;
 }
 
@@ -98,13 +103,15 @@ double tlsph_internal_energy(const struct tlsph_model *m)
 /* One step, phase by phase: what each reads, writes, and books into the
  * energy account (m->energy; the balance is tlsph_energy_balance).
  *
- *   kick          v += dt/2 f/m                    reads f, mass; writes v
+ *   kick          v += dt/2 f/m                    reads f, mass; writes v; with rigid
+ *                                                  bodies their momenta (rigid/rigid.h)
  *   constrain     BC velocities at t + dt/2        writes v of the groups; books the
  *                 (bc/boundary.h)                  supports' work (impulse x prescribed
  *                                                  mid-step velocity) into external_work
  *   walls         velocities into a wall limited   reads f; writes v; books the kinetic
  *                                                  energy of arrival into external_work
- *   drift         x += dt v, t += dt               reads v; writes x
+ *   drift         x += dt v, t += dt               reads v; writes x (and moves the rigid
+ *                                                  bodies)
  *   evaluate (tlsph_evaluate), at the new positions with the half-step velocities:
  *     kinematics  F, Fdot by the crack treatment   reads x, v, D, P_tilde (old); writes F,
  *                 (sph/kinematics.h)               Fdot, crack_gradient (pseudo-spring:
@@ -125,6 +132,10 @@ double tlsph_internal_energy(const struct tlsph_model *m)
  *                 (contact/contact.h)              particle moved half the skin; adds to
  *                                                  f; lowers dt_cfl; books the work against
  *                                                  the contact forces into contact
+ *     rigid       only with rigid bodies           reads x, v, the bodies' state; adds to f;
+ *                 (rigid/rigid.h)                  sets the bodies' reactions; lowers dt_cfl;
+ *                                                  books the interface's work into contact,
+ *                                                  a driven body's into external_work
  *     body forces (bc/boundary.h)                  writes f; books their work into
  *                                                  external_work
  *   kick          v += dt/2 f/m                    as above
@@ -139,12 +150,18 @@ void tlsph_model_step(struct tlsph_model *m)
     const double dt = tlsph_next_dt(m);
     m->dt = dt;
     kick(m, 0.5 * dt);
+    if (m->rigid)
+        tlsph_rigid_kick(m, 0.5 * dt, m->t + 0.5 * dt);
     tlsph_boundary_constrain(m, m->t + 0.5 * dt, m->t + 0.5 * dt);
     tlsph_boundary_before_drift(m, dt);
     drift(m, dt);
+    if (m->rigid)
+        tlsph_rigid_drift(m, m->t, dt);
     m->t += dt;
     tlsph_evaluate(m, dt);
     kick(m, 0.5 * dt);
+    if (m->rigid)
+        tlsph_rigid_kick(m, 0.5 * dt, m->t);
     tlsph_boundary_constrain(m, m->t, m->t - 0.5 * dt);
     tlsph_boundary_end_step(m, dt);
     m->step++;

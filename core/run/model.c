@@ -9,6 +9,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "rigid/rigid.h"
 #include "material/constitutive.h"
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
@@ -43,6 +44,8 @@ void tlsph_model_momentum(const struct tlsph_model *m, double out[3])
     out[0] = p0;
     out[1] = p1;
     out[2] = p2;
+    if (m->rigid)
+        tlsph_rigid_momentum(m, out);
 }
 
 double tlsph_energy_balance(const struct tlsph_energy *e)
@@ -71,6 +74,7 @@ void tlsph_model_free(struct tlsph_model *m)
             free(m->groups[k].index);
     free(m->groups);
     tlsph_contact_free(m);
+    tlsph_rigid_free(m);
     tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
@@ -136,6 +140,18 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "viscosity:monaghan");
     if (m->contact)
         add_module(m, s->contact.law->module);
+    if (m->rigid) {
+        add_module(m, "rigid:penalty_hertz");
+        int friction = 0, free_ = 0;
+        for (size_t k = 0; k < s->nrigid; k++) {
+            friction |= s->rigid[k].friction > 0.0;
+            free_ |= s->rigid[k].motion == TLSPH_RIGID_FREE;
+        }
+        if (friction)
+            add_module(m, "rigid:coulomb_friction");
+        if (free_)
+            add_module(m, "rigid:free_motion");
+    }
     for (size_t k = 0; k < s->nbcs; k++)
         add_module(m, s->bcs[k].kind->module);
     add_module(m, "integrator:velocity_verlet");
@@ -340,6 +356,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     /* only a scene where contact can act (parse_contact.c): the others allocate
      * and run nothing */
     if (m->scene.contact.law && tlsph_contact_create(m, err) != 0)
+        goto fail;
+    if (m->scene.nrigid && tlsph_rigid_create(m, err) != 0)
         goto fail;
     select_modules(m);
 

@@ -20,6 +20,7 @@
 
 struct tlsph_crack_model; /* sph/crack_treatment.h */
 struct tlsph_contact;     /* contact/state.h: the contact phase's state */
+struct tlsph_rigid;       /* rigid/state.h: the rigid bodies' state */
 
 struct tlsph_particles {
     size_t n;
@@ -135,6 +136,8 @@ struct tlsph_model {
                                               once at setup (intact without damage) */
     struct tlsph_contact *contact;  /* contact between bodies (contact/contact.h); NULL
                                        when the scene has none: nothing allocated or run */
+    struct tlsph_rigid *rigid;      /* rigid bodies (rigid/rigid.h); NULL without
+                                       "rigid_bodies": nothing allocated or run */
 
     /* run state */
     long step;
@@ -192,7 +195,7 @@ int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d);
  * (quantity "non_finite_output"). */
 void tlsph_refusal_diagnostic(struct tlsph_model *m, const char *dataset, double value,
                               const int64_t *ids, size_t nids, struct tlsph_diagnostic *d);
-/* Total linear momentum, kg m/s. */
+/* Total linear momentum (particles and free rigid bodies), kg m/s. */
 void tlsph_model_momentum(const struct tlsph_model *m, double out[3]);
 /* kinetic + internal + hourglass + viscous + contact - external work - initial energy, J:
  * 0 when energy is conserved (the stability contract bounds it). */

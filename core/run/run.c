@@ -7,6 +7,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "rigid/rigid.h"
 #include "io/output/output.h"
 #include "run/integrate.h"
 #include "run/progress.h"
@@ -267,6 +268,13 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 cc.phase_seconds,
                 cost.wall_seconds > 0 ? 100.0 * cc.phase_seconds / cost.wall_seconds : 0.0,
                 tlsph_contact_candidates(m) / 2);
+    }
+    if (o->log && m->rigid) {
+        const struct tlsph_rigid_cost rc = tlsph_rigid_cost(m);
+        const double share = cost.wall_seconds > 0 ? rc.phase_seconds / cost.wall_seconds : 0.0;
+        fprintf(o->log,
+                "tlsph: rigid bodies: %ld searches, rigid phase %.3f s (%.1f %% of the run)\n",
+                rc.searches, rc.phase_seconds, 100.0 * share);
     }
     if (o->log)
         fprintf(o->log,

@@ -22,6 +22,7 @@
 #include <string.h>
 
 #include "contact/contact.h"
+#include "rigid/rigid.h"
 #include "material/eos/eos.h"
 #include "run/integrate.h"
 #include "run/model.h"
@@ -170,6 +171,24 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
                     add_id(d, ids[k]);
             return fail(m, d, "contact_penetration", overlap, TLSPH_CONTACT_MAX_OVERLAP, NULL,
                         "(deepest pair now)");
+        }
+    }
+
+    if (m->rigid && tlsph_rigid_failed(m))
+        return fail(m, d, "rigid_search", 0.0, 0.0, "the rigid-body search ran out of memory",
+                    NULL);
+    if (m->rigid) {
+        int64_t id;
+        long body;
+        const double overlap = tlsph_rigid_take_overlap(m, &id, &body);
+        if (overlap > TLSPH_CONTACT_MAX_OVERLAP) {
+            if (id >= 0)
+                add_id(d, id);
+            char what[96]; /* the particle (deepest now) and the body it is passing */
+            snprintf(what, sizeof what, "overlap %.3g of R (limit %.3g) into rigid body '%.40s'",
+                     overlap, TLSPH_CONTACT_MAX_OVERLAP, body >= 0 ? m->scene.rigid[body].name : "?");
+            return fail(m, d, "rigid_penetration", overlap, TLSPH_CONTACT_MAX_OVERLAP, what,
+                        "(deepest now)");
         }
     }
 

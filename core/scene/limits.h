@@ -14,6 +14,7 @@
 #define TLSPH_MAX_MATERIALS      1000      /* entries of "materials" */
 #define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
 #define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
+#define TLSPH_MAX_RIGID_BODIES   32        /* items of "rigid_bodies" */
 #define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
 /* Objects (primitives, unions, differences) in one body's geometry: bounds the
  * lattice walk at (lattice points in the bounding box) x (objects) box tests */
@@ -69,7 +70,8 @@
 #define TLSPH_DEFAULT_CONTACT_SKIN          0.5 /* x the largest body spacing */
 /* Deepest contact overlap / (R_i + R_j) the stability contract accepts: deeper,
  * two particles are about to pass through each other (tunnelling), so the run
- * stops (contact_penetration) instead of going on silently wrong. */
+ * stops (contact_penetration) instead of going on silently wrong.  The same
+ * bound holds for a particle on a rigid body, overlap / R (rigid_penetration). */
 #define TLSPH_CONTACT_MAX_OVERLAP           0.5
 /* Body pairs with a contact-force series: all pairs of different bodies when
  * there are at most this many (12 bodies give 66: a 12-body scene has none);

@@ -15,6 +15,7 @@
 
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
+#include "rigid/rigid.h"
 #include "scene/parse_internal.h"
 
 int tlsph_scene_find_body(const struct tlsph_scene *s, const char *name)
@@ -333,6 +334,7 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     bad |= bodies_bad;
     if (!bodies_bad)
         bad |= tlsph_parse_contact(root, s, err) != 0;
+    bad |= tlsph_parse_rigid_bodies(root, s, err) != 0;
     const int bcs_bad = tlsph_parse_bcs(root, s, err) != 0;
     bad |= bcs_bad;
     if (!bcs_bad)
@@ -431,6 +433,7 @@ void tlsph_scene_free(struct tlsph_scene *s)
     }
     free(s->bodies);
     free(s->bcs);
+    tlsph_rigid_specs_free(s->rigid, s->nrigid);
     free(s->materials);
     free(s->params);
     free(s->json_text);

@@ -17,6 +17,7 @@ extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
 extern const struct tlsph_key_table tlsph_contact_keys;  /* "/contact" */
+extern const struct tlsph_key_table tlsph_rigid_body_keys; /* "/rigid_bodies/<i>" */
 
 /* parse.c: shared helpers */
 /* Compiles a number (as its %.17g text) or an expression string at pointer;
@@ -57,6 +58,9 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
 
 /* parse_contact.c: fills s->contact (bodies already parsed). */
 int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+
+/* parse_rigid.c: fills s->rigid ("rigid_bodies"). */
+int tlsph_parse_rigid_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);

@@ -18,6 +18,7 @@ struct tlsph_eos_model;      /* core/material/eos/eos.h */
 struct tlsph_strength_model; /* core/material/strength/strength.h */
 struct tlsph_damage_model;   /* core/material/damage/damage.h */
 struct tlsph_contact_law;    /* core/contact/contact.h */
+struct tlsph_rigid_spec;     /* core/rigid/rigid.h */
 
 enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
 
@@ -220,6 +221,7 @@ struct tlsph_scene {
     struct tlsph_body *bodies;    size_t nbodies;
     struct tlsph_bc *bcs;         size_t nbcs;
     struct tlsph_contact_settings contact;
+    struct tlsph_rigid_spec *rigid; size_t nrigid; /* "rigid_bodies" (core/rigid/) */
 
     char *json_text;              /* the scene as submitted, compact JSON, for the output file */
 };

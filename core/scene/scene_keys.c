@@ -314,6 +314,9 @@ static const struct tlsph_key scene_keys[] = {
     {.name = "contact", .kind = TLSPH_KEY_OBJECT, .flags = CALLER, .table = &tlsph_contact_keys,
      .description = "contact between bodies and fragments; absent = the default contact "
                     "(penalty) when the scene has more than one body or a damage model"},
+    {.name = "rigid_bodies", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
+     .table = &tlsph_rigid_body_keys,
+     .description = "rigid bodies (plane, box, sphere, cylinder, cone), prescribed or free"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 

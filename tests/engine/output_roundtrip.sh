@@ -195,6 +195,33 @@ with Result(sys.argv[2]) as r:
           % (pairs.max(), work.max(), scale))
 EOF
 
+# rigid-body output (docs/output.md, docs/contact.md): the rigid series and
+# rigid_contacts only with rigid bodies; a free disc hits the block, which rests
+# on a plane with friction, while a prescribed wedge pushes into its side.
+RSCENE=$top_srcdir/tests/scenes/good/rigid_bodies.json
+echo "== rigid-body scene $RSCENE"
+"$RUN" "$RSCENE" -o "$TMP/rigid" --quiet || fail "tlsph-run on the rigid-body scene"
+"$PY" "$CHECK" final "$DOCS" "$TMP/rigid" "$RSCENE" || fail "final checks (rigid-body scene)"
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$TMP/out/result.h5" "$TMP/rigid/result.h5" <<'EOF' || fail "rigid-body output"
+import json
+import sys
+from tlsph_result import Result, text
+with Result(sys.argv[1]) as r:
+    assert not r.has_series("rigid_contacts"), "run without rigid bodies wrote rigid_contacts"
+    assert "rigid" not in r.file["observables"], "run without rigid bodies wrote /observables/rigid"
+with Result(sys.argv[2]) as r:
+    contacts = r.series("rigid_contacts")[1]
+    v = r.series("rigid/ball/velocity")[1]
+    f = r.series("rigid/wedge/force")[1]
+    modules = json.loads(text(r.file["parameters/modules"][()]))
+    assert contacts.max() > 0, "no particle touched a rigid body"
+    assert v[0, 1] < 0 < v[-1, 1], "the ball did not bounce"
+    assert f[:, 0].max() > 0, "the block did not push back on the wedge"
+    assert "rigid:penalty_hertz" in modules, "module not named"
+    print("rigid output: up to %d contacts, ball %.3g -> %.3g m/s, wedge force up to %.3g N/m"
+          % (contacts.max(), v[0, 1], v[-1, 1], f[:, 0].max()))
+EOF
+
 factor=8
 while [ "$live_rc" = 3 ]; do
     [ "$factor" -le 64 ] || fail "never observed a partially written file (the run is too fast)"

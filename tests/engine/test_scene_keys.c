@@ -21,6 +21,7 @@
 #include "material/damage/damage.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
+#include "rigid/rigid.h"
 #include "scene/keys.h"
 #include "scene/scene.h"
 #include "support/check_main.h"
@@ -71,6 +72,8 @@ static struct tables all_tables(void)
     ADD_FAMILY(&all, tlsph_damage_names, tlsph_damage_find);
     ADD_FAMILY(&all, bc_names, tlsph_bc_find);
     ADD_FAMILY(&all, tlsph_contact_names, tlsph_contact_find);
+    ADD_FAMILY(&all, tlsph_rigid_shape_names, tlsph_rigid_shape_find);
+    ADD_FAMILY(&all, tlsph_rigid_motion_names, tlsph_rigid_motion_find);
     return all;
 }
 

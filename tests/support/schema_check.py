@@ -81,6 +81,13 @@ SEMANTIC_ONLY = {
     "initial_velocity_above_speed_limit",
     "velocity_bc_singular",
     "velocity_bc_log_zero",
+    # rigid bodies (core/rigid/, core/scene/parse_rigid.c)
+    "rigid_duplicate_name",            # uniqueness
+    "rigid_overlaps_body",             # the particles at t = 0
+    "rigid_cylinder_zero_axis",        # a direction's length
+    "rigid_box_negative_half_size",    # c is ignored in 2-D, so > 0 depends on "dimension"
+    "rigid_2d_box_rotated_about_x",    # depends on "dimension"
+    "rigid_free_plane",                # motion compared with the shape
 }
 
 
