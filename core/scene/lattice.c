@@ -244,6 +244,17 @@ int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count)
     return lattice_walk(s, b, lo, hi, NULL, 0, count);
 }
 
+/* A body of more than max_points particles: reported at pointer p. */
+static int over_limit(const struct tlsph_scene *s, size_t b, size_t count, long max_points,
+                      const char *p, struct tlsph_errors *err)
+{
+    if (count <= (size_t)max_points)
+        return 0;
+    tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
+                     s->bodies[b].name, count, max_points);
+    return 1;
+}
+
 /* The lattice points of body b (tlsph_body_particles without volumes). */
 static int lattice_points(const struct tlsph_scene *s, size_t b, long max_points, double **out,
                           size_t *n, struct tlsph_errors *err)
@@ -267,11 +278,8 @@ static int lattice_points(const struct tlsph_scene *s, size_t b, long max_points
         tlsph_errors_add(err, p, "out of memory for the geometry of body '%s'", s->bodies[b].name);
         return -1;
     }
-    if (count > (size_t)max_points) {
-        tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
-                         s->bodies[b].name, count, max_points);
+    if (over_limit(s, b, count, max_points, p, err))
         return -1;
-    }
     if (count == 0)
         return 0;
     double *x = malloc(3 * count * sizeof *x);
@@ -299,16 +307,11 @@ static int conforming_points(const struct tlsph_scene *s, size_t b, long max_poi
     char p[TLSPH_POINTER_MAX];
     tlsph_pointer_index(p, sizeof p, "/bodies", b);
     const size_t count = tlsph_conforming_count(s, b);
-    if (count > (size_t)max_points) {
-        tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
-                         s->bodies[b].name, count, max_points);
+    if (over_limit(s, b, count, max_points, p, err))
         return -1;
-    }
-    if (count == 0)
-        return 0;
-    double *x = malloc(3 * count * sizeof *x);
-    double *v = vol ? malloc(count * sizeof *v) : NULL;
-    if (!x || (vol && !v)) {
+    double *x = count ? malloc(3 * count * sizeof *x) : NULL;
+    double *v = count && vol ? malloc(count * sizeof *v) : NULL;
+    if (count && (!x || (vol && !v))) {
         free(x);
         free(v);
         tlsph_errors_add(err, p, "out of memory for %zu particles of body '%s'", count,
