@@ -115,12 +115,12 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
                            ? TLSPH_PLACEMENT_CONFORMING
                            : TLSPH_PLACEMENT_LATTICE;
     if (geometry_ok && b->placement == TLSPH_PLACEMENT_CONFORMING &&
-        !tlsph_conforming_sphere(&b->geometry)) {
+        !tlsph_conforming_base(&b->geometry)) {
         tlsph_pointer_join(p, sizeof p, P, "placement");
         tlsph_errors_add(err, p,
-                         "body '%s': placement 'conforming' follows a sphere's surface (a disc "
-                         "in 2-D): the geometry must be a sphere, or a difference whose first "
-                         "object is a sphere; use 'lattice' for other shapes",
+                         "body '%s': placement 'conforming' follows the curved surface of a "
+                         "sphere (a disc in 2-D) or a cylinder: the geometry must be one, or a "
+                         "difference whose first object is one; use 'lattice' for other shapes",
                          b->name);
         bad = 1;
     }

@@ -79,9 +79,10 @@ size_t tlsph_geometry_count(const struct tlsph_geometry *g);
 int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
                         int (*visit)(const double X[3], void *ctx), void *ctx);
 
-/* conforming.c: the shells of a body with placement conforming (its geometry
- * a sphere, or a difference whose first object is one). */
-const struct tlsph_geometry *tlsph_conforming_sphere(const struct tlsph_geometry *g);
+/* conforming.c: the shells of a body with placement conforming.  The sphere
+ * or cylinder they follow: g itself or the first object of a difference; NULL
+ * when g has none. */
+const struct tlsph_geometry *tlsph_conforming_base(const struct tlsph_geometry *g);
 /* Number of shell points of body b inside its geometry. */
 size_t tlsph_conforming_count(const struct tlsph_scene *s, size_t b);
 /* Fills X (3 per point, m) and vol (m^3, or m^2 in 2-D; when non-NULL) with

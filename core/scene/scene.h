@@ -101,7 +101,8 @@ struct tlsph_geometry {
 enum tlsph_placement {
     TLSPH_PLACEMENT_AUTO,      /* absent in the scene: the parser resolves it to one of */
     TLSPH_PLACEMENT_LATTICE,   /* simple cubic lattice, every particle spacing^d */
-    TLSPH_PLACEMENT_CONFORMING /* shells following a sphere's surface, volume per shell */
+    TLSPH_PLACEMENT_CONFORMING /* shells following a sphere's or cylinder's surface,
+                                  volume per shell */
 };
 
 struct tlsph_body {

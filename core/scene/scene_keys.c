@@ -258,10 +258,11 @@ static const struct tlsph_key body_keys[] = {
     {.name = "placement", .kind = CHOICE, .size = 32, .choices = placements, .noun = "placement",
      .offset = offsetof(struct tlsph_body, placement),
      .description = "lattice = the simple cubic lattice; conforming = concentric shells of "
-                    "thickness and arc spacing about h that follow a sphere's surface (a disc "
-                    "in 2-D; the geometry a sphere or a difference whose first object is one; "
-                    "origin unused), each particle its shell's volume / count; absent = "
-                    "conforming for a sphere without an origin, lattice otherwise"},
+                    "thickness and arc spacing about h that follow the surface of a sphere (a "
+                    "disc in 2-D) or a cylinder (the geometry one of them, or a difference "
+                    "whose first object is one; origin unused), each particle its shell's "
+                    "volume / count; absent = conforming for a sphere without an origin, "
+                    "lattice otherwise"},
     {.name = "origin", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .unit = "m",
      .description = "lattice origin: points sit at origin + (i + 1/2) h; absent = the minimum "
                     "corner of the geometry's bounding box"},

@@ -2,8 +2,8 @@
  * and the Hertz impact of an elastic sphere on a rigid flat (the `wall`).
  *
  * Volumes: every particle of a shell gets the shell's volume / count, so the
- * volumes sum to the body's volume, 4/3 pi R^3 (pi R^2 per metre in 2-D), to
- * round-off: tolerance 1e-12 relative.  A quarter sphere (the sphere minus the
+ * volumes sum to the body's volume, 4/3 pi R^3 (pi R^2 per metre in 2-D,
+ * pi R^2 L for a cylinder), to round-off: tolerance 1e-12 relative.  A quarter sphere (the sphere minus the
  * half-spaces x < c_x and y < c_y) keeps exactly a quarter of every shell.
  *
  * Hertz theory (Johnson, Contact Mechanics, ch. 4 and 11.4): a sphere of radius
@@ -107,6 +107,26 @@ START_TEST(conforming_volumes_sum_to_the_body)
     ck_assert_msg(fabs(sum_volumes(m) / A - 1.0) < 1e-12, "areas %.17g, disc %.17g",
                   sum_volumes(m), A);
     ck_assert(fabs((double)m->p.n / (A / 2.5e-7) - 1.0) < 0.05);
+    tlsph_model_free(m);
+
+    /* 3-D cylinder R = 5 mm, L = 20 mm, oblique axis: pi R^2 L; the outer ring
+     * at R - h/2 from the axis */
+    m = body_model(3, "{\"name\":\"bar\",\"material\":\"steel\",\"spacing\":0.001,"
+                      "\"placement\":\"conforming\",\"geometry\":{\"cylinder\":{"
+                      "\"base\":[0.01,0,0],\"axis\":[2,2,1],\"radius\":0.005,\"length\":0.02}}}");
+    const double Vc = pi * 0.005 * 0.005 * 0.02;
+    double rho_max = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        const double d[3] = {m->p.X[3 * i] - 0.01, m->p.X[3 * i + 1], m->p.X[3 * i + 2]};
+        const double s_ax = (2.0 * d[0] + 2.0 * d[1] + d[2]) / 3.0;
+        rho_max = fmax(rho_max, sqrt(fmax(0.0, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] -
+                                                   s_ax * s_ax)));
+    }
+    fprintf(stderr, "cylinder R = 5 mm, L = 20 mm, h = 1 mm: %zu particles (V/h^3 = %.1f)\n",
+            m->p.n, Vc / 1e-9);
+    ck_assert_msg(fabs(sum_volumes(m) / Vc - 1.0) < 1e-12, "volumes %.17g, cylinder %.17g",
+                  sum_volumes(m), Vc);
+    ck_assert_msg(fabs(rho_max - 0.0045) < 1e-12, "outer ring %.17g m from the axis", rho_max);
     tlsph_model_free(m);
 
     /* the lattice stays reachable, every particle h^3 */
