@@ -1,8 +1,9 @@
 /* The simple cubic lattice that turns a body's geometry into particle
- * positions (a body with "placement": "conforming" takes its shells from
- * conforming.c instead, through the same entry points): origin + (i + 1/2) h per axis, index ranges from floor/ceil of the
+ * positions: origin + (i + 1/2) h per axis, index ranges from floor/ceil of the
  * geometry's bounds so that positions never accumulate rounding, points visited
- * x fastest (the particles' initial order).
+ * x fastest (the particles' initial order).  A body with "placement":
+ * "conforming" takes its shells from conforming.c instead, through the same
+ * entry points (count, visit, positions and volumes).
  *
  * Membership is that of tlsph_geometry_contains (geometry.c), made cheap for
  * geometries of many objects: the walk flattens the geometry tree and, for

@@ -110,10 +110,10 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     /* Absent: a plain sphere follows its surface (measured closer to Hertz, see
      * docs/contact.md), unless the scene pins its lattice with an origin. */
     if (b->placement == TLSPH_PLACEMENT_AUTO)
-        b->placement = geometry_ok && b->geometry.type == TLSPH_GEOM_SPHERE &&
-                               !json_object_get(obj, "origin")
-                           ? TLSPH_PLACEMENT_CONFORMING
-                           : TLSPH_PLACEMENT_LATTICE;
+        b->placement =
+            geometry_ok && b->geometry.type == TLSPH_GEOM_SPHERE && !json_object_get(obj, "origin")
+                ? TLSPH_PLACEMENT_CONFORMING
+                : TLSPH_PLACEMENT_LATTICE;
     if (geometry_ok && b->placement == TLSPH_PLACEMENT_CONFORMING &&
         !tlsph_conforming_base(&b->geometry)) {
         tlsph_pointer_join(p, sizeof p, P, "placement");

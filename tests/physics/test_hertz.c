@@ -34,9 +34,9 @@
 #include "support/scene_builder.h"
 #include "support/check_main.h"
 
-#define RADIUS 0.01   /* m */
+#define RADIUS  0.01 /* m */
 #define DENSITY 7850.0
-#define YOUNG 2.0e11
+#define YOUNG   2.0e11
 #define POISSON 0.3
 
 static const double pi = 3.14159265358979323846;
@@ -63,9 +63,9 @@ static struct tlsph_model *body_model(int dim, const char *body)
 START_TEST(conforming_volumes_sum_to_the_body)
 {
     /* 3-D sphere, placement absent: a plain sphere is conforming by default */
-    struct tlsph_model *m = body_model(
-        3, "{\"name\":\"ball\",\"material\":\"steel\",\"spacing\":0.001,"
-           "\"geometry\":{\"sphere\":{\"center\":[0.1,0.2,0.3],\"radius\":0.01}}}");
+    struct tlsph_model *m =
+        body_model(3, "{\"name\":\"ball\",\"material\":\"steel\",\"spacing\":0.001,"
+                      "\"geometry\":{\"sphere\":{\"center\":[0.1,0.2,0.3],\"radius\":0.01}}}");
     ck_assert_int_eq(m->scene.bodies[0].placement, TLSPH_PLACEMENT_CONFORMING);
     const double V = 4.0 / 3.0 * pi * RADIUS * RADIUS * RADIUS;
     double rmax = 0.0, mass = 0.0;
@@ -75,7 +75,8 @@ START_TEST(conforming_volumes_sum_to_the_body)
         mass += m->p.mass[i];
     }
     const size_t full = m->p.n;
-    fprintf(stderr, "sphere R = 10 mm, h = 1 mm: %zu particles (V/h^3 = %.1f), volume %.15g of %.15g\n",
+    fprintf(stderr,
+            "sphere R = 10 mm, h = 1 mm: %zu particles (V/h^3 = %.1f), volume %.15g of %.15g\n",
             full, V / 1e-9, sum_volumes(m), V);
     ck_assert_msg(fabs(sum_volumes(m) / V - 1.0) < 1e-12, "volumes %.17g, sphere %.17g",
                   sum_volumes(m), V);
@@ -104,8 +105,8 @@ START_TEST(conforming_volumes_sum_to_the_body)
     const double A = pi * 0.005 * 0.005;
     fprintf(stderr, "disc R = 5 mm, h = 0.5 mm: %zu particles (A/h^2 = %.1f)\n", m->p.n,
             A / 2.5e-7);
-    ck_assert_msg(fabs(sum_volumes(m) / A - 1.0) < 1e-12, "areas %.17g, disc %.17g",
-                  sum_volumes(m), A);
+    ck_assert_msg(fabs(sum_volumes(m) / A - 1.0) < 1e-12, "areas %.17g, disc %.17g", sum_volumes(m),
+                  A);
     ck_assert(fabs((double)m->p.n / (A / 2.5e-7) - 1.0) < 0.05);
     tlsph_model_free(m);
 
@@ -119,8 +120,8 @@ START_TEST(conforming_volumes_sum_to_the_body)
     for (size_t i = 0; i < m->p.n; i++) {
         const double d[3] = {m->p.X[3 * i] - 0.01, m->p.X[3 * i + 1], m->p.X[3 * i + 2]};
         const double s_ax = (2.0 * d[0] + 2.0 * d[1] + d[2]) / 3.0;
-        rho_max = fmax(rho_max, sqrt(fmax(0.0, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] -
-                                                   s_ax * s_ax)));
+        rho_max =
+            fmax(rho_max, sqrt(fmax(0.0, d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - s_ax * s_ax)));
     }
     fprintf(stderr, "cylinder R = 5 mm, L = 20 mm, h = 1 mm: %zu particles (V/h^3 = %.1f)\n",
             m->p.n, Vc / 1e-9);
@@ -146,10 +147,10 @@ END_TEST
  * round-off, 1e-12 of sum m |v| (measured in the log). */
 START_TEST(conforming_sphere_conserves_momentum)
 {
-    struct tlsph_model *m = body_model(
-        3, "{\"name\":\"ball\",\"material\":\"steel\",\"spacing\":0.002,"
-           "\"geometry\":{\"sphere\":{\"center\":[0,0,0],\"radius\":0.01}},"
-           "\"initial_velocity\":[\"300*y + 2\",\"-500*z\",\"400*x*x/0.01\"]}");
+    struct tlsph_model *m =
+        body_model(3, "{\"name\":\"ball\",\"material\":\"steel\",\"spacing\":0.002,"
+                      "\"geometry\":{\"sphere\":{\"center\":[0,0,0],\"radius\":0.01}},"
+                      "\"initial_velocity\":[\"300*y + 2\",\"-500*z\",\"400*x*x/0.01\"]}");
     double p0[3], p1[3];
     tlsph_model_momentum(m, p0);
     const double scale = momentum_scale(m);
@@ -282,8 +283,8 @@ START_TEST(conforming_sphere_is_closer_to_hertz_than_the_lattice)
     fprintf(stderr,
             "1 m/s, h = 2 mm: Hertz %.4g us, %.5g N; conforming (%zu particles) %.4g us "
             "(%+.1f %%), %.5g N (%+.1f %%); lattice (%zu) %.4g us (%+.1f %%), %.5g N (%+.1f %%)\n",
-            tc * 1e6, Fmax, c.particles, c.duration * 1e6, 100.0 * (c.duration / tc - 1.0),
-            c.peak, 100.0 * (c.peak / Fmax - 1.0), l.particles, l.duration * 1e6,
+            tc * 1e6, Fmax, c.particles, c.duration * 1e6, 100.0 * (c.duration / tc - 1.0), c.peak,
+            100.0 * (c.peak / Fmax - 1.0), l.particles, l.duration * 1e6,
             100.0 * (l.duration / tc - 1.0), l.peak, 100.0 * (l.peak / Fmax - 1.0));
     ck_assert(fabs(c.duration / tc - 1.0) < fabs(l.duration / tc - 1.0));
     ck_assert(fabs(c.peak / Fmax - 1.0) < fabs(l.peak / Fmax - 1.0));
