@@ -3,8 +3,9 @@
  *
  * Volumes: every particle of a shell gets the shell's volume / count, so the
  * volumes sum to the body's volume, 4/3 pi R^3 (pi R^2 per metre in 2-D,
- * pi R^2 L for a cylinder), to round-off: tolerance 1e-12 relative.  A quarter sphere (the sphere minus the
- * half-spaces x < c_x and y < c_y) keeps exactly a quarter of every shell.
+ * pi R^2 L for a cylinder), to round-off: tolerance 1e-12 relative.  A quarter
+ * sphere (the sphere minus the half-spaces x < c_x and y < c_y) keeps exactly a
+ * quarter of every shell.
  *
  * Hertz theory (Johnson, Contact Mechanics, ch. 4 and 11.4): a sphere of radius
  * R, mass m, speed v on a flat, the quasi-static elastic impact,
@@ -16,14 +17,14 @@
  * Steel, E = 200 GPa, nu = 0.3, rho = 7850 kg/m^3, R = 10 mm.
  *
  * What resolution Hertz needs: the contact radius a = sqrt(R* delta_max) is
- * 0.42 mm at 1 m/s (it grows as v^(2/5)); a particle held by the wall acts
+ * 0.43 mm at 1 m/s (it grows as v^(2/5)); a particle held by the wall acts
  * like a flat punch of radius about one spacing h (measured stiffness
  * 2 E* x 0.98 h at h = 1 mm), so the contact is Hertzian only once a > h.
  * Measured (docs/contact.md, "Hertz impact"): the errors shrink as a / h
  * grows, with the spacing or with the speed.  The tests:
  *  - at 20 m/s, h = 1 mm (a / h = 1.4): contact time and peak force against
  *    Hertz within the tolerances below, set from the measured convergence;
- *  - at 1 m/s, h = 1 mm: the conforming sphere is closer to Hertz than the
+ *  - at 1 m/s, h = 2 mm: the conforming sphere is closer to Hertz than the
  *    lattice sphere in both contact time and peak force. */
 #include <check.h>
 #include <math.h>
@@ -272,7 +273,7 @@ START_TEST(conforming_sphere_on_a_wall_is_hertzian_when_resolved)
 }
 END_TEST
 
-/* 1 m/s, h = 2 mm (a = 0.42 mm, a fifth of a spacing): neither placement
+/* 1 m/s, h = 2 mm (a = 0.43 mm, a fifth of a spacing): neither placement
  * resolves the contact, but the conforming sphere touches at a point where
  * the lattice puts a flat patch.  Measured: contact time -67 % vs -79 %, peak
  * force +164 % vs +345 % (at 1 mm: -48 % vs -74 %, +66 % vs +240 %). */
