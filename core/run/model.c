@@ -230,21 +230,22 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
 {
     struct tlsph_scene *s = &m->scene;
     double **pts = calloc(s->nbodies, sizeof *pts);
+    double **vols = calloc(s->nbodies, sizeof *vols);
     size_t *counts = calloc(s->nbodies, sizeof *counts);
     m->body_begin = tlsph_alloc(m, s->nbodies, sizeof(size_t));
     m->body_end = tlsph_alloc(m, s->nbodies, sizeof(size_t));
     int rc = -1;
     size_t *order = NULL;
-    double *Xall = NULL;
+    double *Xall = NULL, *Vall = NULL;
     int32_t *ball = NULL;
-    if (!pts || !counts || !m->body_begin || !m->body_end) {
+    if (!pts || !vols || !counts || !m->body_begin || !m->body_end) {
         tlsph_errors_add(err, "", "out of memory");
         goto done;
     }
     size_t total = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         long left = s->max_particles - (long)total;
-        if (tlsph_body_lattice(s, b, left, &pts[b], &counts[b], err) != 0)
+        if (tlsph_body_particles(s, b, left, &pts[b], &vols[b], &counts[b], err) != 0)
             goto done;
         if (counts[b] == 0) {
             char ptr[64];
@@ -263,13 +264,15 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
     order = malloc(total * sizeof *order);
     Xall = malloc(3 * total * sizeof *Xall);
     ball = malloc(total * sizeof *ball);
-    if (!order || !Xall || !ball || allocate_particles(m, total) != 0) {
+    Vall = malloc(total * sizeof *Vall);
+    if (!order || !Xall || !ball || !Vall || allocate_particles(m, total) != 0) {
         tlsph_errors_add(err, "", "out of memory for %zu particles", total);
         goto done;
     }
     double cell = 0.0;
     for (size_t b = 0; b < s->nbodies; b++) {
         memcpy(Xall + 3 * m->body_begin[b], pts[b], 3 * counts[b] * sizeof(double));
+        memcpy(Vall + m->body_begin[b], vols[b], counts[b] * sizeof(double));
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
             ball[i] = (int32_t)b;
         cell = fmax(cell, s->support_factor * s->bodies[b].spacing);
@@ -287,8 +290,7 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
         p->body[k] = ball[o];
         for (int c = 0; c < 3; c++)
             p->X[3 * k + c] = p->x[3 * k + c] = Xall[3 * o + c];
-        p->vol0[k] = m->dim == 2 ? body->spacing * body->spacing
-                                 : body->spacing * body->spacing * body->spacing;
+        p->vol0[k] = Vall[o]; /* spacing^d on the lattice, per shell when conforming */
         p->mass[k] = mat->density * p->vol0[k];
         p->h[k] = 0.5 * s->support_factor * body->spacing;
         for (int c = 0; c < 3; c++) {
@@ -301,10 +303,15 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
     }
     rc = 0;
 done:
-    if (pts)
-        for (size_t b = 0; b < s->nbodies; b++)
+    for (size_t b = 0; b < s->nbodies; b++) {
+        if (pts)
             free(pts[b]);
+        if (vols)
+            free(vols[b]);
+    }
     free(pts);
+    free(vols);
+    free(Vall);
     free(counts);
     free(order);
     free(Xall);

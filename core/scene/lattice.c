@@ -1,7 +1,9 @@
 /* The simple cubic lattice that turns a body's geometry into particle
  * positions: origin + (i + 1/2) h per axis, index ranges from floor/ceil of the
  * geometry's bounds so that positions never accumulate rounding, points visited
- * x fastest (the particles' initial order).
+ * x fastest (the particles' initial order).  A body with "placement":
+ * "conforming" takes its shells from conforming.c instead, through the same
+ * entry points (count, visit, positions and volumes).
  *
  * Membership is that of tlsph_geometry_contains (geometry.c), made cheap for
  * geometries of many objects: the walk flattens the geometry tree and, for
@@ -157,10 +159,28 @@ double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], lo
     return total;
 }
 
+/* tlsph_lattice_visit for a conforming body: its shell points. */
+static int conforming_visit(const struct tlsph_scene *s, size_t b,
+                            int (*visit)(const double X[3], void *ctx), void *ctx)
+{
+    const size_t n = tlsph_conforming_count(s, b);
+    double *X = malloc((n ? n : 1) * 3 * sizeof *X);
+    if (!X)
+        return -1;
+    tlsph_conforming_fill(s, b, X, NULL);
+    int r = 0;
+    for (size_t i = 0; i < n && !r; i++)
+        r = visit(X + 3 * i, ctx);
+    free(X);
+    return r;
+}
+
 int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
                         int (*visit)(const double X[3], void *ctx), void *ctx)
 {
     const struct tlsph_body *body = &s->bodies[b];
+    if (body->placement == TLSPH_PLACEMENT_CONFORMING)
+        return conforming_visit(s, b, visit, ctx);
     const double h = body->spacing;
     struct walker w;
     if (walker_init(&w, &body->geometry, s->dimension) != 0)
@@ -213,6 +233,10 @@ static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
 
 int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count)
 {
+    if (s->bodies[b].placement == TLSPH_PLACEMENT_CONFORMING) {
+        *count = tlsph_conforming_count(s, b);
+        return 0;
+    }
     long lo[3], hi[3];
     const double total = tlsph_lattice_range(s, b, lo, hi);
     *count = 0;
@@ -221,8 +245,20 @@ int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count)
     return lattice_walk(s, b, lo, hi, NULL, 0, count);
 }
 
-int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,
-                       size_t *n, struct tlsph_errors *err)
+/* A body of more than max_points particles: reported at pointer p. */
+static int over_limit(const struct tlsph_scene *s, size_t b, size_t count, long max_points,
+                      const char *p, struct tlsph_errors *err)
+{
+    if (count <= (size_t)max_points)
+        return 0;
+    tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
+                     s->bodies[b].name, count, max_points);
+    return 1;
+}
+
+/* The lattice points of body b (tlsph_body_particles without volumes). */
+static int lattice_points(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                          size_t *n, struct tlsph_errors *err)
 {
     char p[TLSPH_POINTER_MAX];
     tlsph_pointer_index(p, sizeof p, "/bodies", b);
@@ -243,11 +279,8 @@ int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, d
         tlsph_errors_add(err, p, "out of memory for the geometry of body '%s'", s->bodies[b].name);
         return -1;
     }
-    if (count > (size_t)max_points) {
-        tlsph_errors_add(err, p, "body '%s' has %zu particles, more than the limit of %ld",
-                         s->bodies[b].name, count, max_points);
+    if (over_limit(s, b, count, max_points, p, err))
         return -1;
-    }
     if (count == 0)
         return 0;
     double *x = malloc(3 * count * sizeof *x);
@@ -266,4 +299,66 @@ int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, d
     *out = x;
     *n = count;
     return 0;
+}
+
+/* A conforming body's shells: counted first against max_points like the lattice. */
+static int conforming_points(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                             double **vol, size_t *n, struct tlsph_errors *err)
+{
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_index(p, sizeof p, "/bodies", b);
+    const size_t count = tlsph_conforming_count(s, b);
+    if (over_limit(s, b, count, max_points, p, err))
+        return -1;
+    double *x = count ? malloc(3 * count * sizeof *x) : NULL;
+    double *v = count && vol ? malloc(count * sizeof *v) : NULL;
+    if (count && (!x || (vol && !v))) {
+        free(x);
+        free(v);
+        tlsph_errors_add(err, p, "out of memory for %zu particles of body '%s'", count,
+                         s->bodies[b].name);
+        return -1;
+    }
+    tlsph_conforming_fill(s, b, x, v);
+    *out = x;
+    if (vol)
+        *vol = v;
+    *n = count;
+    return 0;
+}
+
+int tlsph_body_particles(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                         double **vol, size_t *n, struct tlsph_errors *err)
+{
+    *out = NULL;
+    *n = 0;
+    if (vol)
+        *vol = NULL;
+    const struct tlsph_body *body = &s->bodies[b];
+    if (body->placement == TLSPH_PLACEMENT_CONFORMING)
+        return conforming_points(s, b, max_points, out, vol, n, err);
+    if (lattice_points(s, b, max_points, out, n, err) != 0)
+        return -1;
+    if (!vol || *n == 0)
+        return 0;
+    double *v = malloc(*n * sizeof *v);
+    if (!v) {
+        free(*out);
+        *out = NULL;
+        *n = 0;
+        tlsph_errors_add(err, "", "out of memory for the volumes of body '%s'", body->name);
+        return -1;
+    }
+    const double h = body->spacing;
+    const double each = s->dimension == 2 ? h * h : h * h * h;
+    for (size_t i = 0; i < *n; i++)
+        v[i] = each;
+    *vol = v;
+    return 0;
+}
+
+int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                       size_t *n, struct tlsph_errors *err)
+{
+    return tlsph_body_particles(s, b, max_points, out, NULL, n, err);
 }

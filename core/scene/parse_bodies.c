@@ -1,5 +1,5 @@
-/* Scene bodies: "bodies": [{name, material, spacing, lattice, origin, geometry,
- * initial_velocity}, ...] -> s->bodies, and the particle-count checks that
+/* Scene bodies: "bodies": [{name, material, spacing, lattice, placement, origin,
+ * geometry, initial_velocity}, ...] -> s->bodies, and the particle-count checks that
  * keep a scene from asking for an absurd number of particles. */
 #include <math.h>
 #include <stdlib.h>
@@ -106,6 +106,23 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
         bad = 1;
     } else {
         geometry_ok = 1;
+    }
+    /* Absent: a plain sphere follows its surface (measured closer to Hertz, see
+     * docs/contact.md), unless the scene pins its lattice with an origin. */
+    if (b->placement == TLSPH_PLACEMENT_AUTO)
+        b->placement =
+            geometry_ok && b->geometry.type == TLSPH_GEOM_SPHERE && !json_object_get(obj, "origin")
+                ? TLSPH_PLACEMENT_CONFORMING
+                : TLSPH_PLACEMENT_LATTICE;
+    if (geometry_ok && b->placement == TLSPH_PLACEMENT_CONFORMING &&
+        !tlsph_conforming_base(&b->geometry)) {
+        tlsph_pointer_join(p, sizeof p, P, "placement");
+        tlsph_errors_add(err, p,
+                         "body '%s': placement 'conforming' follows the curved surface of a "
+                         "sphere (a disc in 2-D) or a cylinder: the geometry must be one, or a "
+                         "difference whose first object is one; use 'lattice' for other shapes",
+                         b->name);
+        bad = 1;
     }
     const int r = jc_vector(obj, "origin", 0, 3, "m", P, b->origin, err);
     if (r < 0) {

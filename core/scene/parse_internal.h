@@ -69,17 +69,29 @@ int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_erro
  * (i in [lo[d], hi[d]], empty when hi < lo) and the number of candidate
  * points (product of the ranges, as a double so that it cannot overflow). */
 double tlsph_lattice_range(const struct tlsph_scene *s, size_t b, long lo[3], long hi[3]);
-/* *count = the number of lattice points of body b inside its geometry; 0, or
- * -1 when out of memory. */
+/* *count = the number of lattice points of body b inside its geometry (its
+ * shell points when its placement is conforming); 0, or -1 when out of memory. */
 int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count);
 /* Objects (primitives, unions and differences) in geometry g, g included. */
 size_t tlsph_geometry_count(const struct tlsph_geometry *g);
-/* Calls visit at each lattice point X (m) of body b inside its geometry, within
+/* Calls visit at each lattice point X (m) of body b inside its geometry (a
+ * conforming body: at each shell point, in the order of tlsph_body_lattice,
+ * lo and hi unused), within
  * the index range lo..hi of tlsph_lattice_range, x fastest (the order of
  * tlsph_body_lattice); stops at the first non-zero return and returns it (visitors return
  * positive values); -1 when out of memory. */
 int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
                         int (*visit)(const double X[3], void *ctx), void *ctx);
+
+/* conforming.c: the shells of a body with placement conforming.  The sphere
+ * or cylinder they follow: g itself or the first object of a difference; NULL
+ * when g has none. */
+const struct tlsph_geometry *tlsph_conforming_base(const struct tlsph_geometry *g);
+/* Number of shell points of body b inside its geometry. */
+size_t tlsph_conforming_count(const struct tlsph_scene *s, size_t b);
+/* Fills X (3 per point, m) and vol (m^3, or m^2 in 2-D; when non-NULL) with
+ * the tlsph_conforming_count(s, b) points. */
+void tlsph_conforming_fill(const struct tlsph_scene *s, size_t b, double *X, double *vol);
 
 /* check_values.c: the scene's expressions are finite where the engine evaluates
  * them.  The fastest initial speed of a body and where it is. */

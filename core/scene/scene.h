@@ -98,10 +98,19 @@ struct tlsph_geometry {
     size_t nchildren;
 };
 
+/* How a body's geometry becomes particles (core/scene/lattice.c, conforming.c). */
+enum tlsph_placement {
+    TLSPH_PLACEMENT_AUTO,      /* absent in the scene: the parser resolves it to one of */
+    TLSPH_PLACEMENT_LATTICE,   /* simple cubic lattice, every particle spacing^d */
+    TLSPH_PLACEMENT_CONFORMING /* shells following a sphere's or cylinder's surface,
+                                  volume per shell */
+};
+
 struct tlsph_body {
     char name[TLSPH_NAME_MAX];
     int material;       /* index into scene->materials */
-    double spacing;     /* lattice spacing, m */
+    double spacing;     /* lattice spacing (conforming: shell thickness and arc spacing), m */
+    enum tlsph_placement placement;
     double origin[3];   /* lattice origin (a lattice point sits at origin + (i+1/2)*spacing), m */
     struct tlsph_geometry geometry;
     struct tlsph_expr initial_velocity[3]; /* expressions of x, y, z (m) -> m/s; evaluator NULL = 0 */
@@ -240,9 +249,17 @@ void tlsph_scene_free(struct tlsph_scene *scene);
 int tlsph_geometry_contains(const struct tlsph_geometry *g, const double X[3]);
 /* Axis-aligned bounding box of g (m). */
 void tlsph_geometry_bounds(const struct tlsph_geometry *g, double lo[3], double hi[3]);
-/* Lattice points of body b inside its geometry: *out gets 3*n doubles (z = 0 in 2-D),
- * owned by the caller.  Counts first and refuses more than max_points. */
+/* The particle positions of body b (its lattice points inside its geometry, or
+ * its conforming shells, by its placement): *out gets 3*n doubles (z = 0 in
+ * 2-D), owned by the caller.  Counts first and refuses more than max_points. */
 int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,
                        size_t *n, struct tlsph_errors *err);
+/* The particles of body b by its placement: *out gets 3*n positions (m) and,
+ * when vol is non-NULL, *vol gets n reference volumes (m^3; m^2 per metre in
+ * 2-D): spacing^d on the lattice, the shell's volume / count when conforming.
+ * Both arrays owned by the caller (NULL when n = 0).  Refuses more than
+ * max_points like tlsph_body_lattice. */
+int tlsph_body_particles(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                         double **vol, size_t *n, struct tlsph_errors *err);
 
 #endif

@@ -17,6 +17,7 @@
 _Static_assert(sizeof(enum tlsph_kernel_type) == sizeof(int), "kernel choice stored as int");
 _Static_assert(sizeof(enum tlsph_crack_treatment) == sizeof(int), "treatment stored as int");
 _Static_assert(sizeof(enum tlsph_failed_motion) == sizeof(int), "motion stored as int");
+_Static_assert(sizeof(enum tlsph_placement) == sizeof(int), "placement stored as int");
 
 #define AT(member) offsetof(struct tlsph_scene, member)
 #define NUMBER TLSPH_KEY_NUMBER
@@ -240,6 +241,8 @@ const struct tlsph_key_table tlsph_material_keys =
 /* ------------------------------------------------------------------ bodies */
 
 static const struct tlsph_key_choice lattices[] = {{"simple_cubic", 0}, {0}};
+static const struct tlsph_key_choice placements[] = {
+    {"lattice", TLSPH_PLACEMENT_LATTICE}, {"conforming", TLSPH_PLACEMENT_CONFORMING}, {0}};
 
 static const struct tlsph_key body_keys[] = {
     {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
@@ -252,6 +255,14 @@ static const struct tlsph_key body_keys[] = {
     {.name = "lattice", .kind = CHOICE, .flags = DEFAULT, .def = 0, .size = 32,
      .choices = lattices, .noun = "lattice", .offset = TLSPH_KEY_NOWHERE,
      .description = "lattice type"},
+    {.name = "placement", .kind = CHOICE, .size = 32, .choices = placements, .noun = "placement",
+     .offset = offsetof(struct tlsph_body, placement),
+     .description = "lattice = the simple cubic lattice; conforming = concentric shells of "
+                    "thickness and arc spacing about h that follow the surface of a sphere (a "
+                    "disc in 2-D) or a cylinder (the geometry one of them, or a difference "
+                    "whose first object is one; origin unused), each particle its shell's "
+                    "volume / count; absent = conforming for a sphere without an origin, "
+                    "lattice otherwise"},
     {.name = "origin", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .unit = "m",
      .description = "lattice origin: points sit at origin + (i + 1/2) h; absent = the minimum "
                     "corner of the geometry's bounding box"},
