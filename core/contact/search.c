@@ -205,12 +205,16 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
         memset(start, 0, (n + 1) * sizeof *start);
         return -1;
     }
+    if (start[n] > 0) {
 #pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
-    for (size_t i = 0; i < n; i++)
-        scan(m, c, &g, i, c->j + start[i]);
+        for (size_t i = 0; i < n; i++)
+            scan(m, c, &g, i, c->j + start[i]);
+    }
     memcpy(c->x_search, x, 3 * n * sizeof *x);
-    /* no force from the new candidates until the next evaluation */
-    memset(c->s_pair, 0, (size_t)start[n] * sizeof *c->s_pair);
+    /* no force from the new candidates until the next evaluation (a search
+     * may find none: then nothing was allocated) */
+    if (start[n] > 0)
+        memset(c->s_pair, 0, (size_t)start[n] * sizeof *c->s_pair);
     c->searches++;
     c->search_seconds += tlsph_monotonic_seconds() - t0;
     return 0;

@@ -74,6 +74,9 @@ check "  the output's href serves it" [ "$STATUS" = 200 ]
 req GET "$D_URL/jobs/$OK_ID"
 check "statusInfo: updated is the latest of created, started, finished" \
     [ "$(jget "$BODY" "d['updated'] == max(d['created'], d['started'], d['finished'])")" = True ]
+# dismissed while running, so it counts among the jobs that ran (maxDuration
+# below): on a busy machine it may still be queued behind the tiny job here
+wait_status "$D_URL" "$LONG" '^running$' || fail "long job did not start"
 req DELETE "$D_URL/jobs/$LONG"
 wait_status "$D_URL" "$LONG" '^dismissed$'
 req GET "$D_URL/jobs/$LONG/results"

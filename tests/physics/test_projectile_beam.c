@@ -34,7 +34,6 @@
 #include <jansson.h>
 #include <math.h>
 #include <stdio.h>
-#include <stdlib.h>
 
 #include "support/check_main.h"
 #include "support/scene_builder.h"
@@ -56,12 +55,7 @@
  * the same size, density and speed. */
 static struct tlsph_model *coarse_beam(int rigid)
 {
-    const char *top = getenv("top_srcdir");
-    char path[4096];
-    snprintf(path, sizeof path, "%s/examples/projectile-beam.json", top ? top : ".");
-    json_error_t jerr;
-    json_t *root = json_load_file(path, 0, &jerr);
-    ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
+    json_t *root = load_example("projectile-beam");
     json_t *bodies = json_object_get(root, "bodies");
     size_t k;
     json_t *body;
@@ -79,12 +73,7 @@ static struct tlsph_model *coarse_beam(int rigid)
         ck_assert(box != NULL);
         json_object_set_new(root, "rigid_bodies", box);
     }
-    char *text = json_dumps(root, JSON_COMPACT);
-    json_decref(root);
-    ck_assert(text != NULL);
-    struct tlsph_model *m = build_model(text);
-    free(text);
-    return m;
+    return build_model_json(root);
 }
 
 /* Runs the beam struck by a projectile of mass G (kg/m) to T_END and checks

@@ -31,7 +31,7 @@ struct tlsph_model *build_model(const char *json)
     return m;
 }
 
-struct tlsph_model *build_example(const char *name, double spacing)
+json_t *load_example(const char *name)
 {
     const char *top = getenv("top_srcdir");
     char path[4096];
@@ -39,15 +39,26 @@ struct tlsph_model *build_example(const char *name, double spacing)
     json_error_t jerr;
     json_t *root = json_load_file(path, 0, &jerr);
     ck_assert_msg(root != NULL, "cannot read %s: %s", path, jerr.text);
-    if (spacing > 0.0)
-        json_object_set_new(json_array_get(json_object_get(root, "bodies"), 0), "spacing",
-                            json_real(spacing));
+    return root;
+}
+
+struct tlsph_model *build_model_json(json_t *root)
+{
     char *text = json_dumps(root, JSON_COMPACT);
     json_decref(root);
     ck_assert(text != NULL);
     struct tlsph_model *m = build_model(text);
     free(text);
     return m;
+}
+
+struct tlsph_model *build_example(const char *name, double spacing)
+{
+    json_t *root = load_example(name);
+    if (spacing > 0.0)
+        json_object_set_new(json_array_get(json_object_get(root, "bodies"), 0), "spacing",
+                            json_real(spacing));
+    return build_model_json(root);
 }
 
 void run_until(struct tlsph_model *m, double t_end)

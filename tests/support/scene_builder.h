@@ -3,12 +3,19 @@
 #ifndef TLSPH_TEST_SCENE_BUILDER_H
 #define TLSPH_TEST_SCENE_BUILDER_H
 
+#include <jansson.h>
+
 #include "run/model.h"
 
 struct tlsph_model *build_model(const char *json);
 /* The same without failing: the model, or NULL with the first error's JSON
  * pointer in pointer (every error printed). */
 struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size);
+/* examples/<name>.json (under $top_srcdir, else ".") as JSON, a new reference;
+ * fails the test when it cannot be read. */
+json_t *load_example(const char *name);
+/* build_model of root's text; takes over root's reference. */
+struct tlsph_model *build_model_json(json_t *root);
 /* The model of examples/<name>.json (under $top_srcdir, else "."), with the
  * first body's spacing (m) replaced when spacing > 0. */
 struct tlsph_model *build_example(const char *name, double spacing);
