@@ -6,60 +6,28 @@
 #include "bc/selector.h"
 #include "scene/parse_internal.h"
 
-static const char *const tvar[] = {"t"};
-
 static int parse_velocity(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                           const char *P, struct tlsph_errors *err)
 {
     char p[TLSPH_POINTER_MAX];
     tlsph_pointer_join(p, sizeof p, P, "velocity");
-    const json_t *v = json_object_get(obj, "velocity");
-    if (!v) {
+    if (!json_object_get(obj, "velocity")) {
         tlsph_errors_add(err, p, "required field 'velocity' (3 items: m/s, expression of t, or "
                                  "null) is missing");
         return -1;
     }
-    if (!json_is_array(v) || json_array_size(v) != 3) {
-        tlsph_errors_add(err, p,
-                         "'velocity' must be an array of 3 items, each a number (m/s), an "
-                         "expression string of t (s) giving m/s, or null (free component)");
-        return -1;
-    }
-    int bad = 0, given = 0;
-    for (int k = 0; k < 3; k++) {
-        char q[TLSPH_POINTER_MAX];
-        tlsph_pointer_index(q, sizeof q, p, (size_t)k);
-        const json_t *c = json_array_get(v, (size_t)k);
-        if (json_is_null(c))
-            continue;
-        if (tlsph_scene_expr(&bc->velocity[k], c, tvar, 1, 0, s, q, err) != 0) {
-            bad = 1;
-            continue;
-        }
-        if (k == 2 && s->dimension == 2) {
-            const double t0 = 0.0;
-            if (!bc->velocity[2].constant || tlsph_expr_eval(&bc->velocity[2], &t0) != 0.0) {
-                tlsph_errors_add(err, q, "in a 2-D scene the z velocity must be null or 0");
-                bad = 1;
-            }
-            tlsph_expr_free(&bc->velocity[2]);
-            continue;
-        }
-        if (tlsph_check_expr_of_time(&bc->velocity[k], s, "prescribed velocity", q, err) != 0) {
-            bad = 1;
-            continue;
-        }
-        bc->velocity_set[k] = 1;
-        given++;
-    }
-    if (!bad && given == 0) {
+    const int off_plane[3] = {0, 0, s->dimension == 2};
+    const int given = tlsph_scene_time_vector(obj, "velocity", "m/s", "a free component",
+                                              off_plane, s, bc->velocity, bc->velocity_set, P,
+                                              err);
+    if (given == 0) {
         tlsph_errors_add(err, p,
                          "'velocity' has no prescribed component: at least one of the %s items "
                          "must be a number or an expression of t",
                          s->dimension == 2 ? "first two" : "3");
-        bad = 1;
+        return -1;
     }
-    return bad ? -1 : 0;
+    return given < 0 ? -1 : 0;
 }
 
 static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,

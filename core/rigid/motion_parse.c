@@ -60,56 +60,17 @@ const struct tlsph_rigid_motion_type *tlsph_rigid_motion_find(const char *name)
     return k < 0 ? NULL : &motions[k];
 }
 
-static const char *const tvar[] = {"t"};
-
 /* Prescribed "velocity" or "angular_velocity" (key) into ex[], set[]; in 2-D
- * the components off the plane's motion (skip[c]) must be absent, null or 0. */
+ * the components off the plane's motion (off_plane[c]) must be null or 0. */
 static int parse_expressions(const json_t *obj, const char *key, const char *unit,
-                             const int skip[3], const struct tlsph_scene *s, struct tlsph_expr *ex,
-                             int *set, const char *P, struct tlsph_errors *err)
+                             const int off_plane[3], const struct tlsph_scene *s,
+                             struct tlsph_expr *ex, int *set, const char *P,
+                             struct tlsph_errors *err)
 {
-    char p[TLSPH_POINTER_MAX];
-    tlsph_pointer_join(p, sizeof p, P, key);
-    const json_t *v = json_object_get(obj, key);
-    if (!v)
+    if (!json_object_get(obj, key))
         return 0;
-    if (!json_is_array(v) || json_array_size(v) != 3) {
-        tlsph_errors_add(err, p,
-                         "'%s' must be an array of 3 items, each a number (%s) or an "
-                         "expression string of t (s)",
-                         key, unit);
-        return -1;
-    }
-    int bad = 0;
-    for (int k = 0; k < 3; k++) {
-        char q[TLSPH_POINTER_MAX];
-        tlsph_pointer_index(q, sizeof q, p, (size_t)k);
-        const json_t *c = json_array_get(v, (size_t)k);
-        if (json_is_null(c))
-            continue;
-        if (tlsph_scene_expr(&ex[k], c, tvar, 1, 0, s, q, err) != 0) {
-            bad = 1;
-            continue;
-        }
-        if (skip[k]) {
-            const double t0 = 0.0;
-            if (!ex[k].constant || tlsph_expr_eval(&ex[k], &t0) != 0.0) {
-                tlsph_errors_add(err, q,
-                                 "in a 2-D scene this component of '%s' must be null "
-                                 "or 0 (%s): the motion stays in the x-y plane",
-                                 key, unit);
-                bad = 1;
-            }
-            tlsph_expr_free(&ex[k]);
-            continue;
-        }
-        if (tlsph_check_expr_of_time(&ex[k], s, key, q, err) != 0) {
-            bad = 1;
-            continue;
-        }
-        set[k] = 1;
-    }
-    return bad ? -1 : 0;
+    return tlsph_scene_time_vector(obj, key, unit, "taken as 0", off_plane, s, ex, set, P, err) < 0 ? -1
+                                                                                          : 0;
 }
 
 /* A free body's constant vector (velocity, angular_velocity). */

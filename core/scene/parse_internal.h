@@ -110,6 +110,18 @@ int tlsph_check_initial_velocities(struct tlsph_scene *s, struct tlsph_initial_s
 int tlsph_check_expr_of_time(struct tlsph_expr *ex, const struct tlsph_scene *s,
                              const char *what, const char *pointer, struct tlsph_errors *err);
 
+/* time_vector.c: obj's member `key`, which must be an array of 3 items, each a
+ * number or an expression string of t (s) in `unit`, or null (null_means says
+ * what null does, for the error text).  Compiles each given item into ex[k]
+ * (owned by the caller, freed with tlsph_expr_free) and sets set[k]; an item
+ * with off_plane[k] must be null or the constant 0 and is not kept.  The caller
+ * checks that key is present.  Returns the number of items set, or -1 after
+ * reporting at pointer/key or its items. */
+int tlsph_scene_time_vector(const json_t *obj, const char *key, const char *unit,
+                            const char *null_means, const int off_plane[3],
+                            const struct tlsph_scene *s, struct tlsph_expr ex[3], int set[3],
+                            const char *pointer, struct tlsph_errors *err);
+
 /* check_steps.c: the first time step and the step count (see the file). */
 /* P-wave speed of m at its reference state (J = 1, e = 0), m/s. */
 double tlsph_reference_wave_speed(const struct tlsph_material *m);

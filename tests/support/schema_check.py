@@ -48,6 +48,7 @@ SEMANTIC_ONLY = {
     # depend on "dimension"
     "cylinder_in_2d",
     "z_velocity_in_2d",
+    "rigid_2d_velocity_off_plane",
     # strength parameters compared with each other or with the material's
     # youngs_modulus (a JSON Schema cannot compare two numbers of the instance)
     "yield_stress_above_youngs",          # yield_stress < E
