@@ -426,6 +426,44 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
     return 0;
 }
 
+enum tres_rc tres_series_column(const char *h5path, const char *name, int component,
+                                double **time, double **value, size_t *n, char *err,
+                                size_t errsize)
+{
+    *time = *value = NULL;
+    *n = 0;
+    struct series s;
+    int rc = series_load(h5path, name, &s, NULL, err, errsize);
+    if (rc != 0)
+        return rc;
+    int nc = s.ncomp ? s.ncomp : 1;
+    if (component < -1 || component >= nc) {
+        errmsg_set(err, errsize, "series %s has no component %d", name, component);
+        series_free(&s);
+        return TRES_NOT_FOUND;
+    }
+    double *v = malloc((s.rows ? s.rows : 1) * sizeof *v);
+    if (!v) {
+        errmsg_set(err, errsize, "out of memory reading series %s", name);
+        series_free(&s);
+        return TRES_ERROR;
+    }
+    for (size_t i = 0; i < s.rows; i++) {
+        const double *row = s.value + i * (size_t)nc;
+        double sum = 0;
+        if (component < 0)
+            for (int c = 0; c < nc; c++)
+                sum += row[c] * row[c];
+        v[i] = component >= 0 ? row[component] : sqrt(sum);
+    }
+    *time = s.time; /* handed over */
+    s.time = NULL;
+    *value = v;
+    *n = s.rows;
+    series_free(&s);
+    return TRES_OK;
+}
+
 enum tres_rc tres_run_status(const char *h5path, char *status, size_t size, char *err,
                              size_t errsize)
 {

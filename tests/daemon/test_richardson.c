@@ -1,0 +1,141 @@
+/* Unit tests of server/richardson.c against hand-worked sequences.
+ *
+ * References (each worked by hand in the comment of its test):
+ *  - f(h) = 1 + 0.5 h^2 at h = 0.1, 0.2, 0.4: order 2, limit 1 exactly;
+ *  - f(h) = 2 - 3 h^1.5 at h = 1, 2, 4: order 1.5 (not an integer), limit 2;
+ *  - the three-grid formulas of Celik et al. (J. Fluids Eng. 130, 2008):
+ *    p = ln(e32/e21)/ln r, f_ext = f1 + (f1 - f2)/(r^p - 1),
+ *    GCI_fine = Fs |f1 - f_ext| / |f1| with Fs = 1.25 (Roache 1998);
+ *  - oscillatory (e32/e21 < 0), divergent (|e32| <= |e21|), orders outside
+ *    [0.5, 6], and four resolutions whose two triplets disagree (Roache's
+ *    GCI ratio check).
+ * Tolerances: 1e-12 relative (the arithmetic is exact up to round-off). */
+#include <check.h>
+#include <math.h>
+
+#include "richardson.h"
+#include "support/check_main.h"
+
+#define CLOSE(a, b) ck_assert_msg(fabs((a) - (b)) <= 1e-12 * fmax(1.0, fabs(b)), \
+                                  "%s = %.17g, expected %.17g", #a, (double)(a), (double)(b))
+
+START_TEST(second_order)
+{
+    /* f = 1.005, 1.02, 1.08: e21 = 0.015, e32 = 0.06, ratio 4 = 2^2 -> p = 2;
+     * f_ext = 1.005 - 0.015/3 = 1; errors 0.005, 0.02, 0.08;
+     * GCI_fine = 1.25 * 0.005 / 1.005 */
+    const double h[] = {0.1, 0.2, 0.4}, f[] = {1.005, 1.02, 1.08};
+    struct trich_estimate e;
+    ck_assert_int_eq(trich_estimate(h, f, 3, &e), TRICH_CONVERGING);
+    CLOSE(e.ratio, 2.0);
+    CLOSE(e.order, 2.0);
+    CLOSE(e.extrapolated, 1.0);
+    CLOSE(e.safety_factor, 1.25);
+    CLOSE(e.error[0], 0.005);
+    CLOSE(e.error[1], 0.02);
+    CLOSE(e.error[2], 0.08);
+    CLOSE(e.relative[1], 0.02);
+    CLOSE(e.gci[0], 1.25 * 0.005 / 1.005);
+    ck_assert(isnan(e.asymptotic_ratio)); /* three resolutions: no independent check */
+    /* target GCI 0.0015625 = 0.00625 / 4 at order 2: half the spacing */
+    CLOSE(trich_spacing_for(&e, 0.1, 0.0015625), 0.05);
+}
+END_TEST
+
+START_TEST(fractional_order)
+{
+    /* f = 2 - 3 h^1.5: -1, 2 - 6 sqrt 2, -22; e32/e21 = 2^1.5 -> p = 1.5;
+     * f_ext = -1 + (6 sqrt 2 - 3) / (2 sqrt 2 - 1) = -1 + 3 = 2 */
+    const double h[] = {1, 2, 4}, f[] = {-1.0, 2.0 - 6.0 * sqrt(2.0), -22.0};
+    struct trich_estimate e;
+    ck_assert_int_eq(trich_estimate(h, f, 3, &e), TRICH_CONVERGING);
+    CLOSE(e.order, 1.5);
+    CLOSE(e.extrapolated, 2.0);
+    CLOSE(e.error[0], 3.0);
+    CLOSE(e.gci[0], 1.25 * 3.0 / 1.0);
+}
+END_TEST
+
+START_TEST(flags)
+{
+    const double h[] = {0.1, 0.2, 0.4, 0.8};
+    struct trich_estimate e;
+    /* oscillatory: e21 = +0.1, e32 = -0.15 */
+    const double osc[] = {1.0, 1.1, 0.95};
+    ck_assert_int_eq(trich_estimate(h, osc, 3, &e), TRICH_OSCILLATORY);
+    ck_assert(isnan(e.order) && isnan(e.extrapolated) && isnan(e.error[0]) && isnan(e.gci[0]));
+    /* divergent: the change halves as the spacing doubles (e32/e21 = 0.5) */
+    const double div[] = {1.0, 1.1, 1.15};
+    ck_assert_int_eq(trich_estimate(h, div, 3, &e), TRICH_DIVERGENT);
+    ck_assert(isnan(e.extrapolated));
+    /* order ln(1.1)/ln 2 = 0.1375 < 0.5: reported, no estimate */
+    const double slow[] = {1.0, 1.1, 1.21};
+    ck_assert_int_eq(trich_estimate(h, slow, 3, &e), TRICH_NON_ASYMPTOTIC);
+    CLOSE(e.order, log(1.1) / log(2.0));
+    ck_assert(isnan(e.extrapolated) && isnan(e.gci[0]));
+    /* order log2(999) = 9.96 > 6 */
+    const double fast[] = {1.0, 1.001, 2.0};
+    ck_assert_int_eq(trich_estimate(h, fast, 3, &e), TRICH_NON_ASYMPTOTIC);
+    /* equal values: no visible error */
+    const double same[] = {3.0, 3.0, 3.0};
+    ck_assert_int_eq(trich_estimate(h, same, 3, &e), TRICH_UNCHANGED);
+    CLOSE(e.extrapolated, 3.0);
+    CLOSE(e.error[2], 0.0);
+    /* two values, or a missing middle value: the order cannot be observed */
+    ck_assert_int_eq(trich_estimate(h, same, 2, &e), TRICH_TOO_FEW);
+    const double hole[] = {1.0, NAN, 1.2, 1.3};
+    ck_assert_int_eq(trich_estimate(h, hole, 4, &e), TRICH_TOO_FEW);
+}
+END_TEST
+
+START_TEST(four_resolutions)
+{
+    const double h[] = {0.1, 0.2, 0.4, 0.8};
+    struct trich_estimate e;
+    /* f = 1 + h^2: both triplets have p = 2; ratio = (f1/f2)(3/3) = 1.01/1.04 */
+    const double quad[] = {1.01, 1.04, 1.16, 1.64};
+    ck_assert_int_eq(trich_estimate(h, quad, 4, &e), TRICH_CONVERGING);
+    CLOSE(e.order, 2.0);
+    CLOSE(e.order_coarse, 2.0);
+    CLOSE(e.asymptotic_ratio, 1.01 / 1.04);
+    CLOSE(e.extrapolated, 1.0);
+    CLOSE(e.error[3], 0.64);
+    /* f = 1 + h^2 + 5 h^4 = 1.0105, 1.048, 1.288, 3.688: e21 = 0.0375, e32 = 0.24,
+     * e43 = 2.4; p12 = log2 6.4, p23 = log2 10; ratio = (1.0105/1.048)(5.4/9) = 0.5785:
+     * the coarse triplet is not in the asymptotic range */
+    const double quart[] = {1.0105, 1.048, 1.288, 3.688};
+    ck_assert_int_eq(trich_estimate(h, quart, 4, &e), TRICH_NON_ASYMPTOTIC);
+    CLOSE(e.order, log(6.4) / log(2.0));
+    CLOSE(e.order_coarse, log(10.0) / log(2.0));
+    CLOSE(e.asymptotic_ratio, 1.0105 / 1.048 * 5.4 / 9.0);
+    ck_assert(isnan(e.extrapolated));
+}
+END_TEST
+
+START_TEST(power_fit)
+{
+    struct trich_power_fit fit;
+    const double h[] = {1.0, 0.5, 0.25};
+    /* exact: y = 3 h^-3 */
+    const double y[] = {3.0, 24.0, 192.0};
+    ck_assert_int_eq(trich_fit_power(h, y, 3, &fit), 0);
+    CLOSE(fit.q, 3.0);
+    CLOSE(fit.c, 3.0);
+    ck_assert(fit.rms_log_residual < 1e-12);
+    CLOSE(trich_power_eval(&fit, 0.125), 1536.0);
+    /* y = h^-2 times 1.1, 1/1.1, 1.1: the pattern (+d, -d, +d), d = ln 1.1, is
+     * orthogonal to the centred ln h, so q stays 2; the intercept takes its mean
+     * d/3 and the residuals are d (2/3, -4/3, 2/3): RMS d sqrt(8/9) */
+    const double d = log(1.1);
+    const double noisy[] = {1.1, 4.0 / 1.1, 16.0 * 1.1};
+    ck_assert_int_eq(trich_fit_power(h, noisy, 3, &fit), 0);
+    CLOSE(fit.q, 2.0);
+    CLOSE(fit.c, exp(d / 3.0));
+    CLOSE(fit.rms_log_residual, d * sqrt(8.0 / 9.0));
+    /* fewer than two usable points */
+    const double bad[] = {1.0, -1.0, NAN};
+    ck_assert_int_eq(trich_fit_power(h, bad, 3, &fit), -1);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("richardson", 0, second_order, fractional_order, flags, four_resolutions, power_fit)
