@@ -70,10 +70,11 @@ struct costs {
     double bpp_finest;  /* engine bytes per particle of the finest successful run */
 };
 
-static json_t *prediction(const struct trich_estimate *e, double h1, double target,
+static json_t *prediction(const struct trich_estimate *e, const double *hs, double target,
                           const struct costs *c, const json_t *params)
 {
-    const double ht = trich_spacing_for(e, h1, target);
+    const double ht = trich_spacing_for(e, hs, target);
+    const double h1 = hs[e->first];
     if (isnan(ht))
         return json_null();
     json_t *o = json_object();
@@ -163,7 +164,7 @@ static json_t *output_result(const json_t *output, const struct run *runs, size_
     json_object_set_new(o, "gci", gci);
     const json_t *rt = json_object_get(target, "relative_error");
     if (json_is_number(rt))
-        json_object_set_new(o, "prediction", prediction(&e, h[0], json_number_value(rt), c,
+        json_object_set_new(o, "prediction", prediction(&e, h, json_number_value(rt), c,
                                                         params));
     return o;
 }

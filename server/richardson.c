@@ -62,6 +62,7 @@ static enum trich_kind triplet(double f0, double f1, double f2, double r, double
 static void clear(struct trich_estimate *e, size_t n)
 {
     e->n = n;
+    e->first = 0;
     e->ratio = e->order = e->order_coarse = e->asymptotic_ratio = e->extrapolated = NAN;
     e->safety_factor = TRICH_FS;
     for (size_t i = 0; i < TRICH_MAX; i++)
@@ -74,7 +75,14 @@ enum trich_kind trich_estimate(const double *h, const double *f, size_t n,
     if (n > TRICH_MAX)
         n = TRICH_MAX;
     clear(e, n);
-    size_t m = 0; /* finite values from the finest on */
+    /* the finest values may be missing (runs not finished): start at the
+     * first finite one, and use the consecutive finite values from there */
+    size_t s = 0;
+    while (s < n && !(isfinite(f[s]) && isfinite(h[s]) && h[s] > 0))
+        s++;
+    e->first = s;
+    h += s, f += s, n -= s;
+    size_t m = 0;
     while (m < n && isfinite(f[m]) && isfinite(h[m]) && h[m] > 0)
         m++;
     if (m < 3)
@@ -107,9 +115,10 @@ enum trich_kind trich_estimate(const double *h, const double *f, size_t n,
     }
     if (e->kind == TRICH_CONVERGING || e->kind == TRICH_UNCHANGED) {
         for (size_t i = 0; i < m; i++) {
-            e->error[i] = fabs(f[i] - e->extrapolated);
-            e->relative[i] = e->extrapolated != 0.0 ? e->error[i] / fabs(e->extrapolated) : NAN;
-            e->gci[i] = f[i] != 0.0 ? e->safety_factor * e->error[i] / fabs(f[i]) : NAN;
+            const double err = fabs(f[i] - e->extrapolated);
+            e->error[s + i] = err;
+            e->relative[s + i] = e->extrapolated != 0.0 ? err / fabs(e->extrapolated) : NAN;
+            e->gci[s + i] = f[i] != 0.0 ? e->safety_factor * err / fabs(f[i]) : NAN;
         }
     } else {
         e->extrapolated = NAN;
@@ -154,15 +163,17 @@ double trich_power_eval(const struct trich_power_fit *fit, double h)
     return fit->c * pow(h, -fit->q);
 }
 
-double trich_spacing_for(const struct trich_estimate *e, double h1, double target)
+double trich_spacing_for(const struct trich_estimate *e, const double *h, double target)
 {
+    const double h1 = e->first < e->n ? h[e->first] : NAN;
     if (e->kind == TRICH_UNCHANGED)
         return INFINITY;
     if (e->kind != TRICH_CONVERGING || !(target > 0) || !(h1 > 0) || e->extrapolated == 0.0)
         return NAN;
-    if (e->error[0] == 0.0)
+    const double e1 = e->error[e->first];
+    if (e1 == 0.0)
         return INFINITY;
     /* Fs E1 (h/h1)^p / |f_ext| = target */
-    const double g1 = e->safety_factor * e->error[0] / fabs(e->extrapolated);
+    const double g1 = e->safety_factor * e1 / fabs(e->extrapolated);
     return h1 * pow(target / g1, 1.0 / e->order);
 }

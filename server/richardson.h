@@ -34,8 +34,9 @@ enum trich_kind {
 struct trich_estimate {
     enum trich_kind kind;
     size_t n;
-    double ratio;            /* r = h[1] / h[0] */
-    double order;            /* observed order p of the finest triplet */
+    size_t first;            /* index of the finest value used (earlier ones are missing) */
+    double ratio;            /* r = h[first + 1] / h[first] */
+    double order;            /* observed order p of the finest triplet used */
     double order_coarse;     /* p of the next triplet (>= 4 resolutions) */
     double asymptotic_ratio; /* Roache's GCI_23 / (r^p GCI_12) with each triplet's own p
                               * (>= 4 resolutions; with exactly 3 it would equal f1/f2) */
@@ -48,8 +49,9 @@ struct trich_estimate {
 
 /* h[0] < h[1] < ... (finest first, constant ratio: the caller checks), f the
  * output at each; n <= TRICH_MAX.  Non-finite values count as missing: the
- * estimate uses the finite values at the finest spacings only when they are
- * consecutive from h[0]; otherwise TRICH_TOO_FEW.  Returns the kind. */
+ * estimate starts at the finest finite value (e->first; finer runs may not
+ * have finished) and uses the consecutive finite values from there; fewer
+ * than three give TRICH_TOO_FEW.  Returns the kind. */
 enum trich_kind trich_estimate(const double *h, const double *f, size_t n,
                                struct trich_estimate *e);
 /* "converging", "unchanged", "oscillatory", ... (the JSON names). */
@@ -69,9 +71,9 @@ int trich_fit_power(const double *h, const double *y, size_t n, struct trich_pow
 double trich_power_eval(const struct trich_power_fit *fit, double h);
 
 /* The spacing at which the GCI, modelled as Fs |f1 - f_ext| (h / h1)^p /
- * |f_ext|, equals target (relative, > 0), from a TRICH_CONVERGING estimate
- * whose finest spacing is h1.  +INFINITY when the error is already 0; NAN
- * when e has no order. */
-double trich_spacing_for(const struct trich_estimate *e, double h1, double target);
+ * |f_ext| with h1 = h[e->first] (h as given to trich_estimate), equals target
+ * (relative, > 0), from a TRICH_CONVERGING estimate.  +INFINITY when the error
+ * is already 0; NAN when e has no order. */
+double trich_spacing_for(const struct trich_estimate *e, const double *h, double target);
 
 #endif

@@ -38,7 +38,7 @@ START_TEST(second_order)
     CLOSE(e.gci[0], 1.25 * 0.005 / 1.005);
     ck_assert(isnan(e.asymptotic_ratio)); /* three resolutions: no independent check */
     /* target GCI 0.0015625 = 0.00625 / 4 at order 2: half the spacing */
-    CLOSE(trich_spacing_for(&e, 0.1, 0.0015625), 0.05);
+    CLOSE(trich_spacing_for(&e, h, 0.0015625), 0.05);
 }
 END_TEST
 
@@ -85,6 +85,23 @@ START_TEST(flags)
     ck_assert_int_eq(trich_estimate(h, same, 2, &e), TRICH_TOO_FEW);
     const double hole[] = {1.0, NAN, 1.2, 1.3};
     ck_assert_int_eq(trich_estimate(h, hole, 4, &e), TRICH_TOO_FEW);
+}
+END_TEST
+
+START_TEST(finest_missing)
+{
+    /* the finest run has not finished: the three next ones (the sequence of
+     * second_order) give the estimate, indexed like the input */
+    const double h[] = {0.05, 0.1, 0.2, 0.4}, f[] = {NAN, 1.005, 1.02, 1.08};
+    struct trich_estimate e;
+    ck_assert_int_eq(trich_estimate(h, f, 4, &e), TRICH_CONVERGING);
+    ck_assert_uint_eq(e.first, 1);
+    CLOSE(e.order, 2.0);
+    CLOSE(e.extrapolated, 1.0);
+    ck_assert(isnan(e.error[0]));
+    CLOSE(e.error[1], 0.005);
+    CLOSE(e.error[3], 0.08);
+    CLOSE(trich_spacing_for(&e, h, 0.0015625), 0.05);
 }
 END_TEST
 
@@ -138,4 +155,5 @@ START_TEST(power_fit)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("richardson", 0, second_order, fractional_order, flags, four_resolutions, power_fit)
+TLSPH_CHECK_MAIN("richardson", 0, second_order, fractional_order, flags, finest_missing,
+                  four_resolutions, power_fit)
