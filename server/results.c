@@ -382,50 +382,6 @@ char *tres_series_csv(const char *h5path, const char *name, int *not_found, char
     return csv;
 }
 
-enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
-                                double *final, double *max, double *min, char *err,
-                                size_t errsize)
-{
-    double fv = NAN, mx = NAN, mn = NAN;
-    struct series s;
-    int rc = series_load(h5path, name, &s, NULL, err, errsize);
-    if (rc != 0)
-        return rc;
-    int nc = s.ncomp ? s.ncomp : 1;
-    if (component < -1 || component >= nc) {
-        errmsg_set(err, errsize, "series %s has no component %d", name, component);
-        series_free(&s);
-        return 1;
-    }
-    for (size_t i = 0; i < s.rows; i++) {
-        const double *row = s.value + i * (size_t)nc;
-        double v;
-        if (component >= 0) {
-            v = row[component];
-        } else {
-            double sum = 0;
-            for (int c = 0; c < nc; c++)
-                sum += row[c] * row[c];
-            v = sqrt(sum);
-        }
-        fv = v;
-        if (!isnan(v)) {
-            if (isnan(mx) || v > mx)
-                mx = v;
-            if (isnan(mn) || v < mn)
-                mn = v;
-        }
-    }
-    series_free(&s);
-    if (final)
-        *final = fv;
-    if (max)
-        *max = mx;
-    if (min)
-        *min = mn;
-    return 0;
-}
-
 enum tres_rc tres_series_column(const char *h5path, const char *name, int component,
                                 double **time, double **value, size_t *n, char *err,
                                 size_t errsize)
@@ -461,6 +417,36 @@ enum tres_rc tres_series_column(const char *h5path, const char *name, int compon
     *value = v;
     *n = s.rows;
     series_free(&s);
+    return TRES_OK;
+}
+
+enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
+                                double *final, double *max, double *min, char *err,
+                                size_t errsize)
+{
+    double fv = NAN, mx = NAN, mn = NAN;
+    double *t, *v;
+    size_t n;
+    enum tres_rc rc = tres_series_column(h5path, name, component, &t, &v, &n, err, errsize);
+    if (rc != TRES_OK)
+        return rc;
+    for (size_t i = 0; i < n; i++) {
+        fv = v[i];
+        if (!isnan(v[i])) {
+            if (isnan(mx) || v[i] > mx)
+                mx = v[i];
+            if (isnan(mn) || v[i] < mn)
+                mn = v[i];
+        }
+    }
+    free(t);
+    free(v);
+    if (final)
+        *final = fv;
+    if (max)
+        *max = mx;
+    if (min)
+        *min = mn;
     return TRES_OK;
 }
 

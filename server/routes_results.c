@@ -465,7 +465,10 @@ static void reply_table(struct hreq *r, const struct route_call *c, json_t *tabl
     }
 }
 
-static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
+/* A study's table from its children: the summary, or (convergence) the
+ * convergence result recomputed from the children's files and cost records
+ * (JSON; ?format=csv: one row per output and run). */
+static void study_table(struct hreq *r, struct route_call *c, struct tq *q, bool convergence)
 {
     struct tq_job j;
     struct kid_rows k;
@@ -478,37 +481,32 @@ static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
         http_reply_problem(r, PROBLEM_INTERNAL, "cannot read the study");
         return;
     }
-    reply_table(r, c, tstudy_summary(study, k.rows, k.nk), "cannot build the summary");
+    json_t *table;
+    if (!convergence) {
+        table = tstudy_summary(study, k.rows, k.nk);
+    } else {
+        table = tconv_result(study, k.rows, k.nk);
+        if (table && c->format == FORMAT_CSV) {
+            json_t *rows = tconv_result_table(table);
+            json_decref(table);
+            table = rows;
+        }
+    }
+    reply_table(r, c, table, convergence ? "cannot build the convergence result"
+                                         : "cannot build the summary");
     kid_rows_free(&k);
     json_decref(study);
     tq_job_free(&j);
 }
 
-/* The convergence result, recomputed from the children's files and cost
- * records (JSON; ?format=csv: one row per output and run). */
+static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    study_table(r, c, q, false);
+}
+
 static void task_convergence(struct hreq *r, struct route_call *c, struct tq *q)
 {
-    struct tq_job j;
-    struct kid_rows k;
-    if (route_load_job(r, q, c->id, &j) != 0)
-        return;
-    json_t *study = route_json_or_null(j.input);
-    if (!study || kid_rows_load(c->app, q, j.id, &k) != 0) {
-        json_decref(study);
-        tq_job_free(&j);
-        http_reply_problem(r, PROBLEM_INTERNAL, "cannot read the study");
-        return;
-    }
-    json_t *res = tconv_result(study, k.rows, k.nk);
-    if (res && c->format == FORMAT_CSV) {
-        json_t *table = tconv_result_table(res);
-        json_decref(res);
-        res = table;
-    }
-    reply_table(r, c, res, "cannot build the convergence result");
-    kid_rows_free(&k);
-    json_decref(study);
-    tq_job_free(&j);
+    study_table(r, c, q, true);
 }
 
 /* ------------------------------------------------------------------ handlers */
