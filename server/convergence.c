@@ -249,9 +249,11 @@ static json_t *ladder_pointers(const json_t *ladder, const json_t *base, struct 
             tlsph_errors_add(err, given ? at : "/base/bodies",
                              "%s must name a spacing of base (a number > 0)",
                              ptr ? ptr : "a pointer");
-        for (size_t j = 0; j < i && ptr; j++)
-            if (!strcmp(ptr, json_string_value(json_array_get(out, j))))
+        for (size_t j = 0; j < i && ptr; j++) {
+            const char *pj = json_string_value(json_array_get(out, j));
+            if (pj && !strcmp(ptr, pj))
                 tlsph_errors_add(err, at, "pointer \"%s\" is given twice", ptr);
+        }
     }
     return out;
 }

@@ -9,10 +9,14 @@
  *  - oscillatory (e32/e21 < 0), divergent (|e32| <= |e21|), orders outside
  *    [0.5, 6], and four resolutions whose two triplets disagree (Roache's
  *    GCI ratio check).
+ * Also the convergence process's own arithmetic (server/convergence*.c): the
+ * threshold crossing, the ladder it builds (bodies refined together) and the
+ * cost fit of a result whose runs carry cost records.
  * Tolerances: 1e-12 relative (the arithmetic is exact up to round-off). */
 #include <check.h>
 #include <math.h>
 
+#include "convergence.h"
 #include "richardson.h"
 #include "support/check_main.h"
 
@@ -155,5 +159,101 @@ START_TEST(power_fit)
 }
 END_TEST
 
+START_TEST(crossing)
+{
+    /* 0.8 -> 0.4 between t = 1 and 2 crosses 0.5 at 1 + 0.3/0.4 = 1.75 */
+    const double t[] = {0, 1, 2, 3}, v[] = {1.0, 0.8, 0.4, 0.2};
+    CLOSE(tconv_crossing_time(t, v, 4, 0.5, "falling"), 1.75);
+    CLOSE(tconv_crossing_time(t, v, 4, 0.5, "either"), 1.75);
+    CLOSE(tconv_crossing_time(t, v, 4, 0.5, NULL), 1.75);
+    ck_assert(isnan(tconv_crossing_time(t, v, 4, 0.5, "rising")));
+    ck_assert(isnan(tconv_crossing_time(t, v, 4, 2.0, "either")));
+}
+END_TEST
+
+START_TEST(ladder_study)
+{
+    /* two bodies at 2 and 1 mm: the ladder names the first; the second keeps
+     * half the first's spacing */
+    json_t *in = json_loads(
+        "{\"base\": {\"bodies\": [{\"spacing\": 0.002}, {\"spacing\": 0.001}]},"
+        " \"ladder\": {\"spacing\": 0.004, \"ratio\": 2, \"count\": 3},"
+        " \"outputs\": [{\"name\": \"t\", \"series\": \"kinetic_energy\","
+        "  \"reduce\": \"time_of_threshold\", \"threshold\": 1e-3},"
+        "  {\"name\": \"k\", \"series\": \"kinetic_energy\", \"reduce\": \"max\"}]}",
+        0, NULL);
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    json_t *st = tconv_study(in, &err);
+    ck_assert_ptr_nonnull(st);
+    ck_assert_int_eq((int)err.count, 0);
+    json_t *p = json_object_get(json_object_get(st, "sweep"), "parameters");
+    ck_assert_uint_eq(json_array_size(p), 2);
+    json_t *v1 = json_object_get(json_array_get(p, 1), "values");
+    ck_assert_str_eq(json_string_value(json_object_get(json_array_get(p, 1), "pointer")),
+                     "/bodies/1/spacing");
+    CLOSE(json_real_value(json_array_get(v1, 0)), 0.002);
+    CLOSE(json_real_value(json_array_get(v1, 2)), 0.0005);
+    /* the study's own outputs: only those a summary can reduce */
+    ck_assert_uint_eq(json_array_size(json_object_get(st, "outputs")), 1);
+    ck_assert(tconv_is_convergence(st));
+    json_decref(st);
+    /* refused: a ratio that is not constant, naming the field */
+    json_object_set_new(in, "ladder", json_loads("{\"spacings\": [0.004, 0.002, 0.0015]}", 0, NULL));
+    ck_assert_ptr_null(tconv_study(in, &err));
+    ck_assert_uint_eq(err.count, 1);
+    ck_assert_str_eq(err.items[0].pointer, "/ladder/spacings");
+    tlsph_errors_free(&err);
+    json_decref(in);
+}
+END_TEST
+
+START_TEST(result_costs)
+{
+    /* three successful runs whose result files are missing, with cost records
+     * wall = 2 h^-3 (h = 4, 2, 1 mm), particles N = 1e-4 h^-2 and peak memory
+     * 1e6 + 1e3 N: the fits give q = 3 and 2 and memory (1e6, 1e3) exactly;
+     * no output value (the file is missing), hence no estimate */
+    json_t *stored = json_loads(
+        "{\"sweep\": {\"parameters\": [{\"pointer\": \"/bodies/0/spacing\","
+        "  \"values\": [0.004, 0.002, 0.001]}]},"
+        " \"convergence\": {\"ladder\": {\"pointers\": [\"/bodies/0/spacing\"], \"ratio\": 2},"
+        "  \"outputs\": [{\"name\": \"k\", \"series\": \"kinetic_energy\", \"reduce\": \"max\"}]}}",
+        0, NULL);
+    const double h[] = {0.004, 0.002, 0.001};
+    json_t *params[3], *cost[3];
+    struct tstudy_row rows[3];
+    for (int i = 0; i < 3; i++) {
+        params[i] = json_pack("{s:f}", "/bodies/0/spacing", h[i]);
+        cost[i] = json_pack("{s:f,s:f,s:f,s:f}", "particles", 1e-4 / (h[i] * h[i]), "steps", 100.0 / h[i],
+                            "wall_seconds", 2.0 / (h[i] * h[i] * h[i]), "peak_memory_bytes",
+                            1e6 + 1e3 * 1e-4 / (h[i] * h[i]));
+        rows[i] = (struct tstudy_row){i, "x", "successful", params[i], "/nonexistent.h5", cost[i]};
+    }
+    json_t *res = tconv_result(stored, rows, 3);
+    ck_assert_ptr_nonnull(res);
+    json_t *cm = json_object_get(res, "cost_model");
+    CLOSE(json_real_value(json_object_get(json_object_get(cm, "wall_seconds"), "q")), 3.0);
+    CLOSE(json_real_value(json_object_get(json_object_get(cm, "particles"), "q")), 2.0);
+    json_t *mem = json_object_get(cm, "peak_memory_bytes");
+    ck_assert(fabs(json_real_value(json_object_get(mem, "fixed")) - 1e6) < 1e-6);
+    CLOSE(json_real_value(json_object_get(mem, "per_particle")), 1e3);
+    json_t *o = json_array_get(json_object_get(res, "outputs"), 0);
+    ck_assert_str_eq(json_string_value(json_object_get(o, "status")), "too_few");
+    ck_assert(json_is_null(json_array_get(json_object_get(o, "values"), 0)));
+    ck_assert_uint_eq(json_array_size(json_object_get(o, "missing")), 3);
+    ck_assert(json_is_true(json_object_get(res, "complete")));
+    /* runs finest first */
+    CLOSE(json_real_value(json_object_get(json_array_get(json_object_get(res, "runs"), 0), "spacing")),
+          0.001);
+    json_decref(res);
+    for (int i = 0; i < 3; i++) {
+        json_decref(params[i]);
+        json_decref(cost[i]);
+    }
+    json_decref(stored);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("richardson", 0, second_order, fractional_order, flags, finest_missing,
-                  four_resolutions, power_fit)
+                  four_resolutions, power_fit, crossing, ladder_study, result_costs)
