@@ -118,6 +118,9 @@ if e32 / e21 > 1:
         ok.append(abs(t["gci"][0] - 1.25 * abs(f1 - fext) / abs(f1)) < 1e-9)
         pr = t["prediction"]
         ok.append(pr is not None and pr["spacing"] > 0 and pr["particles"] > 0 and pr["wall_seconds"] > 0)
+        ls = pr["ladder_step"]  # h1 r^k at or below the predicted spacing
+        k = math.log(ls["spacing"] / d["runs"][0]["spacing"]) / math.log(r)
+        ok.append(ls["spacing"] <= pr["spacing"] * (1 + 1e-12) and abs(k - round(k)) < 1e-9)
 else:
     ok.append(t["status"] in ("oscillatory", "divergent") and t["extrapolated"] is None)
 n = o["nothing"]
