@@ -91,6 +91,18 @@ static void print_result(FILE *f, const json_t *d)
             else
                 fprintf(f, "-");
             fprintf(f, "%s\n", json_is_true(json_object_get(p, "already_met")) ? " (already met)" : "");
+            const json_t *ls = json_object_get(p, "ladder_step");
+            if (json_is_object(ls)) {
+                fprintf(f, "  next ladder spacing ");
+                print_number(f, json_object_get(ls, "spacing"), "%.5g m");
+                fprintf(f, ": GCI ");
+                print_number(f, json_object_get(ls, "relative_error"), "%.3g");
+                fprintf(f, ", particles ");
+                print_number(f, json_object_get(ls, "particles"), "%.0f");
+                fprintf(f, ", wall ");
+                print_number(f, json_object_get(ls, "wall_seconds"), "%.4g s");
+                fputc('\n', f);
+            }
         }
     }
 }
