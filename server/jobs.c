@@ -439,6 +439,16 @@ enum jobs_rc jobs_submit_convergence(const struct jobs_env *env, json_t *inputs,
         if (rc == JOBS_OK)
             rc = queue_study(env, study, kids, nk, out);
     }
+    /* the user sent a ladder, not a sweep: a child refused for its spacing
+     * (the particle limit, a quota) is reported at the ladder */
+    for (size_t i = 0; i < out->errors.count; i++) {
+        char *ptr = out->errors.items[i].pointer, *ladder;
+        if (ptr && !strncmp(ptr, "/sweep", 6) && (ptr[6] == '\0' || ptr[6] == '/') &&
+            (ladder = strdup("/ladder")) != NULL) {
+            free(ptr);
+            out->errors.items[i].pointer = ladder;
+        }
+    }
     tstudy_children_free(kids, nk);
     json_decref(plain);
     json_decref(study);

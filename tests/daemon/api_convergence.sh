@@ -74,6 +74,12 @@ mkreq '{"spacing": 0.005, "ratio": 2, "count": 3, "pointers": ["/bodies/0/materi
 post "$TMP/bad.json"
 check "a pointer that is no spacing: 422 at /inputs/ladder/pointers/0" has_error_at /inputs/ladder/pointers/0 'spacing'
 
+"$PY" -c "import json,sys; d=json.load(open(sys.argv[1])); d['inputs']['base']['limits']={'max_particles':300}; print(json.dumps(d))" \
+    <(mkreq '{"spacing": 0.005, "ratio": 2, "count": 3}' "$KE") >"$TMP/bad.json"
+post "$TMP/bad.json"
+check "a spacing whose child exceeds the particle limit: 422 at /inputs/ladder (not the sweep)" \
+    [ "$STATUS" = 422 -a "$(jget "$BODY" "[e['pointer'] for e in d['errors']]")" = "['#/inputs/ladder', '#/inputs/ladder']" ]
+
 # ---------------------------------------------------------- a ladder end to end
 # an output whose series does not exist is accepted (the schema cannot know
 # the scene's series) and reported as missing, with no estimate
