@@ -24,6 +24,23 @@ static void print_number(FILE *f, const json_t *v, const char *fmt)
         fprintf(f, "%12s", "-");
 }
 
+/* "spacing S m, particles N, wall W s, peak memory M MiB" of a prediction. */
+static void print_spacing_cost(FILE *f, const json_t *p)
+{
+    fprintf(f, "spacing ");
+    print_number(f, json_object_get(p, "spacing"), "%.5g m");
+    fprintf(f, ", particles ");
+    print_number(f, json_object_get(p, "particles"), "%.0f");
+    fprintf(f, ", wall ");
+    print_number(f, json_object_get(p, "wall_seconds"), "%.4g s");
+    fprintf(f, ", peak memory ");
+    const json_t *m = json_object_get(p, "peak_memory_bytes");
+    if (json_is_number(m))
+        fprintf(f, "%.1f MiB", json_number_value(m) / 1048576.0);
+    else
+        fprintf(f, "-");
+}
+
 /* Text: the runs, then per output its values, errors and verdict. */
 static void print_result(FILE *f, const json_t *d)
 {
@@ -32,7 +49,7 @@ static void print_result(FILE *f, const json_t *d)
             json_number_value(json_object_get(d, "ratio")), json_array_size(runs),
             json_is_true(json_object_get(d, "complete")) ? "" : ", not all finished");
     fprintf(f, "%12s %12s %12s %12s %12s  %s\n", "spacing[m]", "particles", "steps", "wall[s]",
-            "memory[MB]", "status");
+            "memory[MiB]", "status");
     size_t i, k;
     json_t *r, *o;
     json_array_foreach(runs, i, r) {
@@ -78,29 +95,15 @@ static void print_result(FILE *f, const json_t *d)
         }
         const json_t *p = json_object_get(o, "prediction");
         if (json_is_object(p)) {
-            fprintf(f, "  target GCI %.3g: spacing ", json_number_value(json_object_get(p, "relative_error")));
-            print_number(f, json_object_get(p, "spacing"), "%.5g m");
-            fprintf(f, ", particles ");
-            print_number(f, json_object_get(p, "particles"), "%.0f");
-            fprintf(f, ", wall ");
-            print_number(f, json_object_get(p, "wall_seconds"), "%.4g s");
-            fprintf(f, ", peak memory ");
-            const json_t *m = json_object_get(p, "peak_memory_bytes");
-            if (json_is_number(m))
-                fprintf(f, "%.1f MB", json_number_value(m) / 1048576.0);
-            else
-                fprintf(f, "-");
+            fprintf(f, "  target GCI %.3g: ", json_number_value(json_object_get(p, "relative_error")));
+            print_spacing_cost(f, p);
             fprintf(f, "%s\n", json_is_true(json_object_get(p, "already_met")) ? " (already met)" : "");
             const json_t *ls = json_object_get(p, "ladder_step");
             if (json_is_object(ls)) {
-                fprintf(f, "  next ladder spacing ");
-                print_number(f, json_object_get(ls, "spacing"), "%.5g m");
-                fprintf(f, ": GCI ");
+                fprintf(f, "  next ladder step (GCI ");
                 print_number(f, json_object_get(ls, "relative_error"), "%.3g");
-                fprintf(f, ", particles ");
-                print_number(f, json_object_get(ls, "particles"), "%.0f");
-                fprintf(f, ", wall ");
-                print_number(f, json_object_get(ls, "wall_seconds"), "%.4g s");
+                fprintf(f, "): ");
+                print_spacing_cost(f, ls);
                 fputc('\n', f);
             }
         }
