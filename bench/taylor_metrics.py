@@ -4,12 +4,24 @@
 usage: taylor_metrics.py RESULT_DIR [--json]
 
 Assumes the rod axis is z and the anvil is the plane z = 0 (as in
-examples/taylor-bar*.json).  Definitions, all from particle centres of the last
-frame (h = the body's lattice spacing):
-  final length  L = z_max + h/2   (the top layer's half spacing; L(t=0) = L0 exactly)
-  foot diameter D = 2 max r over the particles within h/2 of the anvil
-                    (centre-based: the outer particles' own half-width, up to
-                    h/2, is not added, so D converges from below as h -> 0)
+examples/taylor-bar*.json).  Definitions, from the particles of the last frame
+(h = the body's lattice spacing): a particle stands for the cube (square) of
+side h around its centre, so the bar's extents are the centres' extents plus
+h/2 on each side, and they are measured from the bar's own lowest point, not
+from the anvil (a bar that rebounds lifts off: measured from the anvil its
+length would include the gap and its foot would be empty):
+  bottom        z_b = max(z_min - h/2, 0)   (the bar's lowest point, reported as
+                    lift_off_mm.  The wall stops particle centres on its plane,
+                    so a bar resting on the anvil has z_min = 0 and its lowest
+                    cells reach h/2 into the anvil; nothing is below the
+                    anvil, so z_b is 0 then, and z_min - h/2 once it lifts off)
+  final length  L = z_max + h/2 - z_b   (L(t=0) = L0 exactly)
+  foot diameter D = 2 (max r + h/2) over the lowest layer: the particles within
+                    h/2 of the lowest centre (the outer edge, not the centres)
+The former centre-based values are kept as length_anvil_mm (z_max + h/2, from
+the anvil) and foot_diameter_centres_mm (2 max r of the centres within h/2 of
+the anvil, 4-5 % under the outer edge at the examples' spacings; NaN once the
+bar has lifted off): the tables measured before 2026-11-26 use those.
 Energies are fractions of the initial kinetic energy.
 """
 import json
@@ -31,7 +43,10 @@ def metrics(path):
         cost = f.cost
         ke0 = float(f.series("kinetic_energy")[1][0])
         r = np.hypot(x[:, 0], x[:, 1])
-        foot = x[:, 2] < 0.5 * h
+        z = x[:, 2]
+        bottom = max(z.min() - 0.5 * h, 0.0)
+        lowest = z < z.min() + 0.5 * h
+        foot_anvil = z < 0.5 * h
         out = {
             "spacing_mm": h * 1e3,
             "particles": int(cost["particles"]),
@@ -40,8 +55,11 @@ def metrics(path):
             "particle_steps_per_second": float(cost["particle_steps_per_second"]),
             "bytes_per_particle": float(cost["bytes_per_particle"]),
             "t_end_us": t_end * 1e6,
-            "length_mm": (x[:, 2].max() + 0.5 * h) * 1e3,
-            "foot_diameter_mm": 2e3 * r[foot].max() if foot.any() else float("nan"),
+            "length_mm": (z.max() + 0.5 * h - bottom) * 1e3,
+            "foot_diameter_mm": 2e3 * (r[lowest].max() + 0.5 * h),
+            "lift_off_mm": bottom * 1e3,
+            "length_anvil_mm": (z.max() + 0.5 * h) * 1e3,
+            "foot_diameter_centres_mm": 2e3 * r[foot_anvil].max() if foot_anvil.any() else float("nan"),
             "max_plastic_strain": float(f.field("plastic_strain").max())
             if f.has_field("plastic_strain") else 0.0,
             "max_temperature_K": last("max_temperature"),

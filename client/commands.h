@@ -17,6 +17,7 @@ int cmd_fetch(const settings *s, int argc, char **argv);
 int cmd_series(const settings *s, int argc, char **argv);
 int cmd_plot(const settings *s, int argc, char **argv);
 int cmd_study(const settings *s, int argc, char **argv);
+int cmd_convergence(const settings *s, int argc, char **argv);
 
 /* GET /jobs/ID?wait=wait_s (long-poll; wait_s <= 0: no wait).  *out is the statusInfo. */
 int job_poll(const settings *s, const char *id, double wait_s, json_t **out);

@@ -35,6 +35,12 @@ static const char usage_text[] =
     "  study submit STUDY.json       submit a parameter study; prints its id\n"
     "  study status ID               study summary with counts of its children\n"
     "  study table ID [--csv]        summary table (one row per child)\n"
+    "  convergence submit FILE.json  submit a convergence study (base, ladder, outputs, target)\n"
+    "  convergence table ID [--csv|--json]\n"
+    "                                per output: values, observed order, Richardson limit,\n"
+    "                                error and GCI per spacing; cost model and prediction\n"
+    "  convergence plot ID -o FILE.svg [--reference NAME=VALUE]... [--title T]\n"
+    "                                estimated (and true) error vs wall time, log-log\n"
     "\n"
     "settings (first found wins): --url/--token flags; TLSPH_URL/TLSPH_TOKEN; the config file\n"
     "(--config FILE, else $XDG_CONFIG_HOME/tlsph/client.conf or ~/.config/tlsph/client.conf,\n"
@@ -56,7 +62,7 @@ static const struct {
 } commands[] = {
     {"submit", cmd_submit}, {"status", cmd_status}, {"watch", cmd_watch},   {"wait", cmd_wait},
     {"fetch", cmd_fetch},   {"series", cmd_series}, {"plot", cmd_plot},     {"cancel", cmd_cancel},
-    {"list", cmd_list},     {"study", cmd_study},
+    {"list", cmd_list},     {"study", cmd_study},   {"convergence", cmd_convergence},
 };
 
 /* Matches "--name VALUE" or "--name=VALUE"; advances *i. */

@@ -1,6 +1,7 @@
 /* SVG rendering of a laid-out line plot; text is XML-escaped. */
 #include "svg_plot.h"
 
+#include <math.h>
 #include <string.h>
 
 static const char *const colors[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd",
@@ -164,6 +165,17 @@ int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t 
     int rc = plot_layout_make(&L, lines, nlines, ax->log_y, ax->title != NULL);
     if (rc != 0)
         return rc;
+    if (ax->log_x) { /* the layout fits a linear x axis; refit it over the positive x */
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t i = 0; i < nlines; i++)
+            for (size_t k = 0; k < lines[i].n; k++)
+                if (lines[i].x[k] > 0) {
+                    lo = fmin(lo, lines[i].x[k]);
+                    hi = fmax(hi, lines[i].x[k]);
+                }
+        if (lo <= hi)
+            plot_axis_fit(&L.x, lo, hi, 1);
+    }
     fprintf(f, "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n"
                "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" "
                "viewBox=\"0 0 %.0f %.0f\" font-family=\"sans-serif\" font-size=\"12\">\n",

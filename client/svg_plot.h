@@ -13,6 +13,7 @@ typedef struct {
     const char *title;  /* may be NULL */
     const char *xlabel; /* e.g. "time [s]" */
     int log_y;          /* log10 y axes */
+    int log_x;          /* log10 x axis (every x > 0) */
 } plot_axes;
 
 /* Writes a complete SVG document.  For tests and tools it marks what it draws:

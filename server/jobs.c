@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "convergence.h"
 #include "errmsg.h"
 #include "intent.h"
 #include "jobdir.h"
@@ -418,6 +419,39 @@ enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
     if (rc == JOBS_OK)
         rc = queue_study(env, inputs, kids, nk, out);
     tstudy_children_free(kids, nk);
+    return rc;
+}
+
+enum jobs_rc jobs_submit_convergence(const struct jobs_env *env, json_t *inputs,
+                                     struct jobs_submitted *out)
+{
+    json_t *study = tconv_study(inputs, &out->errors);
+    if (!study)
+        return out->errors.out_of_memory ? JOBS_NO_MEMORY : JOBS_INVALID;
+    /* the study machinery sees the study without the request it came from
+     * (a shallow copy: the particle limit lands in the stored base too) */
+    json_t *plain = json_copy(study);
+    struct tstudy_child *kids = NULL;
+    size_t nk = 0;
+    enum jobs_rc rc = JOBS_NO_MEMORY;
+    if (plain && json_object_del(plain, "convergence") == 0) {
+        rc = expand_study(env, plain, &kids, &nk, out);
+        if (rc == JOBS_OK)
+            rc = queue_study(env, study, kids, nk, out);
+    }
+    /* the user sent a ladder, not a sweep: a child refused for its spacing
+     * (the particle limit, a quota) is reported at the ladder */
+    for (size_t i = 0; i < out->errors.count; i++) {
+        char *ptr = out->errors.items[i].pointer, *ladder;
+        if (ptr && !strncmp(ptr, "/sweep", 6) && (ptr[6] == '\0' || ptr[6] == '/') &&
+            (ladder = strdup("/ladder")) != NULL) {
+            free(ptr);
+            out->errors.items[i].pointer = ladder;
+        }
+    }
+    tstudy_children_free(kids, nk);
+    json_decref(plain);
+    json_decref(study);
     return rc;
 }
 

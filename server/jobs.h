@@ -74,6 +74,10 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
  * queued with it. */
 enum jobs_rc jobs_submit_study(const struct jobs_env *env, json_t *inputs,
                                struct jobs_submitted *out);
+/* A convergence study: inputs = {"base", "ladder", "outputs", "target"}
+ * (convergence.h); stored as a study whose input also holds the request. */
+enum jobs_rc jobs_submit_convergence(const struct jobs_env *env, json_t *inputs,
+                                     struct jobs_submitted *out);
 /* Asks for job id (a study: each child) to stop: JOBS_OK (also for a job that
  * is final or unknown: nothing to do), JOBS_NO_SPACE (the disk is full even
  * after the reserve was freed) or JOBS_BUSY.  Cancelling and removing free

@@ -382,11 +382,12 @@ char *tres_series_csv(const char *h5path, const char *name, int *not_found, char
     return csv;
 }
 
-enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
-                                double *final, double *max, double *min, char *err,
+enum tres_rc tres_series_column(const char *h5path, const char *name, int component,
+                                double **time, double **value, size_t *n, char *err,
                                 size_t errsize)
 {
-    double fv = NAN, mx = NAN, mn = NAN;
+    *time = *value = NULL;
+    *n = 0;
     struct series s;
     int rc = series_load(h5path, name, &s, NULL, err, errsize);
     if (rc != 0)
@@ -395,35 +396,58 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
     if (component < -1 || component >= nc) {
         errmsg_set(err, errsize, "series %s has no component %d", name, component);
         series_free(&s);
-        return 1;
+        return TRES_NOT_FOUND;
+    }
+    double *v = malloc((s.rows ? s.rows : 1) * sizeof *v);
+    if (!v) {
+        errmsg_set(err, errsize, "out of memory reading series %s", name);
+        series_free(&s);
+        return TRES_ERROR;
     }
     for (size_t i = 0; i < s.rows; i++) {
         const double *row = s.value + i * (size_t)nc;
-        double v;
-        if (component >= 0) {
-            v = row[component];
-        } else {
-            double sum = 0;
+        double sum = 0;
+        if (component < 0)
             for (int c = 0; c < nc; c++)
                 sum += row[c] * row[c];
-            v = sqrt(sum);
-        }
-        fv = v;
-        if (!isnan(v)) {
-            if (isnan(mx) || v > mx)
-                mx = v;
-            if (isnan(mn) || v < mn)
-                mn = v;
+        v[i] = component >= 0 ? row[component] : sqrt(sum);
+    }
+    *time = s.time; /* handed over */
+    s.time = NULL;
+    *value = v;
+    *n = s.rows;
+    series_free(&s);
+    return TRES_OK;
+}
+
+enum tres_rc tres_series_reduce(const char *h5path, const char *name, int component,
+                                double *final, double *max, double *min, char *err,
+                                size_t errsize)
+{
+    double fv = NAN, mx = NAN, mn = NAN;
+    double *t, *v;
+    size_t n;
+    enum tres_rc rc = tres_series_column(h5path, name, component, &t, &v, &n, err, errsize);
+    if (rc != TRES_OK)
+        return rc;
+    for (size_t i = 0; i < n; i++) {
+        fv = v[i];
+        if (!isnan(v[i])) {
+            if (isnan(mx) || v[i] > mx)
+                mx = v[i];
+            if (isnan(mn) || v[i] < mn)
+                mn = v[i];
         }
     }
-    series_free(&s);
+    free(t);
+    free(v);
     if (final)
         *final = fv;
     if (max)
         *max = mx;
     if (min)
         *min = mn;
-    return 0;
+    return TRES_OK;
 }
 
 enum tres_rc tres_run_status(const char *h5path, char *status, size_t size, char *err,

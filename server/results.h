@@ -55,6 +55,13 @@ enum tres_rc tres_series_reduce(const char *h5path, const char *name, int compon
                                 double *final, double *max, double *min, char *err,
                                 size_t errsize);
 
+/* Time (s) and one scalar column of a series (component c of a vector series,
+ * -1 the magnitude), each a malloc'ed array of *n values the caller frees:
+ * TRES_OK, TRES_NOT_FOUND (no such series or component), TRES_ERROR. */
+enum tres_rc tres_series_column(const char *h5path, const char *name, int component,
+                                double **time, double **value, size_t *n, char *err,
+                                size_t errsize);
+
 /* The run's outcome as the file records it (/diagnostics status:
  * "running" while it writes, or after its process died; then "successful",
  * "unstable", "cancelled" or "io_error"): TRES_OK, TRES_NOT_FOUND (no

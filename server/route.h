@@ -67,15 +67,19 @@ struct output_decl {
     const char *path; /* under /jobs/{id}/results/ */
     const char *rel;  /* of its link in the results */
 };
-/* The output of process "run" or "study" (NULL for another). */
+/* The output of process "run", "study" or "convergence" (NULL for another). */
 const struct output_decl *route_process_output(const char *process);
+/* The process a job was submitted to: its queue process ("run", "study"), or
+ * "convergence" for a study the convergence process made. */
+const char *route_process_id(const struct tq_job *j);
+#define ROUTE_KNOWN_PROCESSES "known processes: run, study, convergence"
 
 /* The handlers, by resource. */
 route_handler meta_landing, meta_conformance, meta_openapi, meta_healthz, meta_schema,
     meta_processes, meta_process;
 route_handler job_execute, job_list, job_get, job_delete;
 route_handler result_log, result_doc, result_summary, result_h5, result_xmf, result_series_list,
-    result_series, result_frames, result_field, result_other;
+    result_series, result_frames, result_field, result_other, result_convergence;
 
 /* routes_util.c */
 

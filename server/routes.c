@@ -45,6 +45,7 @@ static const struct route routes[] = {
     {"GET", "/jobs/{id}/log", result_log, false, LANE_HEAVY},
     {"GET", "/jobs/{id}/results", result_doc, false, LANE_HEAVY},
     {"GET", "/jobs/{id}/results/summary", result_summary, false, LANE_HEAVY},
+    {"GET", "/jobs/{id}/results/convergence", result_convergence, false, LANE_HEAVY},
     {"GET", "/jobs/{id}/results/result.h5", result_h5, false, LANE_HEAVY},
     {"GET", "/jobs/{id}/results/result.xmf", result_xmf, false, LANE_HEAVY},
     {"GET", "/jobs/{id}/results/series", result_series_list, false, LANE_HEAVY},

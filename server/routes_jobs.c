@@ -72,7 +72,7 @@ static json_t *status_info(const struct tapp *a, struct tq *q, const struct tq_j
                  nfinal, nk, nk - nacc - nfinal);
     }
     json_object_set_new(o, "type", json_string("process"));
-    json_object_set_new(o, "processID", json_string(j->process));
+    json_object_set_new(o, "processID", json_string(route_process_id(j)));
     json_object_set_new(o, "jobID", json_string(j->id));
     json_object_set_new(o, "status", json_string(status));
     if (live_message[0])
@@ -371,43 +371,58 @@ static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
     http_reply_problem_json(r, prob);
 }
 
-static void submit(struct hreq *r, const struct route_call *c, struct tq *q, bool study)
+enum process { PROCESS_RUN, PROCESS_STUDY, PROCESS_CONVERGENCE };
+
+static void submit(struct hreq *r, const struct route_call *c, struct tq *q, enum process pr)
 {
     static const char *const run_inputs[] = {"scene", NULL};
     static const char *const study_inputs[] = {"base", "sweep", "outputs", NULL};
+    static const char *const conv_inputs[] = {"base", "ladder", "outputs", "target", NULL};
+    static const char *const names[] = {"run", "study", "convergence"};
+    const char *const *allowed =
+        pr == PROCESS_RUN ? run_inputs : pr == PROCESS_STUDY ? study_inputs : conv_inputs;
     json_t *inputs = NULL;
-    json_t *root = parse_body(r, study ? study_inputs : run_inputs,
-                              route_process_output(study ? "study" : "run"), &inputs);
+    json_t *root = parse_body(r, allowed, route_process_output(names[pr]), &inputs);
     if (!root)
         return;
     const struct jobs_env env = route_jobs_env(c->app, q);
     struct jobs_submitted sub;
     jobs_submitted_init(&sub);
-    enum jobs_rc rc = study ? jobs_submit_study(&env, inputs, &sub)
-                            : jobs_submit_run(&env, inputs, &sub);
+    enum jobs_rc rc = pr == PROCESS_RUN     ? jobs_submit_run(&env, inputs, &sub)
+                      : pr == PROCESS_STUDY ? jobs_submit_study(&env, inputs, &sub)
+                                            : jobs_submit_convergence(&env, inputs, &sub);
     if (rc == JOBS_OK)
         reply_created(r, c, q, sub.id);
     else
-        reply_not_submitted(r, rc, study, &sub);
+        reply_not_submitted(r, rc, pr != PROCESS_RUN, &sub);
     jobs_submitted_free(&sub);
     json_decref(root);
 }
 
 static void task_submit_run(struct hreq *r, struct route_call *c, struct tq *q)
 {
-    submit(r, c, q, false);
+    submit(r, c, q, PROCESS_RUN);
 }
 
 static void task_submit_study(struct hreq *r, struct route_call *c, struct tq *q)
 {
-    submit(r, c, q, true);
+    submit(r, c, q, PROCESS_STUDY);
+}
+
+static void task_submit_convergence(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    submit(r, c, q, PROCESS_CONVERGENCE);
 }
 
 void job_execute(struct hreq *r, struct route_call *c)
 {
     const char *pid = c->process;
-    if (strcmp(pid, "run") && strcmp(pid, "study")) {
-        http_reply_problem(r, PROBLEM_NO_SUCH_PROCESS, "known processes: run, study");
+    route_task *task = !strcmp(pid, "run")           ? task_submit_run
+                       : !strcmp(pid, "study")       ? task_submit_study
+                       : !strcmp(pid, "convergence") ? task_submit_convergence
+                                                     : NULL;
+    if (!task) {
+        http_reply_problem(r, PROBLEM_NO_SUCH_PROCESS, ROUTE_KNOWN_PROCESSES);
         return;
     }
     if (require_json_content(r) != 0)
@@ -415,7 +430,7 @@ void job_execute(struct hreq *r, struct route_call *c)
     const char *prefer = http_header(r, "Prefer");
     if (prefer && strstr(prefer, "respond-async"))
         c->respond_async = true;
-    if (route_defer(r, c, !strcmp(pid, "run") ? task_submit_run : task_submit_study) != 0)
+    if (route_defer(r, c, task) != 0)
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "shutting down");
 }
 

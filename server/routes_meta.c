@@ -53,18 +53,54 @@ const struct output_decl *route_process_output(const char *process)
                                            "application/x-hdf5", "result.h5", "enclosure"};
     static const struct output_decl study = {"summary", "study summary table", "application/json",
                                              "summary", "summary"};
-    return !strcmp(process, "run") ? &run : !strcmp(process, "study") ? &study : NULL;
+    static const struct output_decl conv = {"convergence",
+                                            "convergence result: order, Richardson limit, GCI, "
+                                            "cost model, prediction",
+                                            "application/json", "convergence", "convergence"};
+    return !strcmp(process, "run")           ? &run
+           : !strcmp(process, "study")       ? &study
+           : !strcmp(process, "convergence") ? &conv
+                                             : NULL;
+}
+
+const char *route_process_id(const struct tq_job *j)
+{
+    /* the stored study of a convergence job has a top-level "convergence"
+     * object; in compact JSON `convergence":{` cannot occur inside a string
+     * (a quote there is escaped) and no scene key takes that name with an
+     * object value */
+    if (!strcmp(j->process, "study") && j->input && strstr(j->input, "\"convergence\":{"))
+        return "convergence";
+    return j->process;
+}
+
+static json_t *input_ref(const char *title, const char *ref, int optional)
+{
+    json_t *o = json_pack("{s:s,s:{s:s}}", "title", title, "schema", "$ref", ref);
+    if (o && optional)
+        json_object_set_new(o, "minOccurs", json_integer(0));
+    return o;
 }
 
 /* A process description (full: with its inputs and outputs). */
 static json_t *process_desc(const char *id, bool full)
 {
-    const int run = !strcmp(id, "run");
+    const int run = !strcmp(id, "run"), conv = !strcmp(id, "convergence");
     json_t *o = json_pack("{s:s,s:s,s:s,s:s,s:[s,s],s:[s]}", "id", id, "title",
-                          run ? "Run one TLSPH simulation" : "Parametric study",
+                          run ? "Run one TLSPH simulation"
+                          : conv ? "Convergence study with error estimates and cost prediction"
+                                 : "Parametric study",
                           "description",
                           run ? "Runs one scene (schemas/scene.schema.json) and stores its "
                                 "results as HDF5 (H5MD layout) with an XDMF sidecar."
+                          : conv
+                              ? "Runs a base scene at a ladder of particle spacings (constant "
+                                "ratio) as a study and reports, per output, the observed order, "
+                                "the Richardson-extrapolated value, each resolution's error "
+                                "estimate and GCI (Roache, Fs = 1.25), flags for oscillatory or "
+                                "non-asymptotic convergence, the measured cost of each run, a "
+                                "fitted cost model wall = c h^-q and, with a target, the "
+                                "predicted spacing, particles, wall time and memory."
                               : "Runs a base scene once per point of a sweep over scene values "
                                 "given by JSON pointers (product or zip) and tabulates the results.",
                           "version", "1.0.0", "jobControlOptions", "async-execute", "dismiss",
@@ -80,6 +116,16 @@ static json_t *process_desc(const char *id, bool full)
                                 json_pack("{s:s,s:s,s:{s:s}}", "title", "scene", "description",
                                           "the scene document", "schema", "$ref",
                                           "/schemas/scene.schema.json"));
+        } else if (conv) {
+            const char *c = "/schemas/study.schema.json#/$defs/convergence/properties/";
+            char ref[128];
+            json_object_set_new(inputs, "base", input_ref("base scene", "/schemas/scene.schema.json", 0));
+            snprintf(ref, sizeof ref, "%sladder", c);
+            json_object_set_new(inputs, "ladder", input_ref("resolution ladder", ref, 0));
+            snprintf(ref, sizeof ref, "%soutputs", c);
+            json_object_set_new(inputs, "outputs", input_ref("outputs of interest", ref, 0));
+            snprintf(ref, sizeof ref, "%starget", c);
+            json_object_set_new(inputs, "target", input_ref("target accuracy", ref, 1));
         } else {
             json_object_set_new(inputs, "base",
                                 json_pack("{s:s,s:{s:s}}", "title", "base scene", "schema",
@@ -111,7 +157,8 @@ static json_t *process_desc(const char *id, bool full)
 void meta_processes(struct hreq *r, struct route_call *c)
 {
     (void)c;
-    json_t *arr = json_pack("[o,o]", process_desc("run", false), process_desc("study", false));
+    json_t *arr = json_pack("[o,o,o]", process_desc("run", false), process_desc("study", false),
+                            process_desc("convergence", false));
     json_t *links = json_array();
     route_add_link(links, "self", "application/json", "processes", "/processes");
     http_reply_json(r, 200, json_pack("{s:o,s:o}", "processes", arr, "links", links));
@@ -120,8 +167,8 @@ void meta_processes(struct hreq *r, struct route_call *c)
 void meta_process(struct hreq *r, struct route_call *c)
 {
     const char *id = c->process;
-    if (strcmp(id, "run") && strcmp(id, "study")) {
-        http_reply_problem(r, PROBLEM_NO_SUCH_PROCESS, "known processes: run, study");
+    if (!route_process_output(id)) {
+        http_reply_problem(r, PROBLEM_NO_SUCH_PROCESS, ROUTE_KNOWN_PROCESSES);
         return;
     }
     http_reply_json(r, 200, process_desc(id, true));

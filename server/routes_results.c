@@ -16,6 +16,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include "convergence.h"
 #include "jobdir.h"
 #include "numtext.h"
 #include "problem.h"
@@ -37,7 +38,7 @@ static void job_file(char *out, size_t n, const struct tapp *a, const char *id,
  * "document"): the map of its declared outputs, each by reference. */
 static void results_doc(struct hreq *r, const struct tq_job *j)
 {
-    const struct output_decl *out = route_process_output(j->process);
+    const struct output_decl *out = route_process_output(route_process_id(j));
     char href[128];
     snprintf(href, sizeof href, "/jobs/%s/results/%s", j->id, out->path);
     http_reply_json(r, 200,
@@ -91,6 +92,10 @@ static void results_exception(struct hreq *r, const struct tq_job *j)
     } else {
         route_add_link(links, "summary", "application/json", "the children's table",
                        "/jobs/%s/results/summary", j->id);
+        if (!strcmp(route_process_id(j), "convergence"))
+            route_add_link(links, "convergence", "application/json",
+                           "what the finished children support", "/jobs/%s/results/convergence",
+                           j->id);
     }
     json_object_set_new(p, "links", links);
     http_reply_problem_json(r, p);
@@ -392,60 +397,116 @@ static void task_field(struct hreq *r, struct route_call *c, struct tq *q)
     tres_field_free(&f);
 }
 
-static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
+/* A study's children as summary rows (the files and JSON they point to live
+ * as long as the struct). */
+struct kid_rows {
+    struct tq_job *kids;
+    size_t nk;
+    struct tstudy_row *rows;
+    char (*paths)[1200];
+    json_t **owned;
+};
+
+static void kid_rows_free(struct kid_rows *k)
 {
-    const struct tapp *a = c->app;
+    if (k->owned)
+        for (size_t i = 0; i < 2 * k->nk; i++)
+            json_decref(k->owned[i]);
+    free(k->owned);
+    free(k->paths);
+    free(k->rows);
+    tq_jobs_free(k->kids, k->nk);
+    memset(k, 0, sizeof *k);
+}
+
+/* 0, or -1 (busy or out of memory; nothing to free). */
+static int kid_rows_load(const struct tapp *a, struct tq *q, const char *id, struct kid_rows *k)
+{
     const struct jobs_env env = route_jobs_env(a, q);
-    struct tq_job j, *kids = NULL;
-    size_t nk = 0;
+    memset(k, 0, sizeof *k);
+    if (jobs_study_children(&env, id, &k->kids, &k->nk) != 0)
+        return -1;
+    const size_t m = k->nk ? k->nk : 1;
+    k->rows = calloc(m, sizeof *k->rows);
+    k->paths = calloc(m, sizeof *k->paths);
+    k->owned = calloc(2 * m, sizeof *k->owned);
+    if (!k->rows || !k->paths || !k->owned) {
+        kid_rows_free(k);
+        return -1;
+    }
+    for (size_t i = 0; i < k->nk; i++) {
+        job_file(k->paths[i], sizeof k->paths[i], a, k->kids[i].id, JOBDIR_RESULT);
+        k->owned[2 * i] = route_json_or_null(k->kids[i].params);
+        k->owned[2 * i + 1] = route_json_or_null(k->kids[i].cost);
+        k->rows[i].seq = k->kids[i].seq;
+        k->rows[i].job_id = k->kids[i].id;
+        k->rows[i].status = k->kids[i].status;
+        k->rows[i].params = k->owned[2 * i];
+        k->rows[i].h5path = k->paths[i];
+        k->rows[i].cost = k->owned[2 * i + 1];
+    }
+    return 0;
+}
+
+/* The table (JSON, or CSV with ?format=csv); steals table. */
+static void reply_table(struct hreq *r, const struct route_call *c, json_t *table, const char *what)
+{
+    if (!table) {
+        http_reply_problem(r, PROBLEM_INTERNAL, what);
+    } else if (c->format == FORMAT_CSV) {
+        char *csv = tstudy_summary_csv(table);
+        if (csv)
+            http_reply_buf(r, 200, "text/csv; charset=utf-8", csv, strlen(csv));
+        else
+            http_reply_problem(r, PROBLEM_INTERNAL, "cannot format the table");
+        json_decref(table);
+    } else {
+        http_reply_json(r, 200, table);
+    }
+}
+
+/* A study's table from its children: the summary, or (convergence) the
+ * convergence result recomputed from the children's files and cost records
+ * (JSON; ?format=csv: one row per output and run). */
+static void study_table(struct hreq *r, struct route_call *c, struct tq *q, bool convergence)
+{
+    struct tq_job j;
+    struct kid_rows k;
     if (route_load_job(r, q, c->id, &j) != 0)
         return;
     json_t *study = route_json_or_null(j.input);
-    if (!study || jobs_study_children(&env, j.id, &kids, &nk) != 0) {
+    if (!study || kid_rows_load(c->app, q, j.id, &k) != 0) {
         json_decref(study);
         tq_job_free(&j);
         http_reply_problem(r, PROBLEM_INTERNAL, "cannot read the study");
         return;
     }
-    struct tstudy_row *rows = calloc(nk ? nk : 1, sizeof *rows);
-    char (*paths)[1200] = calloc(nk ? nk : 1, sizeof *paths);
-    json_t **owned = calloc(2 * (nk ? nk : 1), sizeof *owned);
-    json_t *summary = NULL;
-    if (rows && paths && owned) {
-        for (size_t i = 0; i < nk; i++) {
-            job_file(paths[i], sizeof paths[i], a, kids[i].id, JOBDIR_RESULT);
-            owned[2 * i] = route_json_or_null(kids[i].params);
-            owned[2 * i + 1] = route_json_or_null(kids[i].cost);
-            rows[i].seq = kids[i].seq;
-            rows[i].job_id = kids[i].id;
-            rows[i].status = kids[i].status;
-            rows[i].params = owned[2 * i];
-            rows[i].h5path = paths[i];
-            rows[i].cost = owned[2 * i + 1];
-        }
-        summary = tstudy_summary(study, rows, nk);
-    }
-    if (!summary) {
-        http_reply_problem(r, PROBLEM_INTERNAL, "cannot build the summary");
-    } else if (c->format == FORMAT_CSV) {
-        char *csv = tstudy_summary_csv(summary);
-        if (csv)
-            http_reply_buf(r, 200, "text/csv; charset=utf-8", csv, strlen(csv));
-        else
-            http_reply_problem(r, PROBLEM_INTERNAL, "cannot format the summary");
-        json_decref(summary);
+    json_t *table;
+    if (!convergence) {
+        table = tstudy_summary(study, k.rows, k.nk);
     } else {
-        http_reply_json(r, 200, summary);
+        table = tconv_result(study, k.rows, k.nk);
+        if (table && c->format == FORMAT_CSV) {
+            json_t *rows = tconv_result_table(table);
+            json_decref(table);
+            table = rows;
+        }
     }
-    if (owned)
-        for (size_t i = 0; i < 2 * nk; i++)
-            json_decref(owned[i]);
-    free(owned);
-    free(paths);
-    free(rows);
-    tq_jobs_free(kids, nk);
+    reply_table(r, c, table, convergence ? "cannot build the convergence result"
+                                         : "cannot build the summary");
+    kid_rows_free(&k);
     json_decref(study);
     tq_job_free(&j);
+}
+
+static void task_summary(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    study_table(r, c, q, false);
+}
+
+static void task_convergence(struct hreq *r, struct route_call *c, struct tq *q)
+{
+    study_table(r, c, q, true);
 }
 
 /* ------------------------------------------------------------------ handlers */
@@ -566,6 +627,18 @@ void result_summary(struct hreq *r, struct route_call *c)
     if (!is_study(&j))
         http_reply_problem(r, PROBLEM_NOT_FOUND, "no such resource");
     else if (parse_format(r, c) == 0 && route_defer(r, c, task_summary) != 0)
+        http_reply_problem(r, PROBLEM_UNAVAILABLE, "shutting down");
+    tq_job_free(&j);
+}
+
+void result_convergence(struct hreq *r, struct route_call *c)
+{
+    struct tq_job j;
+    if (result_job(r, c, &j) != 0)
+        return;
+    if (strcmp(route_process_id(&j), "convergence"))
+        http_reply_problem(r, PROBLEM_NOT_FOUND, "only a convergence job has results/convergence");
+    else if (parse_format(r, c) == 0 && route_defer(r, c, task_convergence) != 0)
         http_reply_problem(r, PROBLEM_UNAVAILABLE, "shutting down");
     tq_job_free(&j);
 }

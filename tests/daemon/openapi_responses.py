@@ -173,7 +173,7 @@ def main(argv):
 
     # the service's own resources
     for p in ["/", "/conformance", "/openapi.json", "/healthz", "/processes", "/processes/run",
-              "/processes/study", "/schemas/job.schema.json"]:
+              "/processes/study", "/processes/convergence", "/schemas/job.schema.json"]:
         get_and_head(api, doc, p)
     get_and_head(api, doc, "/processes/nope", 404)
     get_and_head(api, doc, "/schemas/nope.json", 404)
@@ -189,6 +189,14 @@ def main(argv):
         {"pointer": "/output/series_every", "values": [1, 2]}]}}}
     _, _, d = check(api, doc, "POST", "/processes/study/execution", 201, body=study)
     study_id = json.loads(d)["jobID"]
+    conv = {"inputs": {"base": tiny, "ladder": {"spacings": [tiny["bodies"][0]["spacing"] * f
+                                                             for f in (1, 0.5, 0.25)]},
+                       "outputs": [{"name": "ke", "series": "kinetic_energy", "reduce": "final"}]}}
+    _, _, d = check(api, doc, "POST", "/processes/convergence/execution", 201, body=conv)
+    conv_id = json.loads(d)["jobID"]
+    conv["inputs"]["ladder"] = {"spacings": [1, 2]}
+    check(api, doc, "POST", "/processes/convergence/execution", 422, body=conv,
+          label="two spacings")
     check(api, doc, "POST", ex, 400, body=b"{nope", headers={"Content-Type": "application/json"})
     check(api, doc, "POST", ex, 415, body=b"{}", headers={"Content-Type": "text/plain"})
     check(api, doc, "POST", ex, 422, body={"inputs": {"scene": {}}})
@@ -207,7 +215,7 @@ def main(argv):
     get_and_head(api, doc, "/jobs/" + "0" * 32, 404)
     get_and_head(api, doc, f"/jobs/{long_id}/results", 404, label="not ready")
 
-    for j in (ok_id, bad_id, study_id):
+    for j in (ok_id, bad_id, study_id, conv_id):
         wait_final(api, j)
     # results of a successful run
     r = f"/jobs/{ok_id}/results"
@@ -244,6 +252,13 @@ def main(argv):
     get_and_head(api, doc, s + "/summary?format=csv")
     get_and_head(api, doc, s + "/summary?format=xml", 400)
     get_and_head(api, doc, f"/jobs/{study_id}/log", 404)
+    get_and_head(api, doc, s + "/convergence", 404, label="a study that is no convergence")
+    c = f"/jobs/{conv_id}/results"
+    get_and_head(api, doc, c)
+    get_and_head(api, doc, c + "/convergence")
+    get_and_head(api, doc, c + "/convergence?format=csv")
+    get_and_head(api, doc, c + "/convergence?format=xml", 400)
+    get_and_head(api, doc, c + "/summary")
     # cancel, then the dismissed job, then remove
     check(api, doc, "DELETE", f"/jobs/{long_id}", 200)
     wait_final(api, long_id)
