@@ -1,0 +1,104 @@
+/* Virtual links (paper 001 §3): the third crack treatment.  Damage is a
+ * property of the link between two immediate neighbours, not of a particle.
+ *
+ * Support.  A particle interacts only with its immediate neighbours (paper 001
+ * Fig. 1): the reference pairs (same body, inside the kernel's support) with
+ *   |X_j - X_i| < TLSPH_LINK_REACH (s_i + s_j) / 2,   s_i = V_i^(1/d)
+ * the local spacing (V_i the reference volume; 2-D: the area of the unit-thick
+ * slab).  TLSPH_LINK_REACH = 1.85 sits between the lattice shells it must keep
+ * and the first it must drop: on the 2-D square lattice it keeps the 8 at
+ * distances 1 and sqrt 2 (the paper's Fig. 1), on the 3-D cubic lattice the 26
+ * at 1, sqrt 2 and sqrt 3 (the same rule: every point of the unit cell around
+ * i), and drops the next shell at 2 on both; 6-8 % of slack on either side
+ * lets an irregular set (conforming shells, graded volumes) keep a full first
+ * shell without reaching the second.  The smoothing length stays the body's;
+ * the correction L_i (eqs. 26-27) is built on this support, so a linear
+ * displacement field still gives the exact F (tests/physics/test_links.c).
+ *
+ * Link state.  Each reference pair carries D_ij in [0, 1] (both CSR entries,
+ * equal to the bit), f_ij = 1 - D_ij.  f_ij multiplies the corrected kernel
+ * gradient in the momentum and energy equations (eqs. 29-30):
+ *   Fdot_i = sum_j f_ij V_j (v_j - v_i) (x) grad W_i L_i^-1
+ *   f_i    = sum_j f_ij V_i V_j (P_i L_i^-T + P_j L_j^-T) grad W_i   (and the
+ *            hourglass and viscous forces of the pair times f_ij)
+ * the force is the one conjugate to Fdot and antisymmetric in i, j (D_ij =
+ * D_ji), so momentum is exact.  F integrates exactly the transmitted rates
+ * (the paper leaves F open): a link that softens or breaks stops adding to F
+ * from then on and keeps what it had carried, the damage-aware history of
+ * paper 000 eq. 34 with D_j replaced by D_ij (p.crack_gradient).  So F never
+ * jumps when a link breaks, the stress power P : Fdot is the work of the pair
+ * forces, and the energy balance closes with no term of its own: the stored
+ * energy a crack face holds leaves it as it unloads through its remaining
+ * links (kinetic energy of the opening), not at the instant of breaking.  L_i
+ * is not rebuilt as links break (eq. 27 is taken on the reference support).
+ *
+ * Criteria: sph/link_criterion.h, one file each.  Output: the particle damage
+ * D_i = sum_j D_ij / n_i (n_i links of i), field "link_damage". */
+#ifndef TLSPH_VIRTUAL_LINKS_H
+#define TLSPH_VIRTUAL_LINKS_H
+
+#include <math.h>
+
+#include "run/model.h"
+#include "sph/crack_treatment.h"
+#include "util/parallel.h"
+
+/* Immediate neighbours: |X_ij| < TLSPH_LINK_REACH x the mean local spacing. */
+#define TLSPH_LINK_REACH 1.85
+
+/* The links of a run (m->links), allocated only with this treatment. */
+struct tlsph_links {
+    double *D;       /* D_ij per reference pair, CSR order of m->pairs [npairs], 1 */
+    int64_t *mirror; /* the entry of the same link in j's row [npairs] */
+    size_t broken;   /* links with D_ij = 1, each counted once (last update) */
+};
+
+extern const struct tlsph_crack_model tlsph_crack_virtual_links;
+
+/* The pair's forces: both stresses and the stabilisation weigh f_ij. */
+static inline __attribute__((always_inline)) struct tlsph_pair_weights
+tlsph_virtual_links_force_weights(double Dij)
+{
+    const double f = 1.0 - Dij;
+    return (struct tlsph_pair_weights){.wi = f, .wj = f, .stab = f};
+}
+
+/* The particle damage D_i = sum_j D_ij / n_i into out [n] (0 for a particle
+ * without links). */
+void tlsph_virtual_links_particle_damage(const struct tlsph_model *m, double *out);
+
+/* Acoustic impedance rho C = sqrt(E rho0 / J) of particle i (eq. 38), kg/(m^2 s). */
+double tlsph_link_impedance(const struct tlsph_model *m, size_t i);
+
+/* A criterion's update (link_criterion.h): NAME(m) raises each link once (from
+ * the row of its lower index) to min(1, VALUE(m, ls, i, j)) and copies it to
+ * the other entry; returns the broken links.  VALUE is a static inline
+ * function of the criterion's file, so the loop is plain.  Each link is written
+ * by the thread of its lower index only. */
+#define TLSPH_LINK_SWEEP(NAME, VALUE)                                                             \
+    static size_t NAME(struct tlsph_model *m)                                                     \
+    {                                                                                             \
+        const size_t n = m->p.n;                                                                  \
+        const int64_t *restrict start = m->pairs.start;                                           \
+        const int32_t *restrict nbr = m->pairs.j;                                                 \
+        const int64_t *restrict mirror = m->links->mirror;                                        \
+        const struct tlsph_link_settings *ls = &m->scene.links;                                   \
+        double *D = m->links->D;                                                                  \
+        size_t broken = 0;                                                                        \
+        _Pragma("omp parallel for schedule(static) reduction(+ : broken) if (n >= TLSPH_PARALLEL_MIN_ITEMS)") \
+        for (size_t i = 0; i < n; i++)                                                            \
+            for (int64_t k = start[i]; k < start[i + 1]; k++) {                                   \
+                const size_t j = (size_t)nbr[k];                                                  \
+                if (j < i)                                                                        \
+                    continue;                                                                     \
+                if (D[k] < 1.0) {                                                                 \
+                    const double Dn = fmax(D[k], fmin(1.0, VALUE(m, ls, i, j)));                  \
+                    D[k] = Dn;                                                                    \
+                    D[mirror[k]] = Dn;                                                            \
+                }                                                                                 \
+                broken += D[k] >= 1.0;                                                            \
+            }                                                                                     \
+        return broken;                                                                            \
+    }
+
+#endif
