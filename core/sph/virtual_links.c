@@ -4,6 +4,7 @@
 #include "sph/virtual_links.h"
 
 #include <stdlib.h>
+#include <string.h>
 
 #include "sph/link_criterion.h"
 #include "util/mat3.h"
@@ -48,6 +49,7 @@ static void release(struct tlsph_model *m)
     if (!m->links)
         return;
     free(m->links->D);
+    free(m->links->D_prev);
     free(m->links->mirror);
     free(m->links);
     m->links = NULL;
@@ -63,9 +65,10 @@ static int setup(struct tlsph_model *m, struct tlsph_errors *err)
         return -1;
     }
     m->links = L;
-    L->D = tlsph_alloc(m, np ? np : 1, sizeof *L->D);
-    L->mirror = tlsph_alloc(m, np ? np : 1, sizeof *L->mirror);
-    if (!L->D || !L->mirror) {
+    L->D = tlsph_alloc(m, np, sizeof *L->D);
+    L->D_prev = tlsph_alloc(m, np, sizeof *L->D_prev);
+    L->mirror = tlsph_alloc(m, np, sizeof *L->mirror);
+    if (!L->D || !L->D_prev || !L->mirror) {
         tlsph_errors_add(err, "", "out of memory for %zu virtual links", np);
         return -1;
     }
@@ -87,9 +90,46 @@ static int setup(struct tlsph_model *m, struct tlsph_errors *err)
     return 0;
 }
 
+/* The second half of this step's internal-energy update with the links' new
+ * state (virtual_links.h): e_i loses dt/2 V_i/m_i sum_j (D_ij - D_ij,prev)
+ * V_j dw_ij P~_i : (v_j - v_i) (x) (X_j - X_i), the part of P_i : Fdot_i the
+ * grown damage no longer transmits.  Per particle, so each thread writes its
+ * own e_i; the branch skips the links that did not change. */
+static void rebook_half_step(struct tlsph_model *m, double dt)
+{
+    const size_t n = m->p.n;
+    const int64_t *restrict start = m->pairs.start;
+    const int32_t *restrict nbr = m->pairs.j;
+    const double *restrict dw = m->pairs.dw, *restrict vol0 = m->p.vol0;
+    const double *restrict D = m->links->D, *restrict D0 = m->links->D_prev;
+    const double *restrict X = m->p.X, *restrict v = m->p.v, *restrict Pt = m->p.P_tilde;
+    double *restrict e = m->p.e;
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++) {
+        double lost = 0.0;
+        for (int64_t k = start[i]; k < start[i + 1]; k++) {
+            const double dD = D[k] - D0[k];
+            if (dD == 0.0)
+                continue;
+            const size_t j = (size_t)nbr[k];
+            const double s = dD * vol0[j] * dw[k];
+            for (int a = 0; a < 3; a++)
+                for (int b = 0; b < 3; b++)
+                    lost += s * Pt[9 * i + 3 * a + b] * (v[3 * j + a] - v[3 * i + a]) *
+                            (X[3 * j + b] - X[3 * i + b]);
+        }
+        e[i] -= 0.5 * dt * lost * vol0[i] / m->p.mass[i];
+    }
+}
+
 static void update(struct tlsph_model *m)
 {
-    m->links->broken = m->scene.links.criterion->update(m);
+    struct tlsph_links *L = m->links;
+    memcpy(L->D_prev, L->D, m->pairs.npairs * sizeof *L->D);
+    L->broken = m->scene.links.criterion->update(m);
+    /* m->dt is this step's (0 at the start, where no half step was booked) */
+    if (m->dt > 0.0)
+        rebook_half_step(m, m->dt);
 }
 
 void tlsph_virtual_links_particle_damage(const struct tlsph_model *m, double *out)

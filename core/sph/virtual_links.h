@@ -27,10 +27,17 @@
  * from then on and keeps what it had carried, the damage-aware history of
  * paper 000 eq. 34 with D_j replaced by D_ij (p.crack_gradient).  So F never
  * jumps when a link breaks, the stress power P : Fdot is the work of the pair
- * forces, and the energy balance closes with no term of its own: the stored
- * energy a crack face holds leaves it as it unloads through its remaining
- * links (kinetic energy of the opening), not at the instant of breaking.  L_i
- * is not rebuilt as links break (eq. 27 is taken on the reference support).
+ * forces.  One thing remains for the balance: the criteria run after the
+ * stress update, so in the step where D_ij grows the second half of the
+ * trapezoidal internal-energy update (constitutive.c, P_i : Fdot_i with the
+ * old D_ij) and the second half kick (the forces, with the new D_ij) would
+ * disagree by dt/2 x the power the link stopped carrying.  The update books
+ * that half step with the new D_ij as well (it takes it off e_i and e_j), so
+ * both halves of every step see one link state and the balance closes with no
+ * term of its own.  The stored energy a crack face holds leaves it as it
+ * unloads through its remaining links (kinetic energy of the opening), not at
+ * the instant of breaking.  L_i is not rebuilt as links break (eq. 27 is
+ * taken on the reference support).
  *
  * Criteria: sph/link_criterion.h, one file each.  Output: the particle damage
  * D_i = sum_j D_ij / n_i (n_i links of i), field "link_damage". */
@@ -49,6 +56,7 @@
 /* The links of a run (m->links), allocated only with this treatment. */
 struct tlsph_links {
     double *D;       /* D_ij per reference pair, CSR order of m->pairs [npairs], 1 */
+    double *D_prev;  /* D_ij before the last update [npairs] (scratch of the update) */
     int64_t *mirror; /* the entry of the same link in j's row [npairs] */
     size_t broken;   /* links with D_ij = 1, each counted once (last update) */
 };
