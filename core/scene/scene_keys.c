@@ -117,7 +117,8 @@ static const struct tlsph_key discretization_keys[] = {
     {.name = "viscosity", .kind = TLSPH_KEY_OBJECT, .table = &viscosity_table,
      .description = "artificial viscosity"},
     {.name = "damage", .kind = TLSPH_KEY_OBJECT, .table = &treatment_table,
-     .description = "damage treatment; read only when some material has a damage block"},
+     .description = "damage treatment; read only when some material has a damage block, or "
+                    "with virtual_links"},
 };
 static const struct tlsph_key_table discretization_table =
     TLSPH_KEY_TABLE("/discretization", NULL, discretization_keys);
