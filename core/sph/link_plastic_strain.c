@@ -36,12 +36,4 @@ static inline double value(const struct tlsph_model *m, const struct tlsph_link_
     return tlsph_link_plastic_strain_of(m, i, j) >= ls->params[THRESHOLD] ? 1.0 : 0.0;
 }
 
-TLSPH_LINK_SWEEP(update, value)
-
-const struct tlsph_link_criterion tlsph_link_plastic_strain = {
-    .name = "plastic_strain",
-    .module = "link:plastic_strain",
-    .keys = &table,
-    .needs_plasticity = 1,
-    .update = update,
-};
+TLSPH_LINK_ROW(plastic_strain, 1)

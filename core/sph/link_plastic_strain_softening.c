@@ -31,12 +31,4 @@ static inline double value(const struct tlsph_model *m, const struct tlsph_link_
     return fmax(0.0, (e - ls->params[THRESHOLD]) / ls->params[SOFTENING]);
 }
 
-TLSPH_LINK_SWEEP(update, value)
-
-const struct tlsph_link_criterion tlsph_link_plastic_strain_softening = {
-    .name = "plastic_strain_softening",
-    .module = "link:plastic_strain_softening",
-    .keys = &table,
-    .needs_plasticity = 1,
-    .update = update,
-};
+TLSPH_LINK_ROW(plastic_strain_softening, 1)

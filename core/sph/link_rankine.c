@@ -22,21 +22,7 @@ static const struct tlsph_key_table table =
 static inline double value(const struct tlsph_model *m, const struct tlsph_link_settings *ls,
                            size_t i, size_t j)
 {
-    const double *x = m->p.x, *X = m->p.X;
-    double dx[3], dX[3];
-    for (int a = 0; a < 3; a++) {
-        dx[a] = x[3 * j + a] - x[3 * i + a];
-        dX[a] = X[3 * j + a] - X[3 * i + a];
-    }
-    return tlsph_link_stretch(dx, dX) >= ls->params[STRETCH] ? 1.0 : 0.0;
+    return tlsph_link_stretch_of(m, i, j) >= ls->params[STRETCH] ? 1.0 : 0.0;
 }
 
-TLSPH_LINK_SWEEP(update, value)
-
-const struct tlsph_link_criterion tlsph_link_rankine = {
-    .name = "rankine",
-    .module = "link:rankine",
-    .keys = &table,
-    .needs_plasticity = 0,
-    .update = update,
-};
+TLSPH_LINK_ROW(rankine, 0)

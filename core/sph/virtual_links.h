@@ -48,6 +48,7 @@
 
 #include "run/model.h"
 #include "sph/crack_treatment.h"
+#include "sph/link_criterion.h"
 #include "util/parallel.h"
 
 /* Immediate neighbours: |X_ij| < TLSPH_LINK_REACH x the mean local spacing. */
@@ -74,6 +75,18 @@ tlsph_virtual_links_force_weights(double Dij)
 /* The particle damage D_i = sum_j D_ij / n_i into out [n] (0 for a particle
  * without links). */
 void tlsph_virtual_links_particle_damage(const struct tlsph_model *m, double *out);
+
+/* The stretch of eq. 40 of the link i-j, now. */
+static inline double tlsph_link_stretch_of(const struct tlsph_model *m, size_t i, size_t j)
+{
+    const double *x = m->p.x, *X = m->p.X;
+    double dx[3], dX[3];
+    for (int a = 0; a < 3; a++) {
+        dx[a] = x[3 * j + a] - x[3 * i + a];
+        dX[a] = X[3 * j + a] - X[3 * i + a];
+    }
+    return tlsph_link_stretch(dx, dX);
+}
 
 /* Acoustic impedance rho C = sqrt(E rho0 / J) of particle i (eq. 38), kg/(m^2 s). */
 double tlsph_link_impedance(const struct tlsph_model *m, size_t i);
@@ -108,5 +121,18 @@ double tlsph_link_impedance(const struct tlsph_model *m, size_t i);
             }                                                                                     \
         return broken;                                                                            \
     }
+
+/* The end of a criterion's file (link_<ID>.c, which defines its key table
+ * `table` and its per-link `value`): its loop and its row, needing the plastic
+ * strain tensor when PLASTIC is 1. */
+#define TLSPH_LINK_ROW(ID, PLASTIC)                                                               \
+    TLSPH_LINK_SWEEP(update, value)                                                               \
+    const struct tlsph_link_criterion tlsph_link_##ID = {                                         \
+        .name = #ID,                                                                              \
+        .module = "link:" #ID,                                                                    \
+        .keys = &table,                                                                           \
+        .needs_plasticity = (PLASTIC),                                                            \
+        .update = update,                                                                         \
+    };
 
 #endif

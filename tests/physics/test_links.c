@@ -272,12 +272,7 @@ static void rankine_check(struct tlsph_model *m, double eps, size_t *broken)
     for (size_t i = 0; i < m->p.n; i++)
         for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++) {
             const size_t j = (size_t)m->pairs.j[k];
-            double dx[3], dX[3];
-            for (int a = 0; a < 3; a++) {
-                dx[a] = m->p.x[3 * j + a] - m->p.x[3 * i + a];
-                dX[a] = m->p.X[3 * j + a] - m->p.X[3 * i + a];
-            }
-            const double want = tlsph_link_stretch(dx, dX) >= eps ? 1.0 : 0.0;
+            const double want = tlsph_link_stretch_of(m, i, j) >= eps ? 1.0 : 0.0;
             ck_assert_msg(m->links->D[k] == want, "link %zu-%zu: D = %g, want %g", i, j,
                           m->links->D[k], want);
             *broken += m->links->D[k] == 1.0 && j > i;
@@ -298,15 +293,8 @@ START_TEST(eq40_fires_exactly_at_threshold)
     /* the largest stretch of any link: the threshold set exactly to it */
     double top = 0.0;
     for (size_t i = 0; i < m->p.n; i++)
-        for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++) {
-            const size_t j = (size_t)m->pairs.j[k];
-            double dx[3], dX[3];
-            for (int a = 0; a < 3; a++) {
-                dx[a] = m->p.x[3 * j + a] - m->p.x[3 * i + a];
-                dX[a] = m->p.X[3 * j + a] - m->p.X[3 * i + a];
-            }
-            top = fmax(top, tlsph_link_stretch(dx, dX));
-        }
+        for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++)
+            top = fmax(top, tlsph_link_stretch_of(m, i, (size_t)m->pairs.j[k]));
     size_t at, above, mid;
     rankine_check(m, top, &at);
     rankine_check(m, nextafter(top, DBL_MAX), &above);
