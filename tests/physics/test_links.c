@@ -8,6 +8,9 @@
  *     and Fdot = B at every particle, boundary included (the corrected gradient
  *     of eqs. 26-27 reproduces linear fields on any support with an invertible
  *     L): 1e-10 relative, as tests/engine/test_patch.c on the full support.
+ *  1b. The pair loop against a brute-force eq. 29 (O(n^2) search of the
+ *     immediate neighbours, kernel evaluated directly) on a deformed 3-D block
+ *     with random link damages: 1e-12 of the largest force.
  *  2. One broken link (D_ij = 1 in both entries) at fixed stress changes the
  *     pair forces of its two particles only (every other force bit-identical),
  *     by opposite amounts (1e-12 of the largest force), and the total force
@@ -45,7 +48,9 @@
 #include <string.h>
 
 #include "contact/contact.h"
+#include "material/constitutive.h"
 #include "sph/forces.h"
+#include "sph/kernel.h"
 #include "sph/kinematics.h"
 #include "sph/link_criterion.h"
 #include "sph/virtual_links.h"
@@ -224,6 +229,62 @@ START_TEST(one_broken_link_changes_two_forces)
            i, j, change, fmax_);
     ck_assert_msg(change > 1e-3 * fmax_, "breaking the link changed nothing");
     free(f0);
+    tlsph_model_free(m);
+}
+END_TEST
+
+/* Brute force of eq. 29 on a deformed 3-D block with random link damages:
+ * f_i = sum_j f_ij V_i V_j (P~_i + P~_j) grad W_ij over every j with
+ * |X_ij| < 1.85 spacings (an O(n^2) search, the kernel evaluated directly),
+ * against the pair loop: 1e-12 of the largest force, as test_patch.c's. */
+START_TEST(forces_match_brute_force)
+{
+    struct tlsph_model *m = build_model(links_scene(
+        3, "elastic", RANKINE_OFF,
+        "\"spacing\":0.001,\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.006,0.005,0.005]}}",
+        ""));
+    m->scene.hourglass = 0;
+    srand(5);
+    for (size_t i = 0; i < m->p.n; i++)
+        for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++)
+            if ((size_t)m->pairs.j[k] > i)
+                m->links->D[k] = m->links->D[m->links->mirror[k]] =
+                    rand() % 3 == 0 ? 1.0 : rand() / (double)RAND_MAX;
+    for (size_t k = 0; k < 3 * m->p.n; k++)
+        m->p.x[k] = m->p.X[k] * 1.01 + 2e-5 * (rand() / (double)RAND_MAX - 0.5);
+    tlsph_kinematics(m, 0.0);
+    tlsph_constitutive(m, 0.0);
+    tlsph_forces(m);
+    double fmaxabs = 0.0, err = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        double f[3] = {0, 0, 0};
+        for (size_t j = 0; j < m->p.n; j++) {
+            double d[3], r = 0;
+            for (int c = 0; c < 3; c++) {
+                d[c] = m->p.X[3 * j + c] - m->p.X[3 * i + c];
+                r += d[c] * d[c];
+            }
+            r = sqrt(r);
+            if (j == i || r >= 1.85 * 0.001)
+                continue;
+            const int64_t k = link_of(m, i, j);
+            ck_assert_msg(k >= 0, "%zu-%zu is an immediate neighbour but not linked", i, j);
+            double w, dwdr;
+            tlsph_kernel(m->scene.kernel, 3, r, 0.5 * (m->p.h[i] + m->p.h[j]), &w, &dwdr);
+            for (int a = 0; a < 3; a++)
+                for (int c = 0; c < 3; c++)
+                    f[a] += (1.0 - m->links->D[k]) * m->p.vol0[i] * m->p.vol0[j] *
+                            (m->p.P_tilde[9 * i + 3 * a + c] + m->p.P_tilde[9 * j + 3 * a + c]) *
+                            dwdr / r * d[c];
+        }
+        for (int a = 0; a < 3; a++) {
+            fmaxabs = fmax(fmaxabs, fabs(f[a]));
+            err = fmax(err, fabs(f[a] - m->p.f[3 * i + a]));
+        }
+    }
+    ck_assert(fmaxabs > 0.0);
+    ck_assert_msg(err <= 1e-12 * fmaxabs, "pair loop differs from brute force by %.3g (max %.3g)",
+                  err, fmaxabs);
     tlsph_model_free(m);
 }
 END_TEST
@@ -559,7 +620,8 @@ START_TEST(only_link_scenes_pay_for_links)
 END_TEST
 
 TLSPH_CHECK_MAIN("links", 600, patch_square_lattice_2d, patch_cubic_lattice_3d,
-                 patch_irregular_conforming, one_broken_link_changes_two_forces,
+                 patch_irregular_conforming, forces_match_brute_force,
+                 one_broken_link_changes_two_forces,
                  eq37_projection_by_hand, eq40_fires_exactly_at_threshold,
                  bar_separates_at_the_rankine_stretch, tear_rankine_momentum_and_energy,
                  tear_plastic_softening_momentum_and_energy, contact_across_broken_links,
