@@ -44,7 +44,7 @@ def main(argv):
     broken = int(obs["broken_links/value"][-1]) if "broken_links" in obs else 0
     ke0 = 0.5 * G * V * V
     balance = np.abs(obs["energy_balance/value"][:]).max() / ke0
-    spacing = X[1, 0] - X[0, 0]
+    spacing = math.sqrt(p["volume"][0])  # 2-D: the particle's area, spacing^2
     steps = wall = "?"
     if len(argv) > 2:
         log = open(argv[2]).read()
