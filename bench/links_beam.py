@@ -35,7 +35,7 @@ def main(argv):
     beam = body == 0
     ylow = X[beam, 1].min()
     low = np.where(beam & (np.abs(X[:, 1] - ylow) < 1e-9))[0]
-    mid = low[np.argsort(np.abs(X[low, 0]))[:2]]
+    mid = np.sort(low[np.argsort(np.abs(X[low, 0]))[:2]])
     t = p["displacement/time"][:] if "time" in p["displacement"] else p["det_F/time"][:]
     w = -p["displacement/value"][:, mid, 1].mean(axis=1)
     late = (t >= 1.5e-3 - 1e-12) & (t <= 3e-3 + 1e-12)

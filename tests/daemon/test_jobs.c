@@ -236,9 +236,9 @@ START_TEST(test_output_quota)
     jobs_submitted_free(&sub);
     ck_assert_int_eq(count_jobs(), 0);
 
-    /* 11 records: 376 000 B fit */
+    /* 11 records: 387 000 B fit */
     submit_good_run(&sub);
-    ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 132));
+    ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 136));
     jobs_submitted_free(&sub);
 
     /* a study: the child above the quota is named */
