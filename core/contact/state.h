@@ -39,7 +39,6 @@ struct tlsph_contact {
      * that no motion caused). */
     double *reach;
     size_t touching; /* particles flagged */
-    size_t broken_seen; /* virtual links: broken links at the last watch */
     int all_particles;
 
     /* Candidates: the pairs of i are j[start[i] .. start[i+1]-1], every pair

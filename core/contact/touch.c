@@ -50,9 +50,9 @@ void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c)
  * more are broken than at the last watch. */
 static size_t watch_links(struct tlsph_model *m, struct tlsph_contact *c)
 {
-    if (m->links->broken == c->broken_seen)
+    if (m->links->broken == m->links->broken_watched)
         return 0;
-    c->broken_seen = m->links->broken;
+    m->links->broken_watched = m->links->broken;
     const int64_t *start = m->pairs.start;
     uint8_t *touch = c->touch;
     size_t fresh = 0;

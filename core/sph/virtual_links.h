@@ -60,6 +60,9 @@ struct tlsph_links {
     double *D_prev;  /* D_ij before the last update [npairs] (scratch of the update) */
     int64_t *mirror; /* the entry of the same link in j's row [npairs] */
     size_t broken;   /* links with D_ij = 1, each counted once (last update) */
+    size_t broken_watched; /* `broken` when contact last looked for new crack faces
+                              (contact/touch.c; kept here so that scenes without links
+                              carry nothing for it) */
 };
 
 extern const struct tlsph_crack_model tlsph_crack_virtual_links;
