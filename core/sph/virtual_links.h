@@ -7,7 +7,8 @@
  * the local spacing (V_i the reference volume; 2-D: the area of the unit-thick
  * slab).  TLSPH_LINK_REACH = 1.85 sits between the lattice shells it must keep
  * and the first it must drop: on the 2-D square lattice it keeps the 8 at
- * distances 1 and sqrt 2 (the paper's Fig. 1), on the 3-D cubic lattice the 26
+ * distances 1 and sqrt 2 (the particles whose cells touch i's: the paper's
+ * Fig. 1 draws, its text does not count them), on the 3-D cubic lattice the 26
  * at 1, sqrt 2 and sqrt 3 (the same rule: every point of the unit cell around
  * i), and drops the next shell at 2 on both; 6-8 % of slack on either side
  * lets an irregular set (conforming shells, graded volumes) keep a full first
