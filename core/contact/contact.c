@@ -143,7 +143,7 @@ int tlsph_contact_create(struct tlsph_model *m, struct tlsph_errors *err)
     }
     /* contact within a body: only where material can separate */
     c->all_particles = s->nbodies > 1;
-    if (m->p.damage) {
+    if (m->p.damage || m->links) {
         c->touch = tlsph_alloc(m, n, sizeof *c->touch);
         c->reach = tlsph_alloc(m, n, sizeof *c->reach);
         if (!c->touch || !c->reach) {

@@ -5,7 +5,7 @@
  * contact (forces.c), k the law's tangent stiffness at the pair's overlap.
  * Before the run the overlaps are unknown, so the estimate takes the stiffest
  * contact the run may see: for every pair of bodies that can meet (different
- * bodies; a body with itself when its material damages), two of their
+ * bodies; a body with itself when its material damages or has virtual links), two of their
  * particles (mass rho V0, V0 = spacing^d, per metre in 2-D) at the deepest
  * overlap the stability contract accepts, TLSPH_CONTACT_MAX_OVERLAP x
  * (R_a + R_b), or at the overlap two touching lattice cells already have when
@@ -43,7 +43,8 @@ double tlsph_contact_step_estimate(const struct tlsph_scene *s, size_t pair[2])
     double best = INFINITY;
     for (size_t a = 0; a < s->nbodies; a++)
         for (size_t b = a; b < s->nbodies; b++) {
-            if (a == b && !s->materials[s->bodies[a].material].damage.model)
+            if (a == b && !s->materials[s->bodies[a].material].damage.model &&
+                s->crack_treatment != TLSPH_CRACK_VIRTUAL_LINKS)
                 continue;
             const double reach = cb[a].radius + cb[b].radius;
             const double cells = 0.5 * (s->bodies[a].spacing + s->bodies[b].spacing);

@@ -24,14 +24,19 @@
 #include "util/parallel.h"
 
 /* May i and j touch?  Particles of different bodies always; two of one body
- * (only with a damage model, touch != NULL) when both are flagged as able to
- * touch and the pair is not a continuum (tlsph_contact_same_body_pair). */
-static inline int contact_candidate(const struct tlsph_particles *p, const uint8_t *touch, size_t i,
+ * (only with a damage model or virtual links, touch != NULL) when both are
+ * flagged as able to touch and the pair is not a continuum
+ * (tlsph_contact_same_body_pair, or _links with virtual links). */
+static inline int contact_candidate(const struct tlsph_model *m, const uint8_t *touch, size_t i,
                                     size_t j)
 {
+    const struct tlsph_particles *p = &m->p;
     if (p->body[i] != p->body[j])
         return 1;
-    return touch && touch[i] && touch[j] && tlsph_contact_same_body_pair(p, i, j);
+    if (!(touch && touch[i] && touch[j]))
+        return 0;
+    return m->links ? tlsph_contact_same_body_pair_links(m, i, j)
+                    : tlsph_contact_same_body_pair(p, i, j);
 }
 
 /* Is i in the grid: every particle with more than one body, else only those
@@ -91,7 +96,7 @@ static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, c
                 const int64_t cell = home + (dz * g->dims[1] + dy) * g->dims[0] + dx;
                 for (int64_t k = c->cell_start[cell]; k < c->cell_start[cell + 1]; k++) {
                     const size_t j = (size_t)c->order[k];
-                    if (j == i || !contact_candidate(&m->p, c->touch, i, j))
+                    if (j == i || !contact_candidate(m, c->touch, i, j))
                         continue;
                     const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
                                  d2 = x[3 * j + 2] - x[3 * i + 2];

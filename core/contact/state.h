@@ -8,6 +8,7 @@
 
 #include "contact/contact.h"
 #include "run/model.h"
+#include "sph/virtual_links.h"
 
 struct tlsph_contact {
     const struct tlsph_contact_law *law;
@@ -83,7 +84,8 @@ int tlsph_contact_search(struct tlsph_model *m, struct tlsph_contact *c, int for
 
 /* touch[] flags */
 #define TLSPH_TOUCH_SURFACE     1u /* fewer reference neighbours than the body's interior */
-#define TLSPH_TOUCH_FAILED      2u /* failed (D = 1): seen by the watch */
+#define TLSPH_TOUCH_FAILED      2u /* failed (D = 1), or with virtual links an end of a
+                                      broken link: seen by the watch */
 #define TLSPH_TOUCH_NEAR_FAILED 4u /* a reference neighbour failed: a crack face */
 #define TLSPH_TOUCH_NEW         8u /* flagged anew since the last settle */
 
@@ -124,6 +126,18 @@ static inline __attribute__((always_inline)) int
 tlsph_contact_same_body_pair(const struct tlsph_particles *p, size_t i, size_t j)
 {
     return !tlsph_contact_reference_pair(p, i, j) || p->damage[i] >= 1.0 || p->damage[j] >= 1.0;
+}
+
+/* The same with virtual links (sph/virtual_links.h), where the continuum is
+ * the links: a pair of one body can touch when it is not linked (the pairs
+ * beyond the immediate neighbours never interact) or its link is broken. */
+static inline int tlsph_contact_same_body_pair_links(const struct tlsph_model *m, size_t i,
+                                                     size_t j)
+{
+    for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++)
+        if ((size_t)m->pairs.j[k] == j)
+            return m->links->D[k] >= 1.0;
+    return 1;
 }
 
 #endif

@@ -4,7 +4,8 @@
  * particles, not all of them.
  *
  * A pair of one body can be in contact only when it is not a reference pair
- * or its link is broken (tlsph_contact_same_body_pair).  Two parts of a body
+ * or its link is broken (tlsph_contact_same_body_pair; with virtual links,
+ * _links: not linked, or D_ij = 1, and the faces are the ends of broken links).  Two parts of a body
  * that the reference neighbourhood never linked meet with their surfaces
  * first: their surface layer, the particles with fewer reference neighbours
  * than the body's interior (within a support radius of the boundary), is
@@ -21,13 +22,14 @@
 
 #include "contact/state.h"
 
-/* Flags the surface layer of every body whose material damages. */
+/* Flags the surface layer of every body whose material damages (every body
+ * with virtual links). */
 void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c)
 {
     const struct tlsph_scene *s = &m->scene;
     const int64_t *start = m->pairs.start;
     for (size_t b = 0; b < s->nbodies; b++) {
-        if (!s->materials[s->bodies[b].material].damage.model)
+        if (!s->materials[s->bodies[b].material].damage.model && !m->links)
             continue;
         int64_t full = 0;
         for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
@@ -43,8 +45,36 @@ void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c)
     }
 }
 
+/* Virtual links: a crack's faces are the ends of its broken links (each
+ * link's two entries are in its two ends' rows).  Scans the links only when
+ * more are broken than at the last watch. */
+static size_t watch_links(struct tlsph_model *m, struct tlsph_contact *c)
+{
+    if (m->links->broken == m->links->broken_watched)
+        return 0;
+    m->links->broken_watched = m->links->broken;
+    const int64_t *start = m->pairs.start;
+    uint8_t *touch = c->touch;
+    size_t fresh = 0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        if (touch[i] & TLSPH_TOUCH_FAILED)
+            continue;
+        int broken = 0;
+        for (int64_t k = start[i]; k < start[i + 1]; k++)
+            broken |= m->links->D[k] >= 1.0;
+        if (!broken)
+            continue;
+        c->touching += touch[i] == 0;
+        touch[i] |= TLSPH_TOUCH_FAILED | TLSPH_TOUCH_NEW;
+        fresh++;
+    }
+    return fresh;
+}
+
 size_t tlsph_contact_watch(struct tlsph_model *m, struct tlsph_contact *c)
 {
+    if (m->links)
+        return watch_links(m, c);
     const double *D = m->p.damage;
     const int64_t *start = m->pairs.start;
     const int32_t *nbr = m->pairs.j;

@@ -8,6 +8,7 @@
 #include "bc/kind.h"
 #include "contact/contact.h"
 #include "rigid/rigid.h"
+#include "sph/virtual_links.h"
 #include "util/mat3.h"
 
 static void ex_id(const struct tlsph_model *m, void *out)
@@ -137,6 +138,17 @@ static void ex_damage(const struct tlsph_model *m, void *out)
     memcpy(out, m->p.damage, m->p.n * sizeof(double));
 }
 
+/* Virtual links only (sph/virtual_links.h): D_i = sum_j D_ij / n_i. */
+static int has_links(const struct tlsph_model *m)
+{
+    return m->links != NULL;
+}
+
+static void ex_link_damage(const struct tlsph_model *m, void *out)
+{
+    tlsph_virtual_links_particle_damage(m, out);
+}
+
 static void ex_damage_init(const struct tlsph_model *m, void *out)
 {
     memcpy(out, m->p.damage_init, m->p.n * sizeof(double));
@@ -229,6 +241,10 @@ const struct tlsph_field tlsph_fields[] = {
     {"damage", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
      "damage D (0 intact, 1 failed: no stress); 0 in bodies without a damage model", has_damage,
      ex_damage},
+    {"link_damage", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
+     "virtual links: the particle's mean link damage sum_j D_ij / n (paper 001 §5.3; 1 = every "
+     "link broken)",
+     has_links, ex_link_damage},
     {"damage_initiation", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
      "damage-initiation variable D_init (damage starts at 1; GTN: f / f_c, coalescence "
      "starts at 1)",
@@ -266,6 +282,10 @@ static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energ
 static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
 static void sv_damage_work(const struct tlsph_model *m, double *o) { o[0] = m->energy.damage_work; }
 static void sv_failed(const struct tlsph_model *m, double *o) { o[0] = (double)m->failed; }
+static void sv_broken_links(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)m->links->broken;
+}
 static void sv_initiated(const struct tlsph_model *m, double *o)
 {
     size_t n = 0;
@@ -337,6 +357,8 @@ const struct tlsph_series_column tlsph_global_series[] = {
      "grows; GTN: f >= f_c, coalescence)",
      has_damage, sv_initiated},
     {"failed_particles", 1, "1", "number of failed particles (D = 1)", has_damage, sv_failed},
+    {"broken_links", 1, "1", "virtual links: number of broken links (D_ij = 1), each counted once",
+     has_links, sv_broken_links},
     {"damage_energy", 1, "J",
      "energy dissipated by damage: stored energy released as D grows, sum over particles of "
      "psi_eff dD V0 (part of internal_energy)",

@@ -8,6 +8,7 @@
 #include "material/constitutive.h"
 #include "material/failure.h"
 #include "rigid/rigid.h"
+#include "sph/crack_treatment.h"
 #include "sph/forces.h"
 #include "sph/kinematics.h"
 #include "util/parallel.h"
@@ -19,6 +20,8 @@ void tlsph_evaluate(struct tlsph_model *m, double dt)
     tlsph_kinematics(m, dt);
     tlsph_constitutive(m, dt);
     tlsph_failure(m);
+    if (m->crack->update) /* the treatment's own state: virtual links' damage */
+        m->crack->update(m);
     const struct tlsph_force_power pw = tlsph_forces(m);
     if (m->contact)
         m->energy.contact -= dt * tlsph_contact_forces(m, dt);
@@ -125,6 +128,8 @@ double tlsph_internal_energy(const struct tlsph_model *m)
  *                 (material/failure.h)             P_tilde, v of those just failed; books
  *                                                  their arrested kinetic energy into
  *                                                  external_work; records m->failed
+ *     links       only with virtual links          reads F, plastic strain, x; raises D_ij
+ *                 (sph/virtual_links.h)            by the scene's link criterion
  *     forces      pair forces (sph/forces.h)       reads x, v, F, P_tilde, D; writes f,
  *                                                  f_hourglass, f_viscous; books the work
  *                                                  against them into hourglass, viscous

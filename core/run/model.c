@@ -17,6 +17,7 @@
 #include "run/integrate.h"
 #include "sph/correction.h"
 #include "sph/crack_treatment.h"
+#include "sph/link_criterion.h"
 #include "sph/kernel.h"
 #include "sph/neighbors.h"
 #include "util/parallel.h"
@@ -75,6 +76,8 @@ void tlsph_model_free(struct tlsph_model *m)
     free(m->groups);
     tlsph_contact_free(m);
     tlsph_rigid_free(m);
+    if (m->crack && m->crack->release)
+        m->crack->release(m);
     tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
@@ -130,6 +133,10 @@ static void select_modules(struct tlsph_model *m)
     if (damage) {
         add_module(m, m->crack->module);
         add_module(m, s->failed_motion == TLSPH_FAILED_ARREST ? "failure:arrest" : "failure:free");
+    }
+    if (m->links) {
+        add_module(m, m->crack->module);
+        add_module(m, s->links.criterion->module);
     }
     add_module(m, "force:pk1_pair");
     if (s->hourglass)
@@ -343,6 +350,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     }
     m->pairs.npairs = (size_t)m->pairs.start[m->p.n];
     m->bytes_allocated += (m->p.n + 1) * sizeof(int64_t) + m->pairs.npairs * sizeof(int32_t);
+    if (m->crack->setup && m->crack->setup(m, err) != 0) /* may narrow the pairs */
+        goto fail;
     m->pairs.dw = tlsph_alloc(m, m->pairs.npairs, sizeof(double));
     if (m->scene.hourglass)
         m->pairs.w = tlsph_alloc(m, m->pairs.npairs, sizeof(double));

@@ -21,6 +21,7 @@
 struct tlsph_crack_model; /* sph/crack_treatment.h */
 struct tlsph_contact;     /* contact/state.h: the contact phase's state */
 struct tlsph_rigid;       /* rigid/state.h: the rigid bodies' state */
+struct tlsph_links;       /* sph/virtual_links.h: the virtual links' state */
 
 struct tlsph_particles {
     size_t n;
@@ -138,6 +139,8 @@ struct tlsph_model {
                                        when the scene has none: nothing allocated or run */
     struct tlsph_rigid *rigid;      /* rigid bodies (rigid/rigid.h); NULL without
                                        "rigid_bodies": nothing allocated or run */
+    struct tlsph_links *links;      /* link damage (sph/virtual_links.h); NULL unless the
+                                       treatment is virtual_links */
 
     /* run state */
     long step;

@@ -330,6 +330,7 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     int limits_bad = 0;
     bad |= parse_sections(root, s, &limits_bad, err) != 0;
     bad |= parse_materials(root, s, err) != 0;
+    bad |= tlsph_parse_links(root, s, err) != 0;
     const int bodies_bad = tlsph_parse_bodies(root, s, err) != 0;
     bad |= bodies_bad;
     if (!bodies_bad)

@@ -13,10 +13,11 @@
 #include "scene/parse_internal.h"
 
 /* Can particles that are not linked as a continuum meet?  Those of different
- * bodies, and the separated parts of a body that can break (a damage model). */
+ * bodies, and the separated parts of a body that can break (a damage model,
+ * or virtual links). */
 static int contact_can_act(const struct tlsph_scene *s)
 {
-    int damage = 0;
+    int damage = s->crack_treatment == TLSPH_CRACK_VIRTUAL_LINKS;
     for (size_t k = 0; k < s->nmaterials; k++)
         damage |= s->materials[k].damage.model != NULL;
     return s->nbodies > 1 || damage;

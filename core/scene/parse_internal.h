@@ -59,6 +59,10 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
 /* parse_contact.c: fills s->contact (bodies already parsed). */
 int tlsph_parse_contact(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
+/* parse_links.c: fills s->links (materials and the scene's sections already
+ * parsed). */
+int tlsph_parse_links(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+
 /* parse_rigid.c: fills s->rigid ("rigid_bodies"). */
 int tlsph_parse_rigid_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 

@@ -25,7 +25,18 @@ enum tlsph_kernel_type { TLSPH_KERNEL_CUBIC_SPLINE, TLSPH_KERNEL_WENDLAND_C2 };
 /* How damage enters the particle approximation (paper 000 §3.1). */
 enum tlsph_crack_treatment {
     TLSPH_CRACK_DAMAGE_AWARE, /* eqs. 33-35: velocity differences scaled by (1 - D_j) */
-    TLSPH_CRACK_PSEUDO_SPRING /* kernel scaled per pair by (1 - D_i)(1 - D_j); comparison only */
+    TLSPH_CRACK_PSEUDO_SPRING, /* kernel scaled per pair by (1 - D_i)(1 - D_j); comparison only */
+    TLSPH_CRACK_VIRTUAL_LINKS  /* paper 001: immediate-neighbour links with their own damage
+                                  D_ij (sph/virtual_links.h); needs /discretization/damage/links */
+};
+
+struct tlsph_link_criterion; /* core/sph/link_criterion.h */
+
+/* The virtual links' criterion (/discretization/damage/links), read only with
+ * the virtual_links treatment. */
+struct tlsph_link_settings {
+    const struct tlsph_link_criterion *criterion; /* NULL: no links */
+    double params[4];             /* the criterion's parameters, meaning fixed by it */
 };
 
 /* What a failed particle (D = 1: no stress, no interaction) does next. */
@@ -212,6 +223,7 @@ struct tlsph_scene {
     double viscosity_quadratic;   /* beta2, 1 */
     enum tlsph_crack_treatment crack_treatment; /* only read when some material damages */
     enum tlsph_failed_motion failed_motion;
+    struct tlsph_link_settings links; /* virtual_links only */
 
     /* stability contract */
     long check_every;             /* steps between stability checks, >= 1 */

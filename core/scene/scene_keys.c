@@ -52,7 +52,8 @@ static const struct tlsph_key_choice kernels[] = {
     {"wendland_c2", TLSPH_KERNEL_WENDLAND_C2}, {"cubic_spline", TLSPH_KERNEL_CUBIC_SPLINE}, {0}};
 static const struct tlsph_key_choice stiffnesses[] = {{"elastic", 0}, {"tangent", 1}, {0}};
 static const struct tlsph_key_choice treatments[] = {
-    {"damage_aware", TLSPH_CRACK_DAMAGE_AWARE}, {"pseudo_spring", TLSPH_CRACK_PSEUDO_SPRING}, {0}};
+    {"damage_aware", TLSPH_CRACK_DAMAGE_AWARE}, {"pseudo_spring", TLSPH_CRACK_PSEUDO_SPRING},
+    {"virtual_links", TLSPH_CRACK_VIRTUAL_LINKS}, {0}};
 static const struct tlsph_key_choice motions[] = {
     {"free", TLSPH_FAILED_FREE}, {"arrest", TLSPH_FAILED_ARREST}, {0}};
 
@@ -90,11 +91,15 @@ static const struct tlsph_key treatment_keys[] = {
     {.name = "treatment", .kind = CHOICE, .flags = DEFAULT, .def = TLSPH_CRACK_DAMAGE_AWARE,
      .size = 32, .choices = treatments, .noun = "damage treatment", .offset = AT(crack_treatment),
      .description = "how damage enters the particle approximation: damage_aware (paper 000 "
-                    "eqs. 33-35) or pseudo_spring (for comparison only)"},
+                    "eqs. 33-35), pseudo_spring (for comparison only) or virtual_links (paper "
+                    "001: links between immediate neighbours carry the damage)"},
     {.name = "failed_particles", .kind = CHOICE, .flags = DEFAULT, .def = TLSPH_FAILED_FREE,
      .size = 32, .choices = motions, .noun = "failed-particle motion", .offset = AT(failed_motion),
      .description = "what a failed particle does: free (keeps its velocity) or arrest (its "
                     "velocity is set to 0 when it fails)"},
+    {.name = "links", .kind = TLSPH_KEY_OBJECT, .flags = CALLER,
+     .description = "the virtual links' criterion: {\"type\": name, ...parameters}; required "
+                    "with the virtual_links treatment (core/scene/parse_links.c)"},
 };
 static const struct tlsph_key_table treatment_table =
     TLSPH_KEY_TABLE("/discretization/damage", NULL, treatment_keys);
@@ -112,7 +117,8 @@ static const struct tlsph_key discretization_keys[] = {
     {.name = "viscosity", .kind = TLSPH_KEY_OBJECT, .table = &viscosity_table,
      .description = "artificial viscosity"},
     {.name = "damage", .kind = TLSPH_KEY_OBJECT, .table = &treatment_table,
-     .description = "damage treatment; read only when some material has a damage block"},
+     .description = "damage treatment; read only when some material has a damage block, or "
+                    "with virtual_links"},
 };
 static const struct tlsph_key_table discretization_table =
     TLSPH_KEY_TABLE("/discretization", NULL, discretization_keys);

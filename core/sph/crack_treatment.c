@@ -4,6 +4,7 @@
 
 #include "sph/damage_aware.h"
 #include "sph/pseudo_spring.h"
+#include "sph/virtual_links.h"
 
 static const struct tlsph_crack_model intact = {
     .name = "intact",
@@ -19,6 +20,8 @@ static const struct tlsph_crack_model *const treatments[] = {
 
 const struct tlsph_crack_model *tlsph_crack_select(const struct tlsph_scene *s)
 {
+    if (s->crack_treatment == TLSPH_CRACK_VIRTUAL_LINKS && s->links.criterion)
+        return &tlsph_crack_virtual_links;
     int damage = 0;
     for (size_t k = 0; k < s->nmaterials; k++)
         damage |= s->materials[k].damage.model != NULL;

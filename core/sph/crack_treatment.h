@@ -4,6 +4,8 @@
  *   intact          no material damages: the plain eqs. 26-27 and 31
  *   damage_aware    eqs. 33-35, sph/damage_aware.h
  *   pseudo_spring   kernels scaled per pair, sph/pseudo_spring.h (comparison only)
+ *   virtual_links   paper 001: immediate neighbours, damage per link, sph/virtual_links.h
+ *                   (selected by the scene alone: its criteria are the links')
  * The scene's /discretization/damage/treatment names a row (parsed into enum
  * tlsph_crack_treatment, scene.h).
  *
@@ -24,12 +26,16 @@
 #define TLSPH_CRACK_TREATMENT_H
 
 #include "scene/scene.h"
+#include "util/errors.h"
+
+struct tlsph_model;
 
 /* The compile-time variant of the pair loops. */
 enum tlsph_approximation {
     TLSPH_APPROX_INTACT,
     TLSPH_APPROX_DAMAGE_AWARE,
     TLSPH_APPROX_PSEUDO_SPRING,
+    TLSPH_APPROX_VIRTUAL_LINKS,
     TLSPH_APPROX_COUNT
 };
 
@@ -43,10 +49,21 @@ struct tlsph_crack_model {
                                          the intact row) */
     enum tlsph_approximation variant; /* which specialised pair loops run */
     unsigned fields;    /* TLSPH_CRACK_FIELD_* arrays to allocate */
+    /* Optional hooks of a treatment with state of its own (NULL: none), none of
+     * them in a pair loop: setup runs once after the reference pairs are built
+     * and before the correction matrices (it may narrow the pairs: m->pairs.j
+     * and start are compacted in place), update once per force evaluation
+     * after the stress update (run/integrate.c), release at tlsph_model_free
+     * (also after a failed setup). */
+    int (*setup)(struct tlsph_model *m, struct tlsph_errors *err);
+    void (*update)(struct tlsph_model *m);
+    void (*release)(struct tlsph_model *m);
 };
 
-/* The row for this scene: intact when no material has a damage model, else the
- * scene's treatment.  Never NULL. */
+/* The row for this scene: virtual_links when the scene names it (its links
+ * carry the damage; validation refuses material damage models with it), else
+ * intact when no material has a damage model, else the scene's treatment.
+ * Never NULL. */
 const struct tlsph_crack_model *tlsph_crack_select(const struct tlsph_scene *s);
 
 /* Weights of one pair's stress force f_i += s [w_i P~_i + w_j P~_j] (X_j - X_i)

@@ -5,6 +5,7 @@
 #include "sph/hourglass.h"
 #include "sph/pseudo_spring.h"
 #include "sph/viscosity.h"
+#include "sph/virtual_links.h"
 #include "util/parallel.h"
 
 struct body_constants {
@@ -14,12 +15,15 @@ struct body_constants {
     double beta1, beta2;
 };
 
-/* The weights of a pair's forces under each crack treatment (crack_treatment.h),
- * called with a constant variant: the switch folds away. */
+/* The weights of a pair's forces under each crack treatment (crack_treatment.h)
+ * from the particles' damages D_i, D_j or the link's D_ij, called with a
+ * constant variant: the switch folds away. */
 static inline __attribute__((always_inline)) struct tlsph_pair_weights
-pair_weights(const enum tlsph_approximation variant, double Di, double Dj)
+pair_weights(const enum tlsph_approximation variant, double Di, double Dj, double Dij)
 {
     switch (variant) {
+    case TLSPH_APPROX_VIRTUAL_LINKS:
+        return tlsph_virtual_links_force_weights(Dij);
     case TLSPH_APPROX_DAMAGE_AWARE:
         return tlsph_damage_aware_force_weights(Di, Dj);
     case TLSPH_APPROX_PSEUDO_SPRING:
@@ -39,7 +43,11 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
                const int with_visc, const enum tlsph_approximation variant, double *power_hg,
                double *power_visc)
 {
-    const int with_damage = variant != TLSPH_APPROX_INTACT;
+    /* particle damage (D_i, D_j), or link damage (D_ij): never both */
+    const int with_damage =
+        variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
+    const int with_links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
+    const double *restrict Dlink = with_links ? m->links->D : NULL;
     const double *restrict D = m->p.damage;
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
@@ -67,7 +75,8 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
         const double *Pj = Pt + 9 * j;
         /* weights of P_i and P_j, and of the stabilisation: the treatment's
          * (1 without damage); symmetric or swapped in i, j, so f_ij = -f_ji */
-        const struct tlsph_pair_weights wt = pair_weights(variant, Di, with_damage ? D[j] : 0.0);
+        const struct tlsph_pair_weights wt =
+            pair_weights(variant, Di, with_damage ? D[j] : 0.0, with_links ? Dlink[k] : 0.0);
         const double wi = wt.wi, wj = wt.wj, pair = wt.stab;
         f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
                    (wi * Pi[2] + wj * Pj[2]) * d2);
@@ -150,11 +159,13 @@ typedef void (*force_loop)(struct tlsph_model *, size_t, size_t, const struct bo
 FORCE_LOOPS(intact, TLSPH_APPROX_INTACT)
 FORCE_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
 FORCE_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
+FORCE_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
 /* [crack treatment][hourglass][viscosity] */
 static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
     [TLSPH_APPROX_INTACT] = FORCE_ROW(intact),
     [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(damage_aware),
     [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(pseudo_spring),
+    [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(virtual_links),
 };
 
 struct tlsph_force_power tlsph_forces(struct tlsph_model *m)

@@ -3,6 +3,7 @@
 #include "sph/crack_treatment.h"
 #include "sph/damage_aware.h"
 #include "sph/pseudo_spring.h"
+#include "sph/virtual_links.h"
 #include "util/parallel.h"
 
 /* The gather of particle i, inlined with a constant variant into the loops
@@ -12,6 +13,9 @@ static inline __attribute__((always_inline)) void
 gather_particle(struct tlsph_model *m, size_t i, double dt, const enum tlsph_approximation variant)
 {
     const int damage_aware = variant == TLSPH_APPROX_DAMAGE_AWARE;
+    /* virtual links: the same history as damage_aware, with the link's D_ij */
+    const int links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
+    const double *restrict Dlink = links ? m->links->D : NULL;
     const double *restrict D = m->p.damage;
     const int64_t *restrict start = m->pairs.start;
     const int32_t *restrict nbr = m->pairs.j;
@@ -36,12 +40,14 @@ gather_particle(struct tlsph_model *m, size_t i, double dt, const enum tlsph_app
         G[6] += q.du[2] * g[0]; G[7] += q.du[2] * g[1]; G[8] += q.du[2] * g[2];
         if (damage_aware)
             tlsph_damage_aware_transmit(dt, D[j], g, q.dv, Gc);
+        if (links)
+            tlsph_damage_aware_transmit(dt, Dlink[k], g, q.dv, Gc);
         Gd[0] += q.dv[0] * g[0]; Gd[1] += q.dv[0] * g[1]; Gd[2] += q.dv[0] * g[2];
         Gd[3] += q.dv[1] * g[0]; Gd[4] += q.dv[1] * g[1]; Gd[5] += q.dv[1] * g[2];
         Gd[6] += q.dv[2] * g[0]; Gd[7] += q.dv[2] * g[1]; Gd[8] += q.dv[2] * g[2];
         /* clang-format on */
     }
-    if (damage_aware)
+    if (damage_aware || links)
         tlsph_damage_aware_close(m->p.crack_gradient + 9 * i, Gc, G);
     tlsph_kinematics_finish(&m->p, i, dt, G, Gd);
 }
@@ -62,12 +68,21 @@ static void gather_damage_aware(struct tlsph_model *m, double dt)
         gather_particle(m, i, dt, TLSPH_APPROX_DAMAGE_AWARE);
 }
 
+static void gather_virtual_links(struct tlsph_model *m, double dt)
+{
+    const size_t n = m->p.n;
+#pragma omp parallel for schedule(static) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < n; i++)
+        gather_particle(m, i, dt, TLSPH_APPROX_VIRTUAL_LINKS);
+}
+
 /* One pass per crack treatment (sph/crack_treatment.h); the pseudo-spring
  * recomputes the correction matrices and has a pass of its own. */
 static void (*const passes[TLSPH_APPROX_COUNT])(struct tlsph_model *, double) = {
     [TLSPH_APPROX_INTACT] = gather_intact,
     [TLSPH_APPROX_DAMAGE_AWARE] = gather_damage_aware,
     [TLSPH_APPROX_PSEUDO_SPRING] = tlsph_pseudo_spring_kinematics,
+    [TLSPH_APPROX_VIRTUAL_LINKS] = gather_virtual_links,
 };
 
 void tlsph_kinematics(struct tlsph_model *m, double dt)

@@ -148,7 +148,7 @@ start_daemon Q "$TMP/data-quota" --max-output-mb 2 || exit 1
 post "$Q_URL" run "$TMP/long.json"
 check "estimated result above max_output_mb 2: 413" [ "$STATUS" = 413 ]
 check "  problem+json, type output-quota" [ "$(header Content-Type):$(jget "$BODY" "d['type']")" = "application/problem+json:urn:tlsph:problem:output-quota" ]
-check "  names the estimate (400 particles x (52 B + 101 frames x 132 B))" [ "$(jget "$BODY" "any(e['pointer'] == '#/inputs/scene/output/frames' and '400 particles x (52 B + 101 frames x 132 B)' in e['detail'] for e in d['errors'])")" = True ]
+check "  names the estimate (400 particles x (52 B + 101 frames x 136 B))" [ "$(jget "$BODY" "any(e['pointer'] == '#/inputs/scene/output/frames' and '400 particles x (52 B + 101 frames x 136 B)' in e['detail'] for e in d['errors'])")" = True ]
 check "  problem valid" valid error
 study_of "$TMP/long.json" '[{"pointer": "/output/frames", "values": [10, 100]}]' >"$TMP/quota_study.json"
 post "$Q_URL" study "$TMP/quota_study.json"

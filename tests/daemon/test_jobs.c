@@ -217,8 +217,8 @@ END_TEST
 
 /* The estimate of a result file against the per-job quota: strip_2d has 250
  * particles (50 x 5 at 2 mm); the engine's field table writes 52 B per
- * particle once and 132 B per particle and frame (docs/api.md); frames + 1
- * records.  101 records: 250 x (52 + 101 x 132) B = 3.2 MiB > 1 MiB. */
+ * particle once and 136 B per particle and frame (docs/api.md); frames + 1
+ * records.  101 records: 250 x (52 + 101 x 136) B = 3.3 MiB > 1 MiB. */
 START_TEST(test_output_quota)
 {
     g_cfg.max_output_mb = 1;
@@ -229,16 +229,16 @@ START_TEST(test_output_quota)
     json_t *inputs = json_pack("{s:o}", "scene", scene);
     ck_assert_int_eq(jobs_submit_run(&g_env, inputs, &sub), JOBS_OVER_QUOTA);
     ck_assert(has_error(&sub.errors, "/scene/output/frames",
-                        "250 particles x (52 B + 101 frames x 132 B)"));
-    ck_assert(sub.output_bytes == 250.0 * (52 + 101 * 132));
-    ck_assert_msg(strstr(sub.detail, "3.2 MiB") && strstr(sub.detail, "1.0 MiB"), "%s", sub.detail);
+                        "250 particles x (52 B + 101 frames x 136 B)"));
+    ck_assert(sub.output_bytes == 250.0 * (52 + 101 * 136));
+    ck_assert_msg(strstr(sub.detail, "3.3 MiB") && strstr(sub.detail, "1.0 MiB"), "%s", sub.detail);
     json_decref(inputs);
     jobs_submitted_free(&sub);
     ck_assert_int_eq(count_jobs(), 0);
 
-    /* 11 records: 376 000 B fit */
+    /* 11 records: 387 000 B fit */
     submit_good_run(&sub);
-    ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 132));
+    ck_assert(sub.output_bytes == 250.0 * (52 + 11 * 136));
     jobs_submitted_free(&sub);
 
     /* a study: the child above the quota is named */

@@ -19,6 +19,7 @@
 #include "bc/kind.h"
 #include "contact/contact.h"
 #include "material/damage/damage.h"
+#include "sph/link_criterion.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
 #include "rigid/rigid.h"
@@ -72,6 +73,7 @@ static struct tables all_tables(void)
     ADD_FAMILY(&all, tlsph_damage_names, tlsph_damage_find);
     ADD_FAMILY(&all, bc_names, tlsph_bc_find);
     ADD_FAMILY(&all, tlsph_contact_names, tlsph_contact_find);
+    ADD_FAMILY(&all, tlsph_link_criterion_names, tlsph_link_criterion_find);
     ADD_FAMILY(&all, tlsph_rigid_shape_names, tlsph_rigid_shape_find);
     ADD_FAMILY(&all, tlsph_rigid_motion_names, tlsph_rigid_motion_find);
     return all;

@@ -174,11 +174,13 @@ NAME_RULE = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]{0,62}\Z")
 
 def contact_items(scene):
     """The contact family's items (docs/output.md): none without contact (on by
-    default with more than one body or a damage model, off with "enabled":
+    default with more than one body, a damage model or virtual links, off with "enabled":
     false); else every body, then the pairs <a>--<b> (at most 66 pairs; a pair
     name that breaks the naming rule or is taken names nothing)."""
     bodies = [b["name"] for b in scene.get("bodies", [])]
     damage = any("damage" in m for m in scene.get("materials", {}).values())
+    treatment = scene.get("discretization", {}).get("damage", {}).get("treatment")
+    damage = damage or treatment == "virtual_links"
     if scene.get("contact", {}).get("enabled", True) is False or (len(bodies) < 2 and not damage):
         return []
     pairs = ["%s--%s" % (a, b) for i, a in enumerate(bodies) for b in bodies[i + 1:]]

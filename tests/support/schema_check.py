@@ -62,6 +62,12 @@ SEMANTIC_ONLY = {
     "damage_m_gurson_t1_above_t2",           # low_triaxiality < high_triaxiality
     "damage_gtn_critical_above_failure",     # critical_void_fraction < failure_void_fraction
     "damage_gtn_critical_above_inverse_q1",  # critical_void_fraction < 1/q1
+    # virtual links: the treatment, the links block and the materials together
+    # (core/scene/parse_links.c)
+    "links_without_virtual_links",
+    "virtual_links_without_links",
+    "virtual_links_with_material_damage",
+    "links_plastic_strain_elastic_material",
     # gauges and sections: cross references, uniqueness, the lattice
     "measures_gauge_unknown_group",
     "measures_gauge_same_group",
