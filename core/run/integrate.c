@@ -10,6 +10,7 @@
 #include "rigid/rigid.h"
 #include "sph/forces.h"
 #include "sph/kinematics.h"
+#include "util/clock.h"
 #include "util/parallel.h"
 
 /* The phases of a force evaluation, in order (the contract of each is above
@@ -17,7 +18,10 @@
 void tlsph_evaluate(struct tlsph_model *m, double dt)
 {
     tlsph_kinematics(m, dt);
+    /* the phase timed as a whole (two clock reads a step), never per particle */
+    const double t0 = tlsph_monotonic_seconds();
     tlsph_constitutive(m, dt);
+    m->material_seconds += tlsph_monotonic_seconds() - t0;
     tlsph_failure(m);
     const struct tlsph_force_power pw = tlsph_forces(m);
     if (m->contact)

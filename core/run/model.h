@@ -155,6 +155,7 @@ struct tlsph_model {
     size_t return_failures;       /* points whose return mapping did not converge (last evaluation) */
     long long plastic_point_steps; /* return mappings that found plastic flow, whole run */
     long long return_iterations;  /* their residual evaluations, whole run (cost of plasticity) */
+    double material_seconds;      /* wall-clock in the constitutive phase, whole run, s */
     int64_t first_return_failure_id;
     size_t failed;                /* particles with D = 1 (after the last evaluation) */
     struct tlsph_energy energy;
