@@ -3,7 +3,7 @@
 
 usage: gurson_report.py OUTDIR SVG_R2 SVG_SHEAR
 
-Reads OUTDIR/{r2,shear}-<variant>/result.h5 for the five variants of
+Reads OUTDIR/{r2,shear}-<variant>/result.h5 for the six variants of
 bench/gurson_scene.py.  Notched bar: one Markdown row per run with the metrics
 of bench/weldox_metrics.py (peak engineering stress and its strain, strains at
 initiation, first failure and separation, ...) and the engineering
@@ -24,7 +24,8 @@ VARIANTS = [("gurson", "Gurson (eq. 43-44)", "#1f77b4"),
             ("gtn", "GTN (eqs. 45-48)", "#2ca02c"),
             ("sm_gurson", "SM-Gurson (eqs. 49-51)", "#d62728"),
             ("m_gurson", "M-Gurson (eqs. 52-54)", "#ff7f0e"),
-            ("gtn_strain", "GTN, critical plastic strain 0.35", "#9467bd")]
+            ("gtn_strain", "GTN, critical plastic strain 0.35", "#9467bd"),
+            ("jc", "Johnson-Cook, eq. 62, D_c = 0.1", "#8c564b")]
 
 
 def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_low=False):
@@ -103,8 +104,11 @@ def shear(outdir, path):
             force = r.series("groups/top/reaction_force")[1][:, 0] / 1e3
             disp = r.series("groups/top/displacement")[1][:, 0] * 1e3
             failed = int(r.last("failed_particles"))
-            fshear = max(float(r.field("void_fraction_shear", frame=k).max())
-                         for k in range(len(r.frame_times())))
+            try:
+                fshear = max(float(r.field("void_fraction_shear", frame=k).max())
+                             for k in range(len(r.frame_times())))
+            except KeyError:  # no porous model: no void fraction
+                fshear = float("nan")
             cost, status = r.cost, r.status
         k = int(force.argmax())
         cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}", f"{force[-1]:.2f}", f"{failed}",
