@@ -46,7 +46,10 @@
 static const double D1 = 0.0705, D2 = 1.732, D3 = -0.54, D4 = -0.015;
 static const double A = 455e6, B = 237e6, N = 0.37, C = 0.006, EPSDOT0 = 1000.0;
 
-static double eps_f_uniaxial(void) { return D1 + D2 * exp(D3 / 3.0); }
+static double eps_f_uniaxial(void)
+{
+    return D1 + D2 * exp(D3 / 3.0);
+}
 
 static struct tlsph_material steel(const char *strength, const char *damage)
 {
@@ -89,8 +92,8 @@ static struct path drive(const struct tlsph_material *m, double de, double dt,
         ea += de;
         uniaxial_step(m, ea, &et, dt, &s, &r);
         if (isnan(out.eps_init) && s.damage_init >= 1.0)
-            out.eps_init = prev_eps + (1.0 - prev_init) * (s.eps_p - prev_eps) /
-                                          (s.damage_init - prev_init);
+            out.eps_init =
+                prev_eps + (1.0 - prev_init) * (s.eps_p - prev_eps) / (s.damage_init - prev_init);
         if (s.damage == 0.0 && s.eps_p > 0.0)
             out.worst_intact_error = fmax(out.worst_intact_error,
                                           fabs(r.sigma[0] - sigma_y(s.eps_p)) / sigma_y(s.eps_p));
@@ -109,38 +112,50 @@ static struct path drive(const struct tlsph_material *m, double de, double dt,
     return out;
 }
 
-static double jc_flow(double e) { return A + B * pow(e, N); }
+static double jc_flow(double e)
+{
+    return A + B * pow(e, N);
+}
 static double perfect_flow(double e)
 {
     (void)e;
     return A;
 }
 
-START_TEST(accumulated_damage_fails_at_the_critical_value)
+static void fails_at_the_critical_value(double Dc)
 {
-    const double Dc[2] = {0.1, 1.0};
     const double ef = eps_f_uniaxial();
     ck_assert(fabs(ef - 1.51719) < 1e-5);
     char dmg[256];
     snprintf(dmg, sizeof dmg,
              "{\"type\":\"johnson_cook_accumulated\",\"d1\":%.17g,\"d2\":%.17g,\"d3\":%.17g,"
              "\"critical_damage\":%.17g}",
-             D1, D2, D3, Dc[_i]);
+             D1, D2, D3, Dc);
     const struct tlsph_material m = steel(jc_strength(), dmg);
     const struct path p = drive(&m, 1e-3, 1e-6, jc_flow);
-    const double ref = Dc[_i] * ef;
+    const double ref = Dc * ef;
     printf("eq. 62, D_c = %g: failure at eps_p = %.5f (ref D_c eps_f = %.5f, %+.2e), "
            "stress before it off by %.1e\n",
-           Dc[_i], p.eps_init, ref, p.eps_init / ref - 1.0, p.worst_intact_error);
-    ck_assert_msg(fabs(p.eps_init / ref - 1.0) < 5e-3, "D_c reached at %g, expected %g",
-                  p.eps_init, ref);
+           Dc, p.eps_init, ref, p.eps_init / ref - 1.0, p.worst_intact_error);
+    ck_assert_msg(fabs(p.eps_init / ref - 1.0) < 5e-3, "D_c reached at %g, expected %g", p.eps_init,
+                  ref);
     /* sudden: D goes from 0 to 1 in the step D_init crosses 1 */
     ck_assert_msg(p.eps_fail >= p.eps_init && p.eps_fail - p.eps_init < 1.5e-3,
                   "failed at %g, D_c reached at %g", p.eps_fail, p.eps_init);
     ck_assert_msg(isnan(p.stress_at_half), "a partly damaged state exists");
-    ck_assert_msg(p.worst_intact_error < 1e-6, "stress before D_c off by %g",
-                  p.worst_intact_error);
+    ck_assert_msg(p.worst_intact_error < 1e-6, "stress before D_c off by %g", p.worst_intact_error);
     ck_assert_msg(!p.failed_carries_stress, "a failed point carried stress");
+}
+
+START_TEST(accumulated_damage_fails_at_the_paper_critical_value)
+{
+    fails_at_the_critical_value(0.1);
+}
+END_TEST
+
+START_TEST(accumulated_damage_fails_at_the_failure_strain)
+{
+    fails_at_the_critical_value(1.0);
 }
 END_TEST
 
@@ -189,8 +204,8 @@ START_TEST(both_johnson_cook_damages_differ_as_stated)
              "\"critical_damage\":1}",
              D1, D2, D3);
     const struct tlsph_material m3 = steel(jc_strength(), dmg);
-    snprintf(dmg, sizeof dmg,
-             "{\"type\":\"johnson_cook\",\"d1\":%.17g,\"d2\":%.17g,\"d3\":%.17g}", D1, D2, D3);
+    snprintf(dmg, sizeof dmg, "{\"type\":\"johnson_cook\",\"d1\":%.17g,\"d2\":%.17g,\"d3\":%.17g}",
+             D1, D2, D3);
     const struct tlsph_material m0 = steel(jc_strength(), dmg);
     ck_assert_str_eq(m3.damage.model->name, "johnson_cook_accumulated");
     ck_assert_str_eq(m0.damage.model->name, "johnson_cook");
@@ -310,16 +325,7 @@ START_TEST(thermal_strain_is_equation_58)
 }
 END_TEST
 
-int main(void)
-{
-    Suite *su = suite_create("johnson_cook_003");
-    TCase *tc = tcase_create("point");
-    tcase_set_timeout(tc, 120);
-    tcase_add_loop_test(tc, accumulated_damage_fails_at_the_critical_value, 0, 2);
-    tcase_add_test(tc, the_two_rate_factors);
-    tcase_add_test(tc, both_johnson_cook_damages_differ_as_stated);
-    tcase_add_test(tc, rate_form_is_equation_56);
-    tcase_add_test(tc, thermal_strain_is_equation_58);
-    suite_add_tcase(su, tc);
-    return tlsph_check_run(su);
-}
+TLSPH_CHECK_MAIN("johnson_cook_003", 120, accumulated_damage_fails_at_the_paper_critical_value,
+                 accumulated_damage_fails_at_the_failure_strain, the_two_rate_factors,
+                 both_johnson_cook_damages_differ_as_stated, rate_form_is_equation_56,
+                 thermal_strain_is_equation_58)
