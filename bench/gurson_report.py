@@ -28,7 +28,7 @@ VARIANTS = [("gurson", "Gurson (eq. 43-44)", "#1f77b4"),
             ("jc", "Johnson-Cook, eq. 62, D_c = 0.1", "#8c564b")]
 
 
-def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_low=False):
+def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_left=False):
     W, H, L, B, R, T = 640, 420, 70, 50, 20, 20
     pw, ph = W - L - R, H - T - B
 
@@ -52,9 +52,9 @@ def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_low=False):
     for i, (label, color, xs, ys) in enumerate(curves):
         pts = " ".join(f"{X(x):.1f},{Y(y):.1f}" for x, y in zip(xs, ys) if x <= xmax)
         out.append(f'<polyline points="{pts}" fill="none" stroke="{color}" stroke-width="1.5"/>')
-        # legend top right, or bottom left where the curves leave room
-        lx = L + 40 if legend_low else L + pw - 230
-        ly = T + ph - 95 + 16 * i if legend_low else T + 18 + 16 * i
+        # legend top right, or top left where the curves leave room there
+        lx = L + 20 if legend_left else L + pw - 230
+        ly = T + 18 + 16 * i
         out.append(f'<line x1="{lx}" y1="{ly}" x2="{lx + 25}" y2="{ly}" stroke="{color}" '
                    f'stroke-width="2"/>')
         out.append(f'<text x="{lx + 30}" y="{ly + 4}">{label}</text>')
@@ -112,14 +112,14 @@ def shear(outdir, path):
             cost, status = r.cost, r.status
         k = int(force.argmax())
         cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}", f"{force[-1]:.2f}", f"{failed}",
-                 f"{fshear:.2e}", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
+                 f"{fshear:.2e}" if fshear == fshear else "—", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
                  f"{cost['wall_seconds']:.0f}", status]
         print("| " + " | ".join(cells) + " |")
         curves.append((label, color, disp, force))
         xmax, ymax = max(xmax, float(disp.max())), max(ymax, float(force.max()))
     if curves:
         svg(curves, path, round(xmax + 0.05, 1), 0.0, float(int(ymax) + 1),
-            "shear displacement of the top (mm)", "shear force (kN)", legend_low=True)
+            "shear displacement of the top (mm)", "shear force (kN)", legend_left=True)
 
 
 def main():
