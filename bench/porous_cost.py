@@ -12,8 +12,9 @@ Cases, all on the Weldox 460E notched bar R = 2 mm of bench/weldox_scene.py
   gtn           paper 000's GTN (q1 1.5, q2 1, f0 1e-4, f_c 0.01, f_F 0.2, k_w 5.5)
   gtn_aravas    the same surface (q3 = q1^2, no nucleation) on paper 003's update
   sm_gurson     the same with the shear term k_w = 5.5 (the same equations as gtn)
-times.txt: one line per run, "ENGINE CASE REPEAT WALL_S STEPS PARTICLES
-MATERIAL_SHARE" (whole-process wall time, measured by the shell script).
+times.txt: one line per run, "ENGINE CASE REPEAT WALL_S CPU_S STEPS PARTICLES
+MATERIAL_SHARE" (whole-process wall and user + system CPU time, measured by
+the shell script).
 """
 import json
 import os
@@ -55,23 +56,27 @@ def scene(case, h):
 def report(outdir):
     runs = {}
     for line in open(os.path.join(outdir, "times.txt")):
-        engine, case, _, wall, steps, n, share = line.split()
-        runs.setdefault((engine, case), []).append((float(wall), int(steps), int(n), float(share)))
+        engine, case, _, wall, cpu, steps, n, share = line.split()
+        runs.setdefault((engine, case), []).append(
+            (float(wall), float(cpu), int(steps), int(n), float(share)))
     base = {}
-    print("| engine | case | particles | steps | wall, median of %d (s) | spread (min-max, s) | "
-          "particle-steps/s | vs base engine | material phase share |" % len(next(iter(runs.values()))))
-    print("|---|---|---:|---:|---:|---:|---:|---:|---:|")
+    print("| engine | case | particles | steps | runs | CPU, median (s) | CPU spread (s) | "
+          "particle-steps per CPU s | CPU vs base engine | wall, median (s) | "
+          "material phase share |")
+    print("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|")
     for (engine, case), rs in runs.items():
-        walls = [r[0] for r in rs]
-        med = statistics.median(walls)
-        steps, n = rs[0][1], rs[0][2]
+        cpus = [r[1] for r in rs]
+        cpu = statistics.median(cpus)
+        wall = statistics.median(r[0] for r in rs)
+        steps, n = rs[0][2], rs[0][3]
         if engine == "base":
-            base[case] = med
-        rel = "%+.1f %%" % (100 * (med / base[case] - 1)) if engine != "base" and case in base else "—"
-        share = statistics.median(r[3] for r in rs)
-        print("| %s | %s | %d | %d | %.2f | %.2f-%.2f | %.3g | %s | %s |" % (
-            engine, case, n, steps, med, min(walls), max(walls), n * steps / med, rel,
-            "%.2f" % share if share == share else "—"))
+            base[case] = cpu
+        rel = ("%+.1f %%" % (100 * (cpu / base[case] - 1))
+               if engine != "base" and case in base else "—")
+        share = statistics.median(r[4] for r in rs)
+        print("| %s | %s | %d | %d | %d | %.2f | %.2f-%.2f | %.3g | %s | %.2f | %s |" % (
+            engine, case, n, steps, len(rs), cpu, min(cpus), max(cpus), n * steps / cpu, rel,
+            wall, "%.2f" % share if share == share else "—"))
 
 
 def main():

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Cost of plasticity with and without a porous model (docs/damage.md, "Cost"):
-# whole-process wall time of tlsph-run on 1 thread for the cases of
+# whole-process wall and CPU time of tlsph-run on 1 thread for the cases of
 # bench/porous_cost.py, this tree's engine against a base engine (BASE, e.g.
 # the build of the commit before a change) on the same scenes, runs
 # interleaved (case by case, engine by engine, REPEATS rounds) so that the
@@ -28,17 +28,19 @@ for r in $(seq "$repeats"); do
       # the base engine knows no johnson_cook_accumulated
       [ "$engine" = base ] && [ "$c" = jc003 ] && continue
       rm -rf "${out:?}/run"
-      t0=$(date +%s.%N)
-      OMP_NUM_THREADS=1 "$exe" "$out/$c.json" -o "$out/run" --threads 1 --quiet >/dev/null 2>&1
-      t1=$(date +%s.%N)
+      # wall and CPU (user + system) seconds of the whole process: on a loaded
+      # machine the CPU time is the steadier measure of the work done
+      /usr/bin/time -f "%e %U %S" -o "$out/time.txt" env OMP_NUM_THREADS=1 \
+        "$exe" "$out/$c.json" -o "$out/run" --threads 1 --quiet >/dev/null 2>&1
       read -r steps n share < <("$py" -c "
 import h5py, sys
 c = h5py.File('$out/run/result.h5', 'r')['cost'].attrs
 print(int(c['steps']), int(c['particles']), float(c.get('material_phase_share', float('nan'))))")
-      echo "$engine $c $r $(echo "$t1 - $t0" | bc) $steps $n $share" >>"$out/times.txt"
+      read -r wall user sys <"$out/time.txt"
+      echo "$engine $c $r $wall $(echo "$user + $sys" | bc) $steps $n $share" >>"$out/times.txt"
     done
   done
   uptime >>"$out/load.txt"
 done
-rm -rf "${out:?}/run"
+rm -rf "${out:?}/run" "$out/time.txt"
 "$py" "$here/porous_cost.py" report "$out"

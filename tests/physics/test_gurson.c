@@ -44,8 +44,11 @@
  *     goes on (the root has f_n + growth < 0 < f), and f = 1e-10 under
  *     12 GPa, where cosh(3/2 y) ~ 5e7 makes the yield function a narrow
  *     valley in (a, b) (Newton fails; the reduced solve of porous_return.c
- *     converges): both converge with |Phi| <= 1e-8 (Phi from the result's
- *     stress invariants) and f >= 0.
+ *     converges), and f = 1.4e-8 under 8.2 GPa in a crushed corner (J 0.936;
+ *     normality along the valley floor is not monotone in b, the reduced
+ *     solve's Newton stalls at b = 0 and the bracketed fallback converges):
+ *     all converge with |Phi| <= 1e-8 (Phi from the result's stress
+ *     invariants) and f >= 0.
  *  9. A point near the collapse of its surface (f 0.1287, collapse at 0.1289
  *     for Table 1's q's, 3 % of its shear strength left) under a strongly
  *     dilating step (J 1.144, the state of a sheared gtn_aravas block) has no
@@ -457,6 +460,11 @@ START_TEST(returns_under_high_pressure_with_voids_closing)
         {.q_trial = 904995818.56580973, .omega = 0.47752163549002813, .J = 0.91585852125640055,
          .lnJp = -0.022245124314191456, .e = 107464.97930193436, .G = G,
          .eps_M = 0.81380894880225374, .f = 1.0703555163799003e-10, .dt = 9.5283862638615958e-09},
+        /* a crushed corner of the block sheared beyond 1.5 mm: normality along
+         * the yield valley is not monotone in b (the bracketed fallback) */
+        {.q_trial = 814254355.19961429, .omega = 0.58126094672852235, .J = 0.93626809284081158,
+         .lnJp = -0.019125945034912092, .e = 76139.21615635106, .G = G,
+         .eps_M = 0.73873447039138529, .f = 1.4195029321397009e-08, .dt = 8.1444512589723891e-09},
     };
     const double *g = m.damage.params;
     for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
