@@ -348,23 +348,30 @@ static int project(const struct tlsph_material *m, const struct tlsph_porous_inp
  * sm_gurson block (8.2 GPa, f 1.4e-8, J 0.936; test_gurson case 8) F1 along
  * the floor is -7e-10 at b = 0, falls to -4e-8 near b = 5e-6 and crosses zero
  * at b = 1.2e-5, and from b = 1.3e-6 Newton walked downhill in |F1| to the
- * end b = 0 and stopped there.  The ends of b's range (0 and the full
+ * end b = 0 and stopped there.  The ends of the floor (bmin below, the full
  * relaxation q_tr/(3G)) bracket a root whenever F1 differs in sign there;
  * this finds it, within REDUCED_BUDGET evaluations of its own.  Returns 1 when
  * converged (e, u). */
 static int bracketed_solve(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                           double scale, double u[2], struct eval *e, int *evals)
+                           double yield, double scale, double u[2], struct eval *e, int *evals)
 {
     const double bmax = in->q_trial / (3.0 * in->G);
+    /* The floor starts where the deviator alone is within the surface, x <= 1
+     * at f = 0: sigma_M only grows with b, so b >= (q_tr - J sigma_M,n)/(3G)
+     * is enough (below it F2 > 0 for every a: no floor to follow). */
+    const double bmin = fmin(fmax((in->q_trial - in->J * yield) / (3.0 * in->G), 0.0), bmax);
+    /* a start where f >= 0 whatever b and nucleation (the voids of the step
+     * start closed, c0 = 0): the admissible edge moves with b */
+    const double a0 = fmax(u[0], log1p(-in->f));
     int used = 0, ok = 0;
-    double bl = 0.0, bh = bmax, al, ah, gl, gh;
+    double bl = bmin, bh = bmax, al, ah, gl, gh;
     struct eval t;
-    double v[2] = {u[0], bl};
+    double v[2] = {a0, bl};
     if (!project(m, in, scale, v, &t, &used))
         goto out;
     gl = t.G0;
     al = v[0];
-    v[0] = u[0];
+    v[0] = a0;
     v[1] = bh;
     if (!project(m, in, scale, v, &t, &used))
         goto out;
@@ -382,7 +389,7 @@ static int bracketed_solve(const struct tlsph_material *m, const struct tlsph_po
         v[0] = al + (ah - al) * (b - bl) / (bh - bl);
         v[1] = b;
         if (!project(m, in, scale, v, &t, &used)) {
-            v[0] = fmax(al, ah);
+            v[0] = fmax(fmax(al, ah), a0);
             v[1] = b;
             if (!project(m, in, scale, v, &t, &used))
                 break;
@@ -441,7 +448,7 @@ static int reduced_solve(const struct tlsph_material *m, const struct tlsph_poro
         ok = e->head.done;
     }
     if (!ok)
-        ok = bracketed_solve(m, in, scale, u, e, &used);
+        ok = bracketed_solve(m, in, yield, scale, u, e, &used);
     *evals += used;
     return ok;
 }
