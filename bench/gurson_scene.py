@@ -59,9 +59,9 @@ def notched(h):
 def shear(h):
     H = 0.003
     return {
-        # to a shear displacement of 1.5 mm (gamma 0.5): beyond it the corners of
-        # the block are crushed (J 0.9, 13 GPa) where the porous return can fail
-        # (docs/damage.md)
+        # to a shear displacement of 1.5 mm (gamma 0.5), where the models have
+        # separated; beyond it the corners of the block are crushed (J 0.93,
+        # 8-10 GPa: docs/damage.md, "The crushed corners")
         "time": {"end": 8.5e-5, "cfl": 0.3},
         "parameters": {"vmax": 20.0, "tau": 1e-5},
         "output": {"frames": 12, "series_every": 10},
