@@ -8,12 +8,15 @@ bench/gurson_scene.py.  Notched bar: one Markdown row per run with the metrics
 of bench/weldox_metrics.py (peak engineering stress and its strain, strains at
 initiation, first failure and separation, ...) and the engineering
 stress-strain curves to SVG_R2.  Shear block: peak shear force of the top
-group and its displacement, the force at the end, failed particles, the
+group and its displacement, the displacement at the first failed particle,
+the force at the end, failed particles, the
 largest shear part of f, particles, steps, wall time, and the force-displacement
 curves to SVG_SHEAR.  Plain SVG polylines, no plotting library.
 """
 import os
 import sys
+
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "support"))
@@ -86,8 +89,8 @@ def notched(outdir, path):
             "engineering strain", "engineering stress (MPa)")
 
 
-SHEAR_COLUMNS = ["case", "peak force (kN)", "displacement at peak (mm)", "force at end (kN)",
-                 "failed particles", "largest shear part of f", "particles", "steps",
+SHEAR_COLUMNS = ["case", "peak force (kN)", "displacement at peak (mm)",
+                 "displacement at first failure (mm)", "force at end (kN)", "failed particles", "largest shear part of f", "particles", "steps",
                  "wall (s)", "status"]
 
 
@@ -104,6 +107,8 @@ def shear(outdir, path):
             force = r.series("groups/top/reaction_force")[1][:, 0] / 1e3
             disp = r.series("groups/top/displacement")[1][:, 0] * 1e3
             failed = int(r.last("failed_particles"))
+            tf, nf = r.series("failed_particles")
+            td = r.series("groups/top/displacement")[0]
             try:
                 fshear = max(float(r.field("void_fraction_shear", frame=k).max())
                              for k in range(len(r.frame_times())))
@@ -111,7 +116,10 @@ def shear(outdir, path):
                 fshear = float("nan")
             cost, status = r.cost, r.status
         k = int(force.argmax())
-        cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}", f"{force[-1]:.2f}", f"{failed}",
+        first = [t for t, v in zip(tf, nf) if v > 0]
+        d_fail = float(np.interp(first[0], td, disp)) if first else float("nan")
+        cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}",
+                 f"{d_fail:.2f}" if first else "—", f"{force[-1]:.2f}", f"{failed}",
                  f"{fshear:.2e}" if fshear == fshear else "—", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
                  f"{cost['wall_seconds']:.0f}", status]
         print("| " + " | ".join(cells) + " |")
