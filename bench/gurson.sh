@@ -3,11 +3,13 @@
 # round bar R = 2 mm of the Weldox bench (mode I, high triaxiality) and a block
 # in simple shear: the five variants (Gurson, GTN, SM-Gurson, M-Gurson with the
 # critical void fraction 0.0135, and GTN with the critical plastic strain
-# 0.35), Table 1's Normal Strength steel (bench/gurson_scene.py).  Each run is
+# 0.35), Table 1's Normal Strength steel (bench/gurson_scene.py); and the
+# Johnson-Cook accumulated damage of paper 003 §5 on the same matrix (jc).  Each run is
 # one tlsph-run on 1 thread, JOBS at a time; then the tables and
 # docs/gurson-r2.svg, docs/gurson-shear.svg (bench/gurson_report.py).
 #
 # usage: bench/gurson.sh [OUTDIR]   (default bench/out/gurson)   JOBS=N (default 2)
+#        VARIANTS="jc ..." runs only those (the report reads every run in OUTDIR)
 # About 15 CPU-minutes at the bench spacings (0.5 mm bar, 0.4 mm block).
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
@@ -25,6 +27,6 @@ one() { # SPECIMEN-VARIANT
 export -f one
 export here out run py
 for specimen in r2 shear; do
-  for variant in gurson gtn sm_gurson m_gurson gtn_strain; do echo "$specimen-$variant"; done
+  for variant in ${VARIANTS:-gurson gtn sm_gurson m_gurson gtn_strain jc}; do echo "$specimen-$variant"; done
 done | xargs -P "$jobs" -I{} bash -c 'one {}'
 "$py" "$here/gurson_report.py" "$out" "$top/docs/gurson-r2.svg" "$top/docs/gurson-shear.svg"

@@ -3,17 +3,20 @@
 
 usage: gurson_report.py OUTDIR SVG_R2 SVG_SHEAR
 
-Reads OUTDIR/{r2,shear}-<variant>/result.h5 for the five variants of
+Reads OUTDIR/{r2,shear}-<variant>/result.h5 for the six variants of
 bench/gurson_scene.py.  Notched bar: one Markdown row per run with the metrics
 of bench/weldox_metrics.py (peak engineering stress and its strain, strains at
 initiation, first failure and separation, ...) and the engineering
 stress-strain curves to SVG_R2.  Shear block: peak shear force of the top
-group and its displacement, the force at the end, failed particles, the
+group and its displacement, the displacement at the first failed particle,
+the force at the end, failed particles, the
 largest shear part of f, particles, steps, wall time, and the force-displacement
 curves to SVG_SHEAR.  Plain SVG polylines, no plotting library.
 """
 import os
 import sys
+
+import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "support"))
@@ -24,10 +27,11 @@ VARIANTS = [("gurson", "Gurson (eq. 43-44)", "#1f77b4"),
             ("gtn", "GTN (eqs. 45-48)", "#2ca02c"),
             ("sm_gurson", "SM-Gurson (eqs. 49-51)", "#d62728"),
             ("m_gurson", "M-Gurson (eqs. 52-54)", "#ff7f0e"),
-            ("gtn_strain", "GTN, critical plastic strain 0.35", "#9467bd")]
+            ("gtn_strain", "GTN, critical plastic strain 0.35", "#9467bd"),
+            ("jc", "Johnson-Cook, eq. 62, D_c = 0.1", "#8c564b")]
 
 
-def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_low=False):
+def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_left=False):
     W, H, L, B, R, T = 640, 420, 70, 50, 20, 20
     pw, ph = W - L - R, H - T - B
 
@@ -51,9 +55,9 @@ def svg(curves, path, xmax, ymin, ymax, xlabel, ylabel, legend_low=False):
     for i, (label, color, xs, ys) in enumerate(curves):
         pts = " ".join(f"{X(x):.1f},{Y(y):.1f}" for x, y in zip(xs, ys) if x <= xmax)
         out.append(f'<polyline points="{pts}" fill="none" stroke="{color}" stroke-width="1.5"/>')
-        # legend top right, or bottom left where the curves leave room
-        lx = L + 40 if legend_low else L + pw - 230
-        ly = T + ph - 95 + 16 * i if legend_low else T + 18 + 16 * i
+        # legend top right, or top left where the curves leave room there
+        lx = L + 20 if legend_left else L + pw - 230
+        ly = T + 18 + 16 * i
         out.append(f'<line x1="{lx}" y1="{ly}" x2="{lx + 25}" y2="{ly}" stroke="{color}" '
                    f'stroke-width="2"/>')
         out.append(f'<text x="{lx + 30}" y="{ly + 4}">{label}</text>')
@@ -85,8 +89,8 @@ def notched(outdir, path):
             "engineering strain", "engineering stress (MPa)")
 
 
-SHEAR_COLUMNS = ["case", "peak force (kN)", "displacement at peak (mm)", "force at end (kN)",
-                 "failed particles", "largest shear part of f", "particles", "steps",
+SHEAR_COLUMNS = ["case", "peak force (kN)", "displacement at peak (mm)",
+                 "displacement at first failure (mm)", "force at end (kN)", "failed particles", "largest shear part of f", "particles", "steps",
                  "wall (s)", "status"]
 
 
@@ -103,19 +107,27 @@ def shear(outdir, path):
             force = r.series("groups/top/reaction_force")[1][:, 0] / 1e3
             disp = r.series("groups/top/displacement")[1][:, 0] * 1e3
             failed = int(r.last("failed_particles"))
-            fshear = max(float(r.field("void_fraction_shear", frame=k).max())
-                         for k in range(len(r.frame_times())))
+            tf, nf = r.series("failed_particles")
+            td = r.series("groups/top/displacement")[0]
+            try:
+                fshear = max(float(r.field("void_fraction_shear", frame=k).max())
+                             for k in range(len(r.frame_times())))
+            except KeyError:  # no porous model: no void fraction
+                fshear = float("nan")
             cost, status = r.cost, r.status
         k = int(force.argmax())
-        cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}", f"{force[-1]:.2f}", f"{failed}",
-                 f"{fshear:.2e}", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
+        first = [t for t, v in zip(tf, nf) if v > 0]
+        d_fail = float(np.interp(first[0], td, disp)) if first else float("nan")
+        cells = [label, f"{force[k]:.2f}", f"{disp[k]:.2f}",
+                 f"{d_fail:.2f}" if first else "—", f"{force[-1]:.2f}", f"{failed}",
+                 f"{fshear:.2e}" if fshear == fshear else "—", f"{int(cost['particles'])}", f"{int(cost['steps'])}",
                  f"{cost['wall_seconds']:.0f}", status]
         print("| " + " | ".join(cells) + " |")
         curves.append((label, color, disp, force))
         xmax, ymax = max(xmax, float(disp.max())), max(ymax, float(force.max()))
     if curves:
         svg(curves, path, round(xmax + 0.05, 1), 0.0, float(int(ymax) + 1),
-            "shear displacement of the top (mm)", "shear force (kN)", legend_low=True)
+            "shear displacement of the top (mm)", "shear force (kN)", legend_left=True)
 
 
 def main():

@@ -195,8 +195,14 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
     m->inverted = inverted;
     m->first_inverted_id = inverted ? first_bad : -1;
     m->min_detF = min_detF;
-    m->return_failures = failures;
-    m->first_return_failure_id = failures ? first_failure : -1;
+    /* Sticky: the stability check runs every check_every steps, and a point
+     * whose return failed in a step between two checks keeps its elastic trial
+     * stress for that step; the run must still stop at the next check
+     * (measured: an m_gurson block sheared to 3.8 mm passed one such step
+     * silently when only the last evaluation counted). */
+    if (failures && !m->return_failures)
+        m->first_return_failure_id = first_failure;
+    m->return_failures += failures;
     m->energy.plastic_work += plastic_work;
     m->energy.damage_work += damage_work;
     m->plastic_point_steps += flowing;

@@ -12,7 +12,8 @@
 /* Also finishes the trapezoidal energy update (e += dt/2 / rho0 * P_new : Fdot),
  * adds the step's plastic work to m->energy.plastic_work, records det F problems
  * (m->inverted, m->first_inverted_id, m->min_detF), return-mapping failures
- * (m->return_failures, m->first_return_failure_id) and the stable time step
+ * (m->return_failures and m->first_return_failure_id, accumulated over the
+ * run: a failure between two stability checks is not forgotten) and the stable time step
  * estimate m->dt_cfl and m->max_wave_speed.  A particle failed (D = 1) after
  * its update gets no new stress here: the failure phase that follows
  * (material/failure.h) releases what it carried. */

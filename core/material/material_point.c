@@ -218,7 +218,16 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     }
 
     double p, K_t;
-    mat->eos->pressure(mat, J, e, &p, &K_t);
+    if (s && mat->thermal.enabled && mat->thermal.expansion > 0.0) {
+        /* paper 003 eq. 58: the heat's thermal strain d^t = gamma dT I takes
+         * exp(3 gamma (T - T0)) of the volume; the EOS sees the rest.  Only
+         * the pressure changes: the thermal strain has no deviator. */
+        const double Je =
+            J * exp(-3.0 * mat->thermal.expansion * (s->T - mat->thermal.initial_temperature));
+        mat->eos->pressure(mat, Je, e, &p, &K_t);
+    } else {
+        mat->eos->pressure(mat, J, e, &p, &K_t);
+    }
     double scale = 1.0, p_carried = p;
     if (damaging) {
         double t2 = 0.0;

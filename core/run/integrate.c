@@ -11,6 +11,7 @@
 #include "sph/crack_treatment.h"
 #include "sph/forces.h"
 #include "sph/kinematics.h"
+#include "util/clock.h"
 #include "util/parallel.h"
 
 /* The phases of a force evaluation, in order (the contract of each is above
@@ -18,7 +19,10 @@
 void tlsph_evaluate(struct tlsph_model *m, double dt)
 {
     tlsph_kinematics(m, dt);
+    /* the phase timed as a whole (two clock reads a step), never per particle */
+    const double t0 = tlsph_monotonic_seconds();
     tlsph_constitutive(m, dt);
+    m->material_seconds += tlsph_monotonic_seconds() - t0;
     tlsph_failure(m);
     if (m->crack->update) /* the treatment's own state: virtual links' damage */
         m->crack->update(m);

@@ -155,9 +155,10 @@ struct tlsph_model {
     size_t inverted;              /* particles with det F <= 0 or non-finite in the last evaluation */
     int64_t first_inverted_id;    /* id of one of them */
     double min_detF;              /* smallest det F of the last evaluation */
-    size_t return_failures;       /* points whose return mapping did not converge (last evaluation) */
+    size_t return_failures;       /* point updates whose return mapping did not converge, whole run */
     long long plastic_point_steps; /* return mappings that found plastic flow, whole run */
     long long return_iterations;  /* their residual evaluations, whole run (cost of plasticity) */
+    double material_seconds;      /* wall-clock in the constitutive phase, whole run, s */
     int64_t first_return_failure_id;
     size_t failed;                /* particles with D = 1 (after the last evaluation) */
     struct tlsph_energy energy;

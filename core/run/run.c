@@ -37,6 +37,9 @@ static void fill_cost(const struct tlsph_model *m, double wall, struct tlsph_cos
         c->contact_search_share = wall > 0 ? cc.search_seconds / wall : 0.0;
         c->contact_phase_share = wall > 0 ? cc.phase_seconds / wall : 0.0;
     }
+    c->porous = m->p.void_fraction != NULL;
+    if (c->porous)
+        c->material_phase_share = wall > 0 ? m->material_seconds / wall : 0.0;
 }
 
 static json_t *cost_json(const struct tlsph_cost *c)
@@ -51,6 +54,8 @@ static json_t *cost_json(const struct tlsph_cost *c)
         json_object_set_new(o, "contact_search_share", json_real(c->contact_search_share));
         json_object_set_new(o, "contact_phase_share", json_real(c->contact_phase_share));
     }
+    if (o && c->porous)
+        json_object_set_new(o, "material_phase_share", json_real(c->material_phase_share));
     return o;
 }
 
@@ -258,6 +263,9 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 m->plastic_point_steps
                     ? (double)m->return_iterations / (double)m->plastic_point_steps
                     : 0.0);
+    if (o->log && m->p.eps_p)
+        fprintf(o->log, "tlsph: material phase %.3f s (%.1f %% of the run)\n", m->material_seconds,
+                cost.wall_seconds > 0 ? 100.0 * m->material_seconds / cost.wall_seconds : 0.0);
     if (o->log && m->contact) {
         const struct tlsph_contact_cost cc = tlsph_contact_cost(m);
         fprintf(o->log,

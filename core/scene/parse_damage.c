@@ -24,9 +24,18 @@ int tlsph_parse_material_damage(const json_t *mat, struct tlsph_material *m, con
         return -1;
     }
     int bad = model->parse(obj, m, P, err) != 0;
-    if (!model->porous)
+    if (!model->porous && !model->sudden)
         bad |= tlsph_damage_parse_evolution(obj, m, P, err) != 0;
     bad |= tlsph_require_plastic(m, "damage", "ductile damage grows with plastic strain", P, err);
+    if (model->porous && m->thermal.enabled && m->thermal.expansion > 0.0) {
+        char T[TLSPH_POINTER_MAX];
+        tlsph_pointer_join(T, sizeof T, pointer, "thermal");
+        tlsph_key_error(err, T, "expansion_coefficient",
+                        "thermal expansion is not built for the porous model '%s' (its return "
+                        "solves the pressure with the void growth); set it to 0",
+                        model->name);
+        bad = 1;
+    }
     m->damage.model = model; /* even when invalid: later checks must see it */
     return bad ? -1 : 0;
 }

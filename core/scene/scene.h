@@ -58,6 +58,9 @@ struct tlsph_thermal {
     double specific_heat;       /* C_p, J/(kg K) */
     double taylor_quinney;      /* chi, fraction of plastic work turned into heat, 1 */
     double initial_temperature; /* K */
+    /* gamma of paper 003 eq. 58, 1/K; 0 = none: the heat expands the point by the
+     * thermal strain d^t = gamma dT I (the EOS sees J exp(-3 gamma (T - T0))) */
+    double expansion;
 };
 
 /* Ductile damage and failure (paper 000 §5): present when the material's scene

@@ -215,6 +215,11 @@ static const struct tlsph_key thermal_keys[] = {
      .said = "(fraction of plastic work turned into heat)", .def = TLSPH_DEFAULT_TAYLOR_QUINNEY,
      .offset = offsetof(struct tlsph_thermal, taylor_quinney),
      .description = "Taylor-Quinney coefficient chi, fraction of plastic work turned into heat"},
+    {.name = "expansion_coefficient", .kind = NUMBER, .flags = DEFAULT,
+     .range = {0.0, 1e-3, JC_CLOSED, JC_CLOSED}, .unit = "1/K", .def = 0.0,
+     .offset = offsetof(struct tlsph_thermal, expansion),
+     .description = "linear thermal expansion coefficient gamma: thermal strain rate "
+                    "gamma dT/dt I (paper 003 eq. 58); 0 = none"},
 };
 static const struct tlsph_key_table thermal_table =
     TLSPH_KEY_TABLE("/materials/*/thermal", NULL, thermal_keys);

@@ -44,8 +44,12 @@
  *     goes on (the root has f_n + growth < 0 < f), and f = 1e-10 under
  *     12 GPa, where cosh(3/2 y) ~ 5e7 makes the yield function a narrow
  *     valley in (a, b) (Newton fails; the reduced solve of porous_return.c
- *     converges): both converge with |Phi| <= 1e-8 (Phi from the result's
- *     stress invariants) and f >= 0.
+ *     converges), and two crushed corners beyond 1.5 mm of shear: f = 1.4e-8
+ *     under 8.2 GPa (sm_gurson, J 0.936; normality along the valley floor is
+ *     not monotone in b, the reduced solve's Newton stalls at b = 0) and
+ *     f = 1.2e-9 under 9.6 GPa (m_gurson, J 0.926; the floor starts at b > 0),
+ *     where the bracketed fallback converges: all converge with |Phi| <= 1e-8
+ *     (Phi from the result's stress invariants) and f >= 0.
  *  9. A point near the collapse of its surface (f 0.1287, collapse at 0.1289
  *     for Table 1's q's, 3 % of its shear strength left) under a strongly
  *     dilating step (J 1.144, the state of a sheared gtn_aravas block) has no
@@ -448,8 +452,10 @@ END_TEST
 
 START_TEST(returns_under_high_pressure_with_voids_closing)
 {
-    const struct tlsph_material m = porous("sm_gurson", 0.0025, "");
-    const double G = m.shear_modulus;
+    const struct tlsph_material smg = porous("sm_gurson", 0.0025, "");
+    const struct tlsph_material mg = porous("m_gurson", 0.0025, "");
+    const double G = smg.shear_modulus;
+    const struct tlsph_material *model[] = {&smg, &smg, &smg, &mg};
     const struct tlsph_porous_input cases[] = {
         {.q_trial = 589595047.42577052, .omega = 0.7888942556382077, .J = 0.97182676569286308,
          .lnJp = -0.0079263670302083498, .e = 26645.432258950379, .G = G,
@@ -457,11 +463,22 @@ START_TEST(returns_under_high_pressure_with_voids_closing)
         {.q_trial = 904995818.56580973, .omega = 0.47752163549002813, .J = 0.91585852125640055,
          .lnJp = -0.022245124314191456, .e = 107464.97930193436, .G = G,
          .eps_M = 0.81380894880225374, .f = 1.0703555163799003e-10, .dt = 9.5283862638615958e-09},
+        /* a crushed corner of the block sheared beyond 1.5 mm: normality along
+         * the yield valley is not monotone in b (the bracketed fallback) */
+        {.q_trial = 814254355.19961429, .omega = 0.58126094672852235, .J = 0.93626809284081158,
+         .lnJp = -0.019125945034912092, .e = 76139.21615635106, .G = G,
+         .eps_M = 0.73873447039138529, .f = 1.4195029321397009e-08, .dt = 8.1444512589723891e-09},
+        /* the same in m_gurson's block: the deviator alone is outside the
+         * surface at b = 0, the valley floor starts at b > 0 */
+        {.q_trial = 959111355.06581593, .omega = 0.97238109630099745, .J = 0.92645171755416666,
+         .lnJp = -0.021946704819067103, .e = 105418.40238636982, .G = G,
+         .eps_M = 0.91821150089796189, .f = 1.241461821659844e-09, .dt = 7.1552809603832049e-09},
     };
-    const double *g = m.damage.params;
     for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        const struct tlsph_material *mp = model[c];
+        const double *g = mp->damage.params;
         struct tlsph_porous_result out;
-        ck_assert(tlsph_porous_return(&m, &cases[c], &out));
+        ck_assert(tlsph_porous_return(mp, &cases[c], &out));
         const struct tlsph_porous_input *in = &cases[c];
         const double sM = S0 + HM * (in->eps_M + out.flow.dM);
         const double se = (in->q_trial - 3.0 * G * out.flow.dq) / in->J, sm = -out.p;

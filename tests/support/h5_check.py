@@ -172,6 +172,10 @@ def check_series_group(g, rows, where, live):
 NAME_RULE = re.compile(r"[A-Za-z_][A-Za-z0-9_.-]{0,62}\Z")
 
 
+# the damage models with a porous yield surface (core/material/damage/registry.c)
+POROUS_MODELS = ("gtn", "gurson", "gtn_aravas", "sm_gurson", "m_gurson")
+
+
 def contact_items(scene):
     """The contact family's items (docs/output.md): none without contact (on by
     default with more than one body, a damage model or virtual links, off with "enabled":
@@ -396,6 +400,13 @@ def final(docs, outdir, scene_path):
             check(int(cost["contact_searches"]) >= 1, "/cost contact_searches >= 1")
         else:
             check(not any(k in cost for k in contact_attrs), "no /cost contact attributes")
+        porous = any(m.get("damage", {}).get("type") in POROUS_MODELS
+                     for m in scene.get("materials", {}).values())
+        if porous:
+            v = float(cost["material_phase_share"])
+            check(math.isfinite(v) and 0 < v < 1, "/cost material_phase_share = %g" % v)
+        else:
+            check("material_phase_share" not in cost, "no /cost material_phase_share")
         check(int(cost["particles"]) == N, "/cost particles == N")
         check(int(cost["steps"]) >= steps[-1], "/cost steps >= last frame step")
         check(text(f["diagnostics"].attrs["status"]) == "successful", "/diagnostics status successful")

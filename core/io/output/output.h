@@ -37,6 +37,11 @@ struct tlsph_cost {
     int contact;
     long contact_searches;
     double contact_search_share, contact_phase_share;
+    /* Only with a porous damage model (porous set): the share of wall_seconds
+     * spent in the constitutive phase (every point update, the porous returns
+     * included), 1. */
+    int porous;
+    double material_phase_share;
 };
 
 /* No dataset of the file ever holds a value that is not finite (float32

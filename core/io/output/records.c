@@ -26,6 +26,8 @@ struct records {
     int contact; /* the contact attributes exist (a run with contact) */
     int64_t contact_searches;
     double contact_search_share, contact_phase_share;
+    int porous; /* the material_phase_share attribute exists (a porous model) */
+    double material_phase_share;
     /* /diagnostics */
     const char *status;
     int64_t step;
@@ -37,6 +39,7 @@ struct records {
 };
 
 enum record_group { COST, DIAGNOSTICS };
+enum { ONLY_CONTACT = 1, ONLY_POROUS = 2 }; /* struct record_attr's only */
 static const char *const group_path[] = {[COST] = "/cost", [DIAGNOSTICS] = "/diagnostics"};
 
 struct record_attr {
@@ -46,14 +49,17 @@ struct record_attr {
     enum tlsph_field_type type;  /* of a number */
     size_t count;                /* 0: scalar number; else a 1-D array of count */
     size_t string_size;          /* > 0: a const char * member, stored in this many bytes */
-    int contact_only;            /* written only for a run with contact */
+    int only;                    /* 0, or written only for a run with ONLY_CONTACT / ONLY_POROUS */
 };
 
 #define NUMBER(group, member, t) {group, #member, offsetof(struct records, member), t, 0, 0, 0}
 #define STRING(group, member, size) \
     {group, #member, offsetof(struct records, member), TLSPH_FLOAT64, 0, size, 0}
 /* a /cost attribute of runs with contact only */
-#define CONTACT(member, t) {COST, #member, offsetof(struct records, member), t, 0, 0, 1}
+#define CONTACT(member, t) \
+    {COST, #member, offsetof(struct records, member), t, 0, 0, ONLY_CONTACT}
+/* a /cost attribute of runs with a porous damage model only */
+#define POROUS(member, t) {COST, #member, offsetof(struct records, member), t, 0, 0, ONLY_POROUS}
 
 /* In the order of creation. */
 static const struct record_attr record_attrs[] = {
@@ -67,6 +73,7 @@ static const struct record_attr record_attrs[] = {
     CONTACT(contact_searches, TLSPH_INT64),
     CONTACT(contact_search_share, TLSPH_FLOAT64),
     CONTACT(contact_phase_share, TLSPH_FLOAT64),
+    POROUS(material_phase_share, TLSPH_FLOAT64),
     STRING(DIAGNOSTICS, status, STATUS_LEN),
     NUMBER(DIAGNOSTICS, step, TLSPH_INT64),
     NUMBER(DIAGNOSTICS, time, TLSPH_FLOAT64),
@@ -90,7 +97,8 @@ static int write_group(hid_t file, enum record_group group, int rewrite, const s
     int rc = 0;
     for (size_t i = 0; i < sizeof record_attrs / sizeof record_attrs[0] && rc == 0; i++) {
         const struct record_attr *a = &record_attrs[i];
-        if (a->group != group || (a->contact_only && !r->contact))
+        if (a->group != group || (a->only == ONLY_CONTACT && !r->contact) ||
+            (a->only == ONLY_POROUS && !r->porous))
             continue;
         const void *v = (const char *)r + a->offset;
         const struct tlsph_h5_type t = tlsph_h5_type(a->type);
@@ -132,7 +140,9 @@ int tlsph_records_create(hid_t file, const struct tlsph_model *m)
                         .contact = m->contact != NULL,
                         .contact_searches = -1,
                         .contact_search_share = NAN,
-                        .contact_phase_share = NAN};
+                        .contact_phase_share = NAN,
+                        .porous = m->p.void_fraction != NULL,
+                        .material_phase_share = NAN};
     no_diagnostic(&r, "running");
     if (write_group(file, COST, 0, &r) < 0 || write_group(file, DIAGNOSTICS, 0, &r) < 0)
         return -1;
@@ -155,6 +165,8 @@ int tlsph_records_write(hid_t file, const struct tlsph_cost *cost, const char *s
         r.contact_searches = cost->contact_searches;
         r.contact_search_share = cost->contact_search_share;
         r.contact_phase_share = cost->contact_phase_share;
+        r.porous = cost->porous;
+        r.material_phase_share = cost->material_phase_share;
         if (write_group(file, COST, 1, &r) < 0)
             return -1;
     }

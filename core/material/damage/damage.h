@@ -30,6 +30,7 @@
 #define TLSPH_DAMAGE_H
 
 #include <jansson.h>
+#include <math.h>
 
 #include "util/errors.h"
 #include "scene/scene.h"
@@ -68,6 +69,11 @@ struct tlsph_damage_model {
      * has no initiation criterion and no eq. 45 evolution (the scene parser
      * refuses an "evolution" block). */
     int porous;
+    /* 1 for a criterion whose particle fails outright when D_init reaches 1
+     * (D from 0 to 1, no eq. 45 evolution, "evolution" refused): its parse sets
+     * m->damage.evolution_factor = INFINITY and the caller reads no evolution
+     * block (paper 003's accumulated Johnson-Cook damage). */
+    int sudden;
     unsigned fields;    /* TLSPH_DAMAGE_FIELD_* arrays it needs allocated */
     /* Reads the model's parameters (its "type" and "evolution" keys are handled
      * by the caller) into m->damage.params / m->damage.terms.  m's elastic
@@ -99,11 +105,14 @@ const char *tlsph_damage_names(void);
 
 /* Eq. 45 with its factor as a parameter: D = 0 for D_init < 1, D = min(1,
  * factor (D_init - 1)) beyond.  D = 1 is failure, and it is the model's
- * definition, not a clamp: D is a volume fraction of cracked material. */
+ * definition, not a clamp: D is a volume fraction of cracked material.  An
+ * infinite factor (a sudden criterion) fails the point at D_init = 1. */
 static inline double tlsph_damage_evolution(const struct tlsph_damage *d, double D_init)
 {
     if (D_init < 1.0)
         return 0.0;
+    if (d->evolution_factor == INFINITY)
+        return 1.0;
     const double D = d->evolution_factor * (D_init - 1.0);
     return D < 1.0 ? D : 1.0;
 }

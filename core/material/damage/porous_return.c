@@ -341,6 +341,83 @@ static int project(const struct tlsph_material *m, const struct tlsph_porous_inp
     return fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
 }
 
+/* Normality along the valley floor by a bracketed secant in b (Illinois
+ * regula falsi, bisection when it stalls), the fallback when the Newton of
+ * reduced_solve fails.  That Newton follows the slope of F1 along the floor,
+ * and F1 there need not be monotone: in a crushed corner of a sheared
+ * sm_gurson block (8.2 GPa, f 1.4e-8, J 0.936; test_gurson case 8) F1 along
+ * the floor is -7e-10 at b = 0, falls to -4e-8 near b = 5e-6 and crosses zero
+ * at b = 1.2e-5, and from b = 1.3e-6 Newton walked downhill in |F1| to the
+ * end b = 0 and stopped there.  The ends of the floor (bmin below, the full
+ * relaxation q_tr/(3G)) bracket a root whenever F1 differs in sign there;
+ * this finds it, within REDUCED_BUDGET evaluations of its own.  Returns 1 when
+ * converged (e, u). */
+static int bracketed_solve(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                           double yield, double scale, double u[2], struct eval *e, int *evals)
+{
+    const double bmax = in->q_trial / (3.0 * in->G);
+    /* The floor starts where the deviator alone is within the surface, x <= 1
+     * at f = 0: sigma_M only grows with b, so b >= (q_tr - J sigma_M,n)/(3G)
+     * is enough (below it F2 > 0 for every a: no floor to follow). */
+    const double bmin = fmin(fmax((in->q_trial - in->J * yield) / (3.0 * in->G), 0.0), bmax);
+    /* a start where f >= 0 whatever b and nucleation (the voids of the step
+     * start closed, c0 = 0): the admissible edge moves with b */
+    const double a0 = fmax(u[0], log1p(-in->f));
+    int used = 0, ok = 0;
+    double bl = bmin, bh = bmax, al, ah, gl, gh;
+    struct eval t;
+    double v[2] = {a0, bl};
+    if (!project(m, in, scale, v, &t, &used))
+        goto out;
+    gl = t.G0;
+    al = v[0];
+    v[0] = a0;
+    v[1] = bh;
+    if (!project(m, in, scale, v, &t, &used))
+        goto out;
+    gh = t.G0;
+    ah = v[0];
+    if ((gl < 0.0) == (gh < 0.0))
+        goto out; /* no sign change: nothing the bracket can find */
+    int side = 0; /* the end the last step moved: halve the other's G0 (Illinois) */
+    while (used < REDUCED_BUDGET && bh - bl > 4.0 * DBL_EPSILON * bmax) {
+        double b = bl - gl * (bh - bl) / (gh - gl);
+        if (!(b > bl && b < bh))
+            b = 0.5 * (bl + bh);
+        /* a from the chord between the ends' floor points, or, the floor
+         * being steep in a, from the end with more voids */
+        v[0] = al + (ah - al) * (b - bl) / (bh - bl);
+        v[1] = b;
+        if (!project(m, in, scale, v, &t, &used)) {
+            v[0] = fmax(fmax(al, ah), a0);
+            v[1] = b;
+            if (!project(m, in, scale, v, &t, &used))
+                break;
+        }
+        u[0] = v[0];
+        u[1] = v[1];
+        *e = t;
+        if (t.head.done) {
+            ok = 1;
+            break;
+        }
+        if ((t.G0 < 0.0) == (gl < 0.0)) {
+            bl = b, gl = t.G0, al = v[0];
+            if (side < 0)
+                gh *= 0.5;
+            side = -1;
+        } else {
+            bh = b, gh = t.G0, ah = v[0];
+            if (side > 0)
+                gl *= 0.5;
+            side = 1;
+        }
+    }
+out:
+    *evals += used;
+    return ok;
+}
+
 static int reduced_solve(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                          double yield, double p_tr, double K_tr, double u[2], struct eval *e,
                          int *evals)
@@ -370,6 +447,8 @@ static int reduced_solve(const struct tlsph_material *m, const struct tlsph_poro
         }
         ok = e->head.done;
     }
+    if (!ok)
+        ok = bracketed_solve(m, in, yield, scale, u, e, &used);
     *evals += used;
     return ok;
 }
