@@ -249,6 +249,46 @@ enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out)
     return ret;
 }
 
+enum tq_rc tq_claim_siblings(struct tq *q, const char *study_id, struct tq_job **out, size_t *n)
+{
+    if (!out || !n) {
+        if (q)
+            tqi_set_err(q, "tq_claim_siblings: no output");
+        return TQ_ERROR;
+    }
+    *out = NULL;
+    *n = 0;
+    if (tqi_begin_for(q, "tq_claim_siblings", study_id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[S_CLAIM_STUDY];
+    TQI_BIND(st, TQI_TEXT(study_id), TQI_REAL(tqi_now_seconds()));
+    void *rows = NULL;
+    int rc = tqi_read_all(q, st, "tq_claim_siblings", sizeof **out, tqi_read_job_row,
+                          tqi_free_job_row, &rows, n);
+    if (rc == 0 && *n > 0)
+        rc = tqi_refresh_parent(q, study_id, 0);
+    rc = tqi_tx_end(q, "tq_claim_siblings", rc);
+    if (rc != 0) {
+        tq_jobs_free(rows, *n);
+        *n = 0;
+        return TQ_ERROR;
+    }
+    *out = rows;
+    return TQ_OK;
+}
+
+enum tq_rc tq_set_message(struct tq *q, const char *id, const char *message)
+{
+    if (tqi_begin_for(q, "tq_set_message", id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[S_SET_MESSAGE];
+    TQI_BIND(st, TQI_TEXT(id), TQI_TEXT(message));
+    int rc = tqi_run_stmt(q, st, "tq_set_message");
+    if (rc == 0 && sqlite3_changes(q->db) == 0)
+        rc = 1;
+    return tqi_tx_end(q, "tq_set_message", rc);
+}
+
 enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
 {
     if (tqi_begin_for(q, "tq_set_pid", id) < 0)

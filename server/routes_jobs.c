@@ -374,7 +374,7 @@ static void reply_not_submitted(struct hreq *r, enum jobs_rc rc, bool study,
 static void submit(struct hreq *r, const struct route_call *c, struct tq *q, bool study)
 {
     static const char *const run_inputs[] = {"scene", NULL};
-    static const char *const study_inputs[] = {"base", "sweep", "outputs", NULL};
+    static const char *const study_inputs[] = {"base", "sweep", "outputs", "max_parallel", NULL};
     json_t *inputs = NULL;
     json_t *root = parse_body(r, study ? study_inputs : run_inputs,
                               route_process_output(study ? "study" : "run"), &inputs);
