@@ -6,6 +6,8 @@
 # test runs beside this one), proctrack/linuxproc and task/none (no cgroups:
 # it runs in a container), no accounting (no slurmdbd).  Exports SLURM_CONF;
 # sets SLURM_SKIP (why it could not start) and returns 1 when it cannot start.
+# SLURM_CPUS (default 8) sets the node's CPUs (more than the machine has is fine:
+# SlurmdParameters=config_overrides).
 # stop_slurm: cancels every job of the cluster, waits for them to end, then
 # stops the daemons (SIGTERM, SIGKILL after 5 s).  Call it on every exit path
 # (the test's trap).
@@ -83,7 +85,7 @@ KillWait=2
 MinJobAge=600
 InactiveLimit=0
 MessageTimeout=30
-NodeName=$SLURM_NODE NodeHostname=$host NodeAddr=127.0.0.1 CPUs=8 RealMemory=8000 State=UNKNOWN
+NodeName=$SLURM_NODE NodeHostname=$host NodeAddr=127.0.0.1 CPUs=${SLURM_CPUS:-8} RealMemory=8000 State=UNKNOWN
 PartitionName=test Nodes=$SLURM_NODE Default=YES MaxTime=INFINITE State=DOWN
 EOC
     export SLURM_CONF=$SLURM_DIR/slurm.conf
