@@ -7,7 +7,7 @@
 # finished), the sum of the children's engine wall_seconds, and the overhead
 # per child: (2 x wall - sum of engine seconds) / 12, the time a child's slot
 # spent on anything but the engine (start-up, scheduling, polling).
-# Needs root, slurm-wlm and munge (deploy/install-deps.sh).  Run from the tree:
+# ORDER=slurm-first runs Slurm first.  Needs root, slurm-wlm and munge (deploy/install-deps.sh).  Run from the tree:
 #   top_srcdir=$PWD top_builddir=$PWD/build bash bench/slurm_study.sh
 . "$(dirname "$0")/../tests/daemon/common.sh"
 . "$top_srcdir/tests/daemon/slurm_cluster.sh"
@@ -15,18 +15,7 @@ trap 'stop_daemons; stop_slurm; cleanup' EXIT
 SLURM_CPUS=2 start_slurm "$TMP/slurm" || { echo "cannot start Slurm: $SLURM_SKIP"; exit 1; }
 scontrol update PartitionName=test State=UP
 
-"$PY" - "$top_srcdir/examples/elastic-strip.json" >"$TMP/study.json" <<'PYEOF'
-import json, sys
-s = json.load(open(sys.argv[1]))
-s["time"]["end"] = 1.5e-3
-s["output"]["frames"] = 10
-print(json.dumps({"inputs": {"base": s, "max_parallel": 2,
-    "sweep": {"mode": "product", "parameters": [
-        {"pointer": "/parameters/vmax", "values": [0.05, 0.1, 0.2]},
-        {"pointer": "/parameters/tau", "values": [1e-5, 2e-5, 3e-5, 4e-5]}]},
-    "outputs": [{"name": "peak_force", "series": "groups/right/reaction_force",
-                 "component": 0, "reduce": "max"}]}}))
-PYEOF
+study_request 1.5e-3 10 1e-5,2e-5,3e-5,4e-5 2 >"$TMP/study.json"
 
 measure() { # label URL
     req POST "$2/processes/study/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/study.json"
@@ -46,11 +35,15 @@ n = len(summ["rows"])
 print(f"| {label} | {job['status']} | {n} | {wall:.1f} | {engine:.1f} | {(2 * wall - engine) / n:.2f} |")
 PYEOF
 }
+local_run() {
+    start_daemon L "$TMP/local" --max-jobs 2 || exit 1
+    measure local "$L_URL"
+    stop_daemons
+}
 echo "| executor | status | children | study wall s | sum of engine s | overhead per child s |"
 echo "|---|---|---|---|---|---|"
-start_daemon L "$TMP/local" --max-jobs 2 || exit 1
-measure local "$L_URL"
-stop_daemons
+# ORDER=slurm-first: Slurm first (the machine's other load changes with time)
+[ "${ORDER:-local-first}" = local-first ] && local_run
 cat >"$TMP/slurm.conf" <<EOC
 executor = slurm
 shared_dir = $TMP/shared
@@ -60,3 +53,5 @@ slurm_mem_base_mb = 128
 EOC
 start_daemon S "$TMP/slurmdata" --config "$TMP/slurm.conf" || exit 1
 measure "slurm (poll ${SLURM_POLL:-1} s)" "$S_URL"
+stop_daemons
+[ "${ORDER:-local-first}" = local-first ] || local_run

@@ -211,6 +211,18 @@ static void untrack(struct sx *x, struct sjob *j)
 }
 
 /* Runs id again, or fails it when it has had its attempts. */
+static void requeue_or_fail(struct sx *x, const char *id, int attempts, const char *why);
+
+/* The same for a watched run, which is forgotten. */
+static void requeue_watched(struct sx *x, struct sjob *j, const char *why)
+{
+    const int attempts = j->attempts;
+    char id[JOB_ID_LEN + 1];
+    snprintf(id, sizeof id, "%s", j->id);
+    untrack(x, j);
+    requeue_or_fail(x, id, attempts, why);
+}
+
 static void requeue_or_fail(struct sx *x, const char *id, int attempts, const char *why)
 {
     if (attempts >= x->h->max_attempts) {
@@ -306,20 +318,29 @@ static int query_queue(struct sx *x, struct slurm_queue_row **rows, size_t *n)
     return rc;
 }
 
-static void send_cancel(struct sjob *j)
+#define SCANCEL_BATCH 100 /* Slurm ids per scancel call */
+
+/* One scancel for the runs js[0..n) (a cancelled study's children go
+ * together); a failure is tried again at the next poll. */
+static void send_cancels(struct sjob **js, size_t n)
 {
-    j->cancel_sent = true;
-    if (!j->slurm[0])
-        return;
-    char *argv[] = {(char *)"scancel", j->slurm, NULL};
+    char *argv[SCANCEL_BATCH + 2];
+    size_t k = 0;
+    argv[k++] = (char *)"scancel";
+    for (size_t i = 0; i < n; i++)
+        argv[k++] = js[i]->slurm;
+    argv[k] = NULL;
     struct slurm_cmd_result r;
-    if (slurm_cmd_run(argv, NULL, SCANCEL_TIMEOUT, &r) != 0) {
-        char why[300];
-        tlog("slurm: job %s: scancel %s failed: %s", j->id, j->slurm,
-             slurm_cmd_why(&r, why, sizeof why));
-        j->cancel_sent = false; /* tried again at the next poll */
-    } else {
-        tlog("slurm: job %s: scancel %s", j->id, j->slurm);
+    const bool ok = slurm_cmd_run(argv, NULL, SCANCEL_TIMEOUT, &r) == 0;
+    char why[300];
+    if (!ok)
+        slurm_cmd_why(&r, why, sizeof why);
+    for (size_t i = 0; i < n; i++) {
+        if (ok)
+            tlog("slurm: job %s: scancel %s", js[i]->id, js[i]->slurm);
+        else
+            tlog("slurm: job %s: scancel %s failed: %s", js[i]->id, js[i]->slurm, why);
+        js[i]->cancel_sent = ok;
     }
     slurm_cmd_free(&r);
 }
@@ -330,10 +351,25 @@ static void check_cancels(struct sx *x)
     size_t n = 0;
     if (x->n == 0 || tq_cancel_requests(x->h->q, &ids, &n) == TQ_ERROR)
         return;
+    struct sjob *batch[SCANCEL_BATCH];
+    size_t nb = 0;
     for (size_t k = 0; k < n; k++)
-        for (size_t i = 0; i < x->n; i++)
-            if (!x->jobs[i].cancel_sent && !strcmp(x->jobs[i].id, ids[k]))
-                send_cancel(&x->jobs[i]);
+        for (size_t i = 0; i < x->n; i++) {
+            struct sjob *j = &x->jobs[i];
+            if (j->cancel_sent || strcmp(j->id, ids[k]) != 0)
+                continue;
+            if (!j->slurm[0]) {
+                j->cancel_sent = true; /* no Slurm id: its exit status ends it */
+                continue;
+            }
+            batch[nb++] = j;
+            if (nb == SCANCEL_BATCH) {
+                send_cancels(batch, nb);
+                nb = 0;
+            }
+        }
+    if (nb > 0)
+        send_cancels(batch, nb);
     free(ids);
 }
 
@@ -353,11 +389,7 @@ static bool look_at(struct sx *x, struct sjob *j, const struct slurm_queue_row *
     if (st && st->phase == SLURM_REQUEUE) {
         char why[200];
         snprintf(why, sizeof why, "Slurm job %s: %s: %s", j->slurm, st->name, st->meaning);
-        const int attempts = j->attempts;
-        char id[JOB_ID_LEN + 1];
-        snprintf(id, sizeof id, "%s", j->id);
-        untrack(x, j);
-        requeue_or_fail(x, id, attempts, why);
+        requeue_watched(x, j, why);
         return true;
     }
     const bool engine_said = rc == TLSPH_EXIT_SUCCESS || rc == TLSPH_EXIT_INVALID ||
@@ -385,11 +417,7 @@ static bool look_at(struct sx *x, struct sjob *j, const struct slurm_queue_row *
             char why[200];
             snprintf(why, sizeof why, "Slurm job %s is gone from the queue and left no exit status",
                      j->slurm);
-            const int attempts = j->attempts;
-            char id[JOB_ID_LEN + 1];
-            snprintf(id, sizeof id, "%s", j->id);
-            untrack(x, j);
-            requeue_or_fail(x, id, attempts, why);
+            requeue_watched(x, j, why);
         }
         return true;
     }

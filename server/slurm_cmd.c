@@ -9,11 +9,13 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "spawn_attr.h"
 #include "util/clock.h"
 
 extern char **environ;
@@ -33,21 +35,15 @@ static pid_t spawn(char *const argv[], const int in[2], const int out[2], const 
     posix_spawnattr_t at;
     if (posix_spawn_file_actions_init(&fa) != 0)
         return -1;
-    if (posix_spawnattr_init(&at) != 0) {
+    int e = spawn_attr_defaults(&at);
+    if (e) {
         posix_spawn_file_actions_destroy(&fa);
+        errno = e;
         return -1;
     }
-    sigset_t none, all;
-    sigemptyset(&none);
-    sigfillset(&all);
-    sigdelset(&all, SIGKILL);
-    sigdelset(&all, SIGSTOP);
-    int e = posix_spawn_file_actions_adddup2(&fa, in[0], 0);
+    e = posix_spawn_file_actions_adddup2(&fa, in[0], 0);
     e = e ? e : posix_spawn_file_actions_adddup2(&fa, out[1], 1);
     e = e ? e : posix_spawn_file_actions_adddup2(&fa, err[1], 2);
-    e = e ? e : posix_spawnattr_setsigmask(&at, &none);
-    e = e ? e : posix_spawnattr_setsigdefault(&at, &all);
-    e = e ? e : posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
     pid_t pid = -1;
     if (!e)
         e = posix_spawnp(&pid, argv[0], &fa, &at, argv, environ);

@@ -3,9 +3,7 @@
  * The Slurm executor talks to the scheduler only through its commands, never
  * slurmrestd (executor_slurm.c says why).  A command is spawned with
  * posix_spawnp (PATH decides which sbatch; SLURM_CONF in the daemon's
- * environment decides which cluster), with an empty signal mask and the
- * default dispositions (the daemon blocks SIGTERM and ignores SIGPIPE, and a
- * child would inherit both), its stdin fed from a string, its stdout and
+ * environment decides which cluster) with the signals of spawn_attr.h, its stdin fed from a string, its stdout and
  * stderr collected, and a deadline: a command that hangs (a controller that
  * does not answer) is killed and reported, so the executor's loop never
  * stalls for longer than the deadline. */

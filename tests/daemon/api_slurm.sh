@@ -79,18 +79,7 @@ no_engine() { ! pgrep -f "$SHARED/$1/" >/dev/null; }
 check "  its engine is gone" wait_until no_engine "$JC"
 
 # ------------------------------------------------------------ a study as one array; kill -9 mid-array
-"$PY" - "$top_srcdir/examples/elastic-strip.json" >"$TMP/study.json" <<'PYEOF'
-import json, sys
-s = json.load(open(sys.argv[1]))
-s["time"]["end"] = 1e-3
-s["output"]["frames"] = 4
-print(json.dumps({"inputs": {"base": s, "max_parallel": 2,
-    "sweep": {"mode": "product", "parameters": [
-        {"pointer": "/parameters/vmax", "values": [0.05, 0.1, 0.2]},
-        {"pointer": "/parameters/tau", "values": [1e-5, 2e-5]}]},
-    "outputs": [{"name": "peak_force", "series": "groups/right/reaction_force",
-                 "component": 0, "reduce": "max"}]}}))
-PYEOF
+study_request 1e-3 4 1e-5,2e-5 2 >"$TMP/study.json"
 check "study request valid (execute schema)" bash -c "'$PY' '$here/validate.py' execute <'$TMP/study.json'"
 req POST "$D_URL/processes/study/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/study.json"
 check "study submitted: 201" [ "$STATUS" = 201 ]
