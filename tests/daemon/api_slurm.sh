@@ -38,7 +38,7 @@ start_daemon D "$DATA" --config "$TMP/tlsphd.conf" || exit 1
 check "daemon says executor slurm" grep -q 'executor slurm' "$D_LOG"
 
 wrap() { "$PY" -c "import json,sys; print(json.dumps({'inputs':{'scene':json.load(sys.stdin)}}))"; }
-strip_scene 1.5e-3 10 | wrap >"$TMP/mid.json"
+strip_scene 1e-3 5 | wrap >"$TMP/mid.json"
 strip_scene 1.0 10 | wrap >"$TMP/long.json"
 message() { curl -s "$1/jobs/$2" | "$PY" -c "import json,sys; print(json.load(sys.stdin).get('message',''))" 2>/dev/null; }
 message_has() { message "$1" "$2" | grep -q "$3"; }
@@ -79,7 +79,7 @@ no_engine() { ! pgrep -f "$SHARED/$1/" >/dev/null; }
 check "  its engine is gone" wait_until no_engine "$JC"
 
 # ------------------------------------------------------------ a study as one array; kill -9 mid-array
-study_request 1e-3 4 1e-5,2e-5 2 >"$TMP/study.json"
+study_request 5e-4 4 1e-5,2e-5 2 >"$TMP/study.json"
 check "study request valid (execute schema)" bash -c "'$PY' '$here/validate.py' execute <'$TMP/study.json'"
 req POST "$D_URL/processes/study/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/study.json"
 check "study submitted: 201" [ "$STATUS" = 201 ]
