@@ -233,6 +233,7 @@ static void requeue_or_fail(struct sx *x, const char *id, int attempts, const ch
     }
     char m[512];
     snprintf(m, sizeof m, "%s; requeued (attempt %d of %d)", why, attempts, x->h->max_attempts);
+    tlog("slurm: job %s: %s", id, m);
     if (tq_requeue(x->h->q, id, m) == TQ_ERROR)
         tlog("slurm: job %s: cannot requeue: %s", id, tq_last_error(x->h->q));
 }
@@ -526,7 +527,9 @@ static void submit(struct sx *x, struct tq_job *js, size_t n, bool array)
             .res = res, .cfg = x->cfg};
         rc = slurm_submit(&sub, sid, sizeof sid, err, sizeof err);
     } else if (m > 0) {
-        errmsg_set(err, sizeof err, "cannot write the slurm_job record: %s", err);
+        char why[sizeof err];
+        snprintf(why, sizeof why, "%s", err);
+        errmsg_set(err, sizeof err, "cannot write the slurm_job record: %s", why);
     }
     if (rc < 0 && m > 0) {
         tlog("slurm: %s (%zu run(s) requeued; no submission for %g s)", err, m, SUBMIT_BACKOFF);
@@ -561,13 +564,17 @@ static void submit(struct sx *x, struct tq_job *js, size_t n, bool array)
     free(ok);
 }
 
-static void claim_and_submit(struct sx *x, double now)
+/* Whether a refused sbatch holds submissions back. */
+static bool backing_off(const struct sx *x)
 {
-    if (x->t_backoff > 0 && now - x->t_backoff < SUBMIT_BACKOFF)
-        return;
+    return x->t_backoff > 0 && tlsph_monotonic_seconds() - x->t_backoff < SUBMIT_BACKOFF;
+}
+
+static void claim_and_submit(struct sx *x)
+{
     if (x->h->room && !x->h->room(x->h->sup))
         return;
-    while (!atomic_load(x->h->stop)) {
+    while (!atomic_load(x->h->stop) && !backing_off(x)) {
         struct tq_job first;
         memset(&first, 0, sizeof first);
         if (tq_claim_next(x->h->q, &first) != TQ_OK)
@@ -713,7 +720,7 @@ void texec_slurm_run(const struct texec_host *h, const struct tcfg *cfg)
     while (!atomic_load(h->stop)) {
         double now = tlsph_monotonic_seconds();
         if (want_claim || now - last_claim >= cfg->slurm_poll) {
-            claim_and_submit(&x, now);
+            claim_and_submit(&x);
             want_claim = false;
             last_claim = now;
         }

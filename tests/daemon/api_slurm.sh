@@ -11,7 +11,9 @@
 #     outcome timed_out, with TIMEOUT in its message;
 #   - kill -9 of the daemon mid-array, and a restart: every child ends
 #     successful after one attempt, Slurm saw each task once (nothing lost,
-#     nothing submitted twice).
+#     nothing submitted twice);
+#   - a node that fails under a run (scontrol ... State=DOWN: NODE_FAIL): the
+#     run is requeued, submitted again, and ends successful at attempt 2.
 # Waits are event-driven (states polled), never fixed sleeps.
 . "$(dirname "$0")/common.sh"
 . "$here/slurm_cluster.sh"
@@ -102,7 +104,8 @@ wait "$D_PID" 2>/dev/null
 left=$(for c in $KIDS; do [ -e "$SHARED/$c/exit_status" ] || echo "$c"; done | wc -l)
 check "daemon killed mid-array ($left of 6 children not yet ended)" [ "$left" -ge 1 ]
 start_daemon E "$DATA" --config "$TMP/tlsphd.conf" || exit 1
-check "restart: runs adopted from Slurm" grep -q 'adopted [1-9][0-9]* run(s) from Slurm, requeued 0' "$E_LOG"
+adopted() { grep -q 'adopted [1-9][0-9]* run(s) from Slurm, requeued 0' "$E_LOG"; }
+check "restart: runs adopted from Slurm, none requeued (logged)" wait_until adopted
 long_poll_final "$E_URL" "$SID"
 check "study successful after the restart ($(jget "$BODY" "d.get('message')"))" [ "$(jget "$BODY" "d['status']")" = successful ]
 req GET "$E_URL/jobs?study=$SID&limit=100"
@@ -123,4 +126,19 @@ req GET "$E_URL/jobs/$JT"
 check "run over its time limit: failed/timed_out ($(jget "$BODY" "d.get('message')"))" [ "$(jget "$BODY" "d['status'] + '/' + d.get('outcome', '')")" = failed/timed_out ]
 check "  message names TIMEOUT" [ "$(jget "$BODY" "'TIMEOUT' in d.get('message', '')")" = True ]
 check "  Slurm says TIMEOUT" [ "$(slurm_state "$(slurm_id "$JT")")" = TIMEOUT ]
+
+# ------------------------------------------------------------ NODE_FAIL (last: it stops every job on the node)
+JN=$(submit "$E_URL" "$TMP/mid.json")
+check "run on a node about to fail: RUNNING" wait_until message_has "$E_URL" "$JN" 'RUNNING on'
+FIRST=$(slurm_id "$JN")
+scontrol update NodeName="$SLURM_NODE" State=DOWN Reason=tlsph-test
+requeued() { grep -q "job $JN: Slurm job $FIRST: NODE_FAIL: its node failed; requeued (attempt 1 of 3)" "$E_LOG"; }
+check "  Slurm's NODE_FAIL requeues the run (logged)" wait_until requeued
+resubmitted() { local s; s=$(slurm_id "$JN"); [ -n "$s" ] && [ "$s" != - ] && [ "$s" != "$FIRST" ]; }
+check "  submitted again as a new Slurm job" wait_until resubmitted
+# (ReturnToService=2 may have brought the node back already: then RESUME is refused)
+scontrol update NodeName="$SLURM_NODE" State=RESUME 2>/dev/null
+wait_status "$E_URL" "$JN" '^(successful|failed|dismissed)$'
+check "  successful once the node is back" [ "$(job_status "$E_URL" "$JN")" = successful ]
+check "  attempts 2" [ "$(sql "SELECT attempts FROM jobs WHERE id='$JN'")" = 2 ]
 finish
