@@ -277,28 +277,31 @@ enum tq_rc tq_claim_siblings(struct tq *q, const char *study_id, struct tq_job *
     return TQ_OK;
 }
 
-enum tq_rc tq_set_message(struct tq *q, const char *id, const char *message)
+/* One column of a running run job: statement which with ?1 = id, ?2 = v.
+ * TQ_OK, TQ_NOT_FOUND (not a running run), TQ_ERROR. */
+static enum tq_rc set_on_running(struct tq *q, const char *fn, enum tqi_stmt which, const char *id,
+                                 struct tqi_value v)
 {
-    if (tqi_begin_for(q, "tq_set_message", id) < 0)
+    if (tqi_begin_for(q, fn, id) < 0)
         return TQ_ERROR;
-    sqlite3_stmt *st = q->st[S_SET_MESSAGE];
-    TQI_BIND(st, TQI_TEXT(id), TQI_TEXT(message));
-    int rc = tqi_run_stmt(q, st, "tq_set_message");
+    sqlite3_stmt *st = q->st[which];
+    const struct tqi_value values[2] = {TQI_TEXT(id), v};
+    tqi_bind_values(st, values, 2);
+    int rc = tqi_run_stmt(q, st, fn);
     if (rc == 0 && sqlite3_changes(q->db) == 0)
         rc = 1;
-    return tqi_tx_end(q, "tq_set_message", rc);
+    return tqi_tx_end(q, fn, rc);
+}
+
+enum tq_rc tq_set_message(struct tq *q, const char *id, const char *message)
+{
+    return set_on_running(q, "tq_set_message", S_SET_MESSAGE, id,
+                          (struct tqi_value)TQI_TEXT(message));
 }
 
 enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
 {
-    if (tqi_begin_for(q, "tq_set_pid", id) < 0)
-        return TQ_ERROR;
-    sqlite3_stmt *st = q->st[S_SET_PID];
-    TQI_BIND(st, TQI_TEXT(id), TQI_INT(pid));
-    int rc = tqi_run_stmt(q, st, "tq_set_pid");
-    if (rc == 0 && sqlite3_changes(q->db) == 0)
-        rc = 1;
-    return tqi_tx_end(q, "tq_set_pid", rc);
+    return set_on_running(q, "tq_set_pid", S_SET_PID, id, (struct tqi_value)TQI_INT(pid));
 }
 
 enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,
