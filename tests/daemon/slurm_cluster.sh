@@ -106,11 +106,11 @@ EOC
 
 stop_slurm() {
     [ -n "$SLURM_PIDS" ] || return 0
-    if [ -n "${SLURM_CONF:-}" ]; then
-        scancel --full --user="$(id -u)" >/dev/null 2>&1
-        local i
-        for i in $(seq 100); do
-            [ -z "$(squeue -h -t PD,R,CG,CF,S -o %i 2>/dev/null)" ] && break
+    # (bounded: a controller that never came up must not hold the exit)
+    if [ -n "${SLURM_CONF:-}" ] && timeout 10 scancel --full --user="$(id -u)" >/dev/null 2>&1; then
+        local end=$(($(date +%s) + 30))
+        while [ "$(date +%s)" -le "$end" ]; do
+            [ -z "$(timeout 10 squeue -h -t PD,R,CG,CF,S -o %i 2>/dev/null)" ] && break
             sleep 0.1
         done
     fi
