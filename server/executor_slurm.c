@@ -27,7 +27,6 @@
 #include "jobdir.h"
 #include "queue.h"
 #include "result_repair.h"
-#include "run/protocol.h"
 #include "slurm_cmd.h"
 #include "slurm_resources.h"
 #include "slurm_state.h"
@@ -383,50 +382,42 @@ static bool look_at(struct sx *x, struct sjob *j, const struct slurm_queue_row *
     const struct slurm_state *st = row ? slurm_state_of(row->state) : NULL;
     if (row)
         snprintf(j->state, sizeof j->state, "%s", row->state);
-    if (st && (st->phase == SLURM_FAILED || st->phase == SLURM_CANCELLED)) {
+    const bool waited = j->t_wait > 0 && now - j->t_wait >= END_GRACE;
+    char why[200];
+    switch (slurm_verdict(rc, st, waited)) {
+    case SLURM_WATCH:
+        j->t_wait = 0;
+        if (st && st->phase == SLURM_WAITING)
+            set_message(x, j, "Slurm job %s: %s (%s)", j->slurm, row->state, row->reason);
+        else if (row)
+            set_message(x, j, "Slurm job %s: %s on %s", j->slurm, row->state, row->nodes);
+        return false;
+    case SLURM_WAIT: /* one witness of the end: a little time for the other */
+        if (j->t_wait == 0)
+            j->t_wait = now;
+        return false;
+    case SLURM_END_BY_EXIT:
+        end_by_exit(x, j, rc);
+        return true;
+    case SLURM_END_BY_SLURM:
         end_by_slurm(x, j, st);
         return true;
-    }
-    if (st && st->phase == SLURM_REQUEUE) {
-        char why[200];
+    case SLURM_END_NO_STATUS:
+        end_job(x, j, TQ_FAILED, "crashed",
+                errmsg_format("Slurm job %s: %s and left no exit status: the batch script did "
+                              "not finish (see the job's log.txt and %s/.slurm/)",
+                              j->slurm, row->state, x->h->jobs_dir));
+        return true;
+    case SLURM_REQUEUE_NODE:
         snprintf(why, sizeof why, "Slurm job %s: %s: %s", j->slurm, st->name, st->meaning);
         requeue_watched(x, j, why);
         return true;
-    }
-    const bool engine_said = rc == TLSPH_EXIT_SUCCESS || rc == TLSPH_EXIT_INVALID ||
-                             rc == TLSPH_EXIT_UNSTABLE || rc == TLSPH_EXIT_IO;
-    const bool slurm_ended = !row || (st && st->phase == SLURM_ENDED);
-    if (rc >= 0 && (engine_said || slurm_ended)) {
-        end_by_exit(x, j, rc);
+    case SLURM_REQUEUE_GONE:
+        snprintf(why, sizeof why, "Slurm job %s is gone from the queue and left no exit status",
+                 j->slurm);
+        requeue_watched(x, j, why);
         return true;
     }
-    if (rc >= 0 || slurm_ended) {
-        /* one witness of the end: wait a little for the other (Slurm's
-         * state after a kill; the exit status over a network file system) */
-        if (j->t_wait == 0)
-            j->t_wait = now;
-        if (now - j->t_wait < END_GRACE)
-            return false;
-        if (rc >= 0) {
-            end_by_exit(x, j, rc);
-        } else if (row) {
-            end_job(x, j, TQ_FAILED, "crashed",
-                    errmsg_format("Slurm job %s: %s and left no exit status: the batch script "
-                                  "did not finish (see the job's log.txt and %s/.slurm/)",
-                                  j->slurm, row->state, x->h->jobs_dir));
-        } else {
-            char why[200];
-            snprintf(why, sizeof why, "Slurm job %s is gone from the queue and left no exit status",
-                     j->slurm);
-            requeue_watched(x, j, why);
-        }
-        return true;
-    }
-    j->t_wait = 0;
-    if (st && st->phase == SLURM_WAITING)
-        set_message(x, j, "Slurm job %s: %s (%s)", j->slurm, row->state, row->reason);
-    else if (row)
-        set_message(x, j, "Slurm job %s: %s on %s", j->slurm, row->state, row->nodes);
     return false;
 }
 

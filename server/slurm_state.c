@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "run/protocol.h"
+
 static const struct slurm_state states[] = {
     {"PENDING", SLURM_WAITING, NULL, "waiting in the Slurm queue"},
     {"CONFIGURING", SLURM_WAITING, NULL, "its nodes are being set up"},
@@ -38,6 +40,24 @@ const struct slurm_state *slurm_state_of(const char *name)
         if (name && !strcmp(states[i].name, name))
             return &states[i];
     return &unknown;
+}
+
+enum slurm_verdict slurm_verdict(int exit_rc, const struct slurm_state *st, bool waited)
+{
+    if (st && (st->phase == SLURM_FAILED || st->phase == SLURM_CANCELLED))
+        return SLURM_END_BY_SLURM;
+    if (st && st->phase == SLURM_REQUEUE)
+        return SLURM_REQUEUE_NODE;
+    const bool engine_said = exit_rc == TLSPH_EXIT_SUCCESS || exit_rc == TLSPH_EXIT_INVALID ||
+                             exit_rc == TLSPH_EXIT_UNSTABLE || exit_rc == TLSPH_EXIT_IO;
+    const bool slurm_ended = !st || st->phase == SLURM_ENDED;
+    if (exit_rc >= 0 && (engine_said || slurm_ended))
+        return SLURM_END_BY_EXIT;
+    if (exit_rc < 0 && !slurm_ended)
+        return SLURM_WATCH;
+    if (!waited)
+        return SLURM_WAIT;
+    return exit_rc >= 0 ? SLURM_END_BY_EXIT : st ? SLURM_END_NO_STATUS : SLURM_REQUEUE_GONE;
 }
 
 /* The next '|'-separated field of *s into dst (cut to size). */

@@ -47,6 +47,34 @@ struct slurm_state {
 /* The row of a state name (never NULL: an unknown name gets SLURM_UNKNOWN). */
 const struct slurm_state *slurm_state_of(const char *name);
 
+/* What to do with a watched run at one look, from the two witnesses of its
+ * end: the exit status the batch script wrote (exit_rc, -1 none) and
+ * Slurm's state (st, NULL when squeue no longer lists the job), and whether
+ * the wait for the second witness has lasted long enough (waited):
+ *
+ *   Slurm ended it (TIMEOUT, OUT_OF_MEMORY, CANCELLED ...)  END_BY_SLURM
+ *   NODE_FAIL, PREEMPTED, BOOT_FAIL                         REQUEUE
+ *   the engine's own end (exit 0, 2, 3, 4), or any exit
+ *     status once Slurm has ended or forgotten the job     END_BY_EXIT
+ *   one witness only (exit 1, 5, a signal while Slurm still
+ *     runs the job: Slurm's TIMEOUT may be on its way; or
+ *     Slurm ended it and the status is not visible yet)     WAIT, then after
+ *                                                          the grace END_BY_EXIT,
+ *                                                          END_NO_STATUS (Slurm
+ *                                                          has it) or
+ *                                                          REQUEUE_GONE (it does not)
+ *   otherwise                                               WATCH (waiting or running) */
+enum slurm_verdict {
+    SLURM_WATCH,
+    SLURM_WAIT,
+    SLURM_END_BY_EXIT,
+    SLURM_END_BY_SLURM,
+    SLURM_END_NO_STATUS,
+    SLURM_REQUEUE_NODE,
+    SLURM_REQUEUE_GONE
+};
+enum slurm_verdict slurm_verdict(int exit_rc, const struct slurm_state *st, bool waited);
+
 /* The output format the executor asks squeue for, and one line of it. */
 #define SLURM_QUEUE_FORMAT "%i|%T|%r|%N|%j"
 struct slurm_queue_row {

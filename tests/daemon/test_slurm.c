@@ -1,6 +1,6 @@
 /* Unit tests of the Slurm executor's parts that need no Slurm:
  * server/slurm_state.c (the state table of Slurm 22.05's job_state_string
- * names, squeue's output), server/slurm_submit.c (the batch script, run here
+ * names, the end decisions, squeue's output), server/slurm_submit.c (the batch script, run here
  * by bash with a stand-in engine: the progress stream on fd 3 lands in
  * progress.jsonl, the exit status in exit_status, renamed into place),
  * server/slurm_cmd.c (stdin, stdout, a deadline) and
@@ -36,6 +36,32 @@ START_TEST(state_table)
     ck_assert_int_eq(slurm_state_of("PREEMPTED")->phase, SLURM_REQUEUE);
     ck_assert_int_eq(slurm_state_of("SOMETHING_NEW")->phase, SLURM_UNKNOWN);
     ck_assert_int_eq(slurm_state_of(NULL)->phase, SLURM_UNKNOWN);
+}
+END_TEST
+
+/* The end decisions of slurm_state.h's table. */
+START_TEST(verdicts)
+{
+    const struct slurm_state *run = slurm_state_of("RUNNING"), *pend = slurm_state_of("PENDING"),
+                             *done = slurm_state_of("COMPLETED"), *tmo = slurm_state_of("TIMEOUT"),
+                             *node = slurm_state_of("NODE_FAIL"), *canc = slurm_state_of("CANCELLED");
+    ck_assert_int_eq(slurm_verdict(-1, pend, false), SLURM_WATCH);
+    ck_assert_int_eq(slurm_verdict(-1, run, true), SLURM_WATCH);
+    ck_assert_int_eq(slurm_verdict(0, run, false), SLURM_END_BY_EXIT);  /* the engine's end: at once */
+    ck_assert_int_eq(slurm_verdict(3, run, false), SLURM_END_BY_EXIT);
+    ck_assert_int_eq(slurm_verdict(5, run, false), SLURM_WAIT);         /* SIGTERM: a TIMEOUT coming? */
+    ck_assert_int_eq(slurm_verdict(137, run, false), SLURM_WAIT);
+    ck_assert_int_eq(slurm_verdict(137, run, true), SLURM_END_BY_EXIT);
+    ck_assert_int_eq(slurm_verdict(5, tmo, false), SLURM_END_BY_SLURM); /* Slurm's word wins */
+    ck_assert_int_eq(slurm_verdict(-1, tmo, false), SLURM_END_BY_SLURM);
+    ck_assert_int_eq(slurm_verdict(-1, canc, false), SLURM_END_BY_SLURM);
+    ck_assert_int_eq(slurm_verdict(-1, node, false), SLURM_REQUEUE_NODE);
+    ck_assert_int_eq(slurm_verdict(1, done, false), SLURM_END_BY_EXIT);
+    ck_assert_int_eq(slurm_verdict(-1, done, false), SLURM_WAIT);       /* the status over NFS */
+    ck_assert_int_eq(slurm_verdict(-1, done, true), SLURM_END_NO_STATUS);
+    ck_assert_int_eq(slurm_verdict(5, NULL, false), SLURM_END_BY_EXIT); /* Slurm forgot it */
+    ck_assert_int_eq(slurm_verdict(-1, NULL, false), SLURM_WAIT);
+    ck_assert_int_eq(slurm_verdict(-1, NULL, true), SLURM_REQUEUE_GONE);
 }
 END_TEST
 
@@ -165,4 +191,4 @@ START_TEST(resources)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("slurm", 0, state_table, squeue_lines, batch_script_runs, commands, resources)
+TLSPH_CHECK_MAIN("slurm", 0, state_table, verdicts, squeue_lines, batch_script_runs, commands, resources)
