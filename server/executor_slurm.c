@@ -19,7 +19,6 @@
 #include <jansson.h>
 
 #include "config.h"
-#include "durable.h"
 #include "engine_report.h"
 #include "errmsg.h"
 #include "executor.h"
@@ -28,6 +27,7 @@
 #include "queue.h"
 #include "result_repair.h"
 #include "slurm_cmd.h"
+#include "slurm_record.h"
 #include "slurm_resources.h"
 #include "slurm_state.h"
 #include "slurm_submit.h"
@@ -39,11 +39,10 @@
 #define SUBMIT_BACKOFF 30.0    /* s without claims after sbatch refused */
 #define END_GRACE 30.0         /* s to wait for the other witness of an end
                                 * (the exit status over NFS, Slurm's state) */
-#define RECORD_MAX 200
 
 struct sjob {
     char id[JOB_ID_LEN + 1];
-    char slurm[64];            /* "123" or "123_4"; "" unknown (found by its exit status) */
+    char slurm[SLURM_ID_MAX];  /* "123" or "123_4"; "" unknown (found by its exit status) */
     char state[32];            /* Slurm's state at the last look, "" none yet */
     char message[320];         /* the message written last */
     off_t offset;              /* bytes of progress.jsonl read */
@@ -68,64 +67,15 @@ struct sx {
     bool squeue_failing;
 };
 
-/* ------------------------------------------------------------------ records */
-
-static int job_file(const struct sx *x, const char *id, enum jobdir_file f, char *buf, size_t size)
-{
-    return jobdir_path(buf, size, x->h->jobs_dir, id, f);
-}
-
-/* Writes the slurm_job record "NAME TASK ID" durably. */
-static int write_record(const struct sx *x, const char *id, const char *name, const char *task,
-                        const char *slurm, char *err, size_t errsize)
-{
-    char dir[PATH_MAX], path[PATH_MAX], tmpl[PATH_MAX], text[RECORD_MAX];
-    if (job_file(x, id, JOBDIR_FILES, dir, sizeof dir) < 0 ||
-        job_file(x, id, JOBDIR_SLURM, path, sizeof path) < 0 ||
-        snprintf(tmpl, sizeof tmpl, "%s.XXXXXX.tmp", path) >= (int)sizeof tmpl) {
-        errmsg_set(err, errsize, "job directory path too long");
-        return -1;
-    }
-    const int len = snprintf(text, sizeof text, "%s %s %s\n", name, task, slurm);
-    return durable_write(dir, tmpl, path, text, (size_t)len, err, errsize);
-}
-
-/* Reads the record: 1 with name, task and slurm ("-" before sbatch
- * answered), 0 when there is none, -1 unreadable. */
-static int read_record(const struct sx *x, const char *id, char name[96], char task[24],
-                       char slurm[64])
-{
-    char path[PATH_MAX];
-    if (job_file(x, id, JOBDIR_SLURM, path, sizeof path) < 0)
-        return -1;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return errno == ENOENT ? 0 : -1;
-    const int got = fscanf(f, "%95s %23s %63s", name, task, slurm);
-    fclose(f);
-    return got == 3 ? 1 : -1;
-}
-
-/* The exit status the script wrote, -1 none (yet). */
-static int read_exit(const struct sx *x, const char *id)
-{
-    char path[PATH_MAX];
-    if (job_file(x, id, JOBDIR_EXIT, path, sizeof path) < 0)
-        return -1;
-    FILE *f = fopen(path, "r");
-    if (!f)
-        return -1;
-    int rc = -1;
-    if (fscanf(f, "%d", &rc) != 1 || rc < 0 || rc > 255)
-        rc = -1;
-    fclose(f);
-    return rc;
-}
-
 /* The wait status a shell's exit code stands for (128 + n: killed by signal n). */
 static int wait_status_of(int rc)
 {
     return rc > 128 && rc < 128 + 65 ? rc - 128 : (rc & 0xff) << 8;
+}
+
+static int job_file(const struct sx *x, const char *id, enum jobdir_file f, char *buf, size_t size)
+{
+    return jobdir_path(buf, size, x->h->jobs_dir, id, f);
 }
 
 /* ------------------------------------------------------------------ progress */
@@ -378,7 +328,7 @@ static bool look_at(struct sx *x, struct sjob *j, const struct slurm_queue_row *
 {
     read_progress(x, j);
     flush_progress(x, j);
-    const int rc = read_exit(x, j->id);
+    const int rc = slurm_exit_read(x->h->jobs_dir, j->id);
     const struct slurm_state *st = row ? slurm_state_of(row->state) : NULL;
     if (row)
         snprintf(j->state, sizeof j->state, "%s", row->state);
@@ -500,13 +450,13 @@ static void submit(struct sx *x, struct tq_job *js, size_t n, bool array)
             ok[m] = &js[i];
             ids[m++] = js[i].id;
         }
-    char name[96], err[400], task[24], slurm[64], sid[32];
+    char name[SLURM_NAME_MAX], err[400], task[SLURM_TASK_MAX], slurm[SLURM_ID_MAX], sid[32];
     if (m > 0)
         snprintf(name, sizeof name, "tlsph-%s-%d", ok[0]->id, ok[0]->attempts);
     size_t recorded = 0;
     for (; recorded < m; recorded++) {
         snprintf(task, sizeof task, array ? "%zu" : "-", recorded);
-        if (write_record(x, ids[recorded], name, task, "-", err, sizeof err) < 0)
+        if (slurm_record_write(x->h->jobs_dir, ids[recorded], name, task, "-", err, sizeof err) < 0)
             break;
     }
     int rc = -1;
@@ -535,7 +485,7 @@ static void submit(struct sx *x, struct tq_job *js, size_t n, bool array)
         else
             snprintf(slurm, sizeof slurm, "%s", sid);
         /* the id is also found by name if this write is lost (a crash) */
-        if (write_record(x, ids[i], name, task, slurm, err, sizeof err) < 0)
+        if (slurm_record_write(x->h->jobs_dir, ids[i], name, task, slurm, err, sizeof err) < 0)
             tlog("slurm: job %s: %s", ids[i], err);
         struct sjob *j = track(x, ids[i], slurm, ok[i]->attempts,
                                ok[i]->wall_limit > 0 ? ok[i]->wall_limit : x->h->wall_limit,
@@ -639,8 +589,8 @@ static void adopt(struct sx *x)
     long adopted = 0, requeued = 0;
     for (size_t i = 0; i < n; i++) {
         const struct tq_job *j = &js[i];
-        char name[96] = "", task[24] = "", slurm[64] = "";
-        const int r = read_record(x, j->id, name, task, slurm);
+        char name[SLURM_NAME_MAX] = "", task[SLURM_TASK_MAX] = "", slurm[SLURM_ID_MAX] = "";
+        const int r = slurm_record_read(x->h->jobs_dir, j->id, name, task, slurm);
         bool found = false;
         if (r > 0 && !strcmp(slurm, "-")) {
             if (!have_queue) {
@@ -650,7 +600,7 @@ static void adopt(struct sx *x)
             }
             find_by_name(rows, nrows, name, task, slurm, sizeof slurm);
             found = slurm[0] != '\0';
-            if (!found && read_exit(x, j->id) < 0) {
+            if (!found && slurm_exit_read(x->h->jobs_dir, j->id) < 0) {
                 requeue_or_fail(x, j->id, j->attempts,
                                 "the daemon stopped while it was being submitted, before Slurm "
                                 "had it");
@@ -667,7 +617,7 @@ static void adopt(struct sx *x)
         }
         if (found) {
             char err[300];
-            if (write_record(x, j->id, name, task, slurm, err, sizeof err) < 0)
+            if (slurm_record_write(x->h->jobs_dir, j->id, name, task, slurm, err, sizeof err) < 0)
                 tlog("slurm: job %s: %s", j->id, err);
         }
         struct sjob *w = track(x, j->id, slurm, j->attempts,
