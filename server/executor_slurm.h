@@ -20,16 +20,18 @@
  *   claim      tq_claim_next; a study child takes its accepted siblings
  *              along (tq_claim_siblings) into one job array, %limit from the
  *              study's max_parallel (else slurm_array_limit)
- *   record     before sbatch, each job directory's slurm_job file says
- *              "NAME TASK -" (written durably); after it, "NAME TASK ID".
+ *   record     before sbatch, each job directory's slurm_job file
+ *              (slurm_record.h) says "NAME TASK -" (written durably); after
+ *              it, "NAME TASK ID".
  *              NAME is tlsph-<first job id>-<attempt>, unique per submission
  *   sbatch     slurm_submit.h; a refusal requeues the runs (an attempt each)
  *              and no claim is made for SUBMIT_BACKOFF s
  *   poll       squeue for the state (slurm_state.h): the message says
  *              "Slurm job ID: PENDING (reason)" or "RUNNING on NODE";
  *              progress.jsonl is read from where the last read stopped
- *   end        the exit_status file is the truth when the engine wrote it
- *              (exit codes 0, 2, 3, 4 end the run at once); Slurm's state
+ *   end        slurm_verdict (slurm_state.h): the exit_status file is the
+ *              truth when the engine wrote it (exit codes 0, 2, 3, 4 end the
+ *              run at once); Slurm's state
  *              when Slurm ended the job (TIMEOUT, OUT_OF_MEMORY, CANCELLED,
  *              NODE_FAIL, PREEMPTED, ...); either way the final state is
  *              engine_outcome's, as for a local run
