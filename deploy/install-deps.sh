@@ -12,6 +12,7 @@ PACKAGES=(
   python3 python3-h5py python3-numpy python3-jsonschema python3-yaml
   curl procps valgrind
   librsvg2-bin bsdutils
+  slurm-wlm munge
 )
 missing=()
 for p in "${PACKAGES[@]}"; do

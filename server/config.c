@@ -29,7 +29,7 @@ void tcfg_usage(FILE *f)
             "              [--body-timeout S] [--heavy-threads N] [--memory-limit-mb N]\n"
             "              [--kill-grace S] [--max-attempts N] [--token-file FILE]\n"
             "              [--min-free-mb N] [--max-output-mb N] [--disk-reserve-mb N]\n"
-            "              [--recover]\n"
+            "              [--executor local|slurm] [--shared-dir DIR] [--recover]\n"
             "defaults: --listen 127.0.0.1:8080, --data-dir $XDG_STATE_HOME/tlsphd or ./tlsphd-data,\n"
             "          --max-jobs 1, --threads-per-job <cores>, --wall-limit 3600,\n"
             "          --max-particles %ld, --min-free-mb 256, --max-output-mb 16384,\n"
@@ -174,6 +174,17 @@ static const struct key keys[] = {
     {"min_free_mb", "--min-free-mb", K_LONG, 0, 1L << 40, MEMBER(min_free_mb)},
     {"max_output_mb", "--max-output-mb", K_LONG, 0, 1L << 40, MEMBER(max_output_mb)},
     {"disk_reserve_mb", "--disk-reserve-mb", K_LONG, 0, 1L << 20, MEMBER(disk_reserve_mb)},
+    {"executor", "--executor", K_STRING, 0, 0, MEMBER(executor)},
+    {"shared_dir", "--shared-dir", K_STRING, 0, 0, MEMBER(shared_dir)},
+    {"slurm_partition", NULL, K_STRING, 0, 0, MEMBER(slurm_partition)},
+    {"slurm_account", NULL, K_STRING, 0, 0, MEMBER(slurm_account)},
+    {"slurm_options", NULL, K_STRING, 0, 0, MEMBER(slurm_options)},
+    {"slurm_poll", NULL, K_DOUBLE, 0.1, 3600, MEMBER(slurm_poll)},
+    {"slurm_particles_per_cpu", NULL, K_LONG, 1, 1L << 40, MEMBER(slurm_particles_per_cpu)},
+    {"slurm_bytes_per_particle", NULL, K_DOUBLE, 1, 1e9, MEMBER(slurm_bytes_per_particle)},
+    {"slurm_mem_margin", NULL, K_DOUBLE, 1, 100, MEMBER(slurm_mem_margin)},
+    {"slurm_mem_base_mb", NULL, K_LONG, 0, 1L << 30, MEMBER(slurm_mem_base_mb)},
+    {"slurm_array_limit", NULL, K_INT, 0, 1000000, MEMBER(slurm_array_limit)},
     {"test_hold_heavy", NULL, K_STRING, 0, 0, MEMBER(test_hold_heavy)},
     {"token_sha256", NULL, K_TOKEN_HEX, 0, 0, 0, 0},
     {"token_file", "--token-file", K_TOKEN_FILE, 0, 0, 0, 0},
@@ -369,6 +380,12 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
     c->min_free_mb = 256;
     c->max_output_mb = 16384;
     c->disk_reserve_mb = 8;
+    snprintf(c->executor, sizeof c->executor, "local");
+    c->slurm_poll = 2;
+    c->slurm_particles_per_cpu = 20000;
+    c->slurm_bytes_per_particle = 4096;
+    c->slurm_mem_margin = 1.5;
+    c->slurm_mem_base_mb = 256;
 
     /* pass 1: --help, --config and --recover (a mode of this start, not a setting) */
     const char *config = NULL;
@@ -414,9 +431,14 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
         default_engine(c);
     if (!c->schemas_dir[0])
         default_schemas(c);
+    if (strcmp(c->executor, "local") != 0 && strcmp(c->executor, "slurm") != 0) {
+        snprintf(err, errsize, "executor must be \"local\" or \"slurm\", not \"%s\"", c->executor);
+        return TCFG_ERROR;
+    }
     if (snprintf(c->db_path, sizeof c->db_path, "%s/tlsphd.sqlite", c->data_dir) >=
             (int)sizeof c->db_path ||
-        snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s/jobs", c->data_dir) >=
+        (c->shared_dir[0] ? snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s", c->shared_dir)
+                          : snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s/jobs", c->data_dir)) >=
             (int)sizeof c->jobs_dir) {
         snprintf(err, errsize, "data directory path too long");
         return TCFG_ERROR;

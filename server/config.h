@@ -33,6 +33,23 @@
  *   disk_reserve_mb = N       --disk-reserve-mb 8 (the reserve file; 0 = none; storage.h)
  *   token_sha256 = HEX        (repeatable)    SHA-256 of an accepted bearer token
  *   token_file = FILE         --token-file    plaintext tokens, one per line (hashed at load)
+ *   executor = local|slurm    --executor      local (supervised fork/exec on this machine);
+ *                                             slurm: every run is a Slurm batch job
+ *                                             (executor.h, executor_slurm.c)
+ *   shared_dir = DIR          --shared-dir    the job directories, on a file system that
+ *                                             the compute nodes share ("" = data_dir/jobs)
+ *   slurm_partition = NAME    (file only)     sbatch --partition ("" = the cluster's default)
+ *   slurm_account = NAME      (file only)     sbatch --account ("" = the user's default)
+ *   slurm_options = OPTS      (file only)     more sbatch options, split at blanks
+ *   slurm_poll = S            (file only)     2 (s between looks at squeue)
+ *   slurm_particles_per_cpu = N  (file only)  20000 (cpus-per-task = particles / N, at
+ *                                             least 1, at most threads_per_job)
+ *   slurm_bytes_per_particle = B (file only)  4096 (the engine's cost record
+ *                                             bytes_per_particle, with room)
+ *   slurm_mem_margin = X      (file only)     1.5 (memory = margin x particles x B + base)
+ *   slurm_mem_base_mb = N     (file only)     256 (the engine's libraries, HDF5 buffers)
+ *   slurm_array_limit = N     (file only)     0 (a study's array %limit when its request
+ *                                             sets no max_parallel; 0 = none)
  *   test_hold_heavy = FILE    (file only)     TESTING ONLY: heavy requests (job lists,
  *                                             result reads) wait while FILE exists
  *
@@ -79,6 +96,16 @@ struct tcfg {
     long max_output_mb;      /* per-job quota on the estimated result file, MiB (0 = none) */
     long disk_reserve_mb;    /* the reserve file, MiB (0 = none) */
     int recover;             /* --recover was given */
+    char executor[16];       /* "local" or "slurm" */
+    char shared_dir[1024];   /* "" = data_dir/jobs */
+    char slurm_partition[128], slurm_account[128];
+    char slurm_options[1024];
+    double slurm_poll;       /* s */
+    long slurm_particles_per_cpu;
+    double slurm_bytes_per_particle; /* B */
+    double slurm_mem_margin;
+    long slurm_mem_base_mb;
+    int slurm_array_limit;   /* 0 = none */
     char test_hold_heavy[1024]; /* testing only, "" = off (http_config.hold_path) */
     struct tauth auth;       /* token hashes (empty = no authentication) */
 };

@@ -27,6 +27,9 @@ static const struct {
     [JOBDIR_RESULT] = {"result.h5", true},
     [JOBDIR_SIDECAR] = {"result.xmf", true},
     [JOBDIR_LOG] = {"log.txt", true},
+    [JOBDIR_PROGRESS] = {"progress.jsonl", true},
+    [JOBDIR_EXIT] = {"exit_status", true},
+    [JOBDIR_SLURM] = {"slurm_job", false},
 };
 
 /* The engine writes the sidecar here and renames it (core/io/output/xdmf.c). */

@@ -5,6 +5,11 @@
  *   <jobs_dir>/<id>/result.h5    the engine's result (docs/output.md)
  *   <jobs_dir>/<id>/result.xmf   its XDMF sidecar (written as result.xmf.tmp, renamed)
  *   <jobs_dir>/<id>/log.txt      the engine's stdout and stderr, for people
+ *   <jobs_dir>/<id>/progress.jsonl  Slurm executor: the engine's progress stream
+ *                                (the lines of its --progress-fd), written on the node
+ *   <jobs_dir>/<id>/exit_status  Slurm executor: the engine's exit status, one line
+ *                                (written as exit_status.tmp and renamed)
+ *   <jobs_dir>/<id>/slurm_job    Slurm executor: which Slurm job runs it (executor_slurm.c)
  *
  * Only ids that pass job_id_valid (jobid.h) become paths, and only these
  * files (plus leftover *.tmp) are ever removed.  Every function returns 0 or
@@ -19,6 +24,9 @@ enum jobdir_file {
     JOBDIR_RESULT,  /* output: result.h5 */
     JOBDIR_SIDECAR, /* output: result.xmf */
     JOBDIR_LOG,     /* output: the engine's log */
+    JOBDIR_PROGRESS, /* output (Slurm): the progress stream */
+    JOBDIR_EXIT,    /* output (Slurm): the exit status */
+    JOBDIR_SLURM,   /* the Slurm submission record: rewritten at each submission */
     JOBDIR_FILES
 };
 

@@ -15,6 +15,7 @@
 #include <errno.h>
 #include <netinet/in.h>
 #include <signal.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,6 +25,7 @@
 
 #include "config.h"
 #include "errmsg.h"
+#include "executor.h"
 #include "http.h"
 #include "queue.h"
 #include "routes.h"
@@ -133,7 +135,9 @@ int main(int argc, char **argv)
         tlog("--recover: rebuilt %ld job row(s) from their directories", rep.recovered);
     if (storage_keep_reserve(&cfg, err, sizeof err) != 0)
         tlog("warning: %s", err);
-    int recovered = tq_recover(q, cfg.max_attempts);
+    const bool slurm = texec_kind_of(cfg.executor) == TEXEC_SLURM;
+    /* Slurm jobs outlive the daemon: the Slurm executor adopts them (executor_slurm.h) */
+    int recovered = slurm ? 0 : tq_recover(q, cfg.max_attempts);
     if (recovered < 0)
         tlog("recovery failed: %s", tq_last_error(q));
     else if (recovered > 0)
@@ -152,6 +156,7 @@ int main(int argc, char **argv)
         .memory_limit_mb = cfg.memory_limit_mb,
         .max_attempts = cfg.max_attempts,
         .storage = &cfg,
+        .slurm = slurm ? &cfg : NULL,
     };
     const int listen_fd = open_listener(&cfg);
     if (listen_fd < 0) {
@@ -214,8 +219,9 @@ int main(int argc, char **argv)
         tlog("warning: per_ip_limit 0 (no limit per address) on %s: one client can take every "
              "connection",
              cfg.listen);
-    tlog("listening on %s (data %s, engine %s, max-jobs %d, threads-per-job %d, auth %s)",
-         cfg.listen, cfg.data_dir, cfg.engine, cfg.max_jobs, cfg.threads_per_job,
+    tlog("listening on %s (data %s, engine %s, executor %s, max-jobs %d, threads-per-job %d, "
+         "auth %s)",
+         cfg.listen, cfg.data_dir, cfg.engine, cfg.executor, cfg.max_jobs, cfg.threads_per_job,
          tauth_enabled(&cfg.auth) ? "bearer" : "off");
 
     int sig = 0;

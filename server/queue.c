@@ -91,6 +91,10 @@ static const char *const stmt_sql[S_LIST0] = {
                 " WHERE id = (SELECT id FROM jobs WHERE status='accepted' AND process='run'"
                 "             ORDER BY created, rowid LIMIT 1)"
                 " RETURNING " JOB_COLS,
+    [S_CLAIM_STUDY] = "UPDATE jobs SET status='running', attempts=attempts+1, started=?2, outcome=''"
+                      " WHERE study_id=?1 AND status='accepted' AND process='run'"
+                      " RETURNING " JOB_COLS,
+    [S_SET_MESSAGE] = "UPDATE jobs SET message=?2 WHERE id=?1 AND status='running' AND process='run'",
     [S_SET_PID] = "UPDATE jobs SET pid=?2 WHERE id=?1 AND status='running' AND process='run'",
     [S_PROGRESS] = "UPDATE jobs SET progress=?2, sim_time=?3, end_time=?4, step=?5, eta=?6"
                    " WHERE id=?1 AND status='running' AND process='run' RETURNING study_id",

@@ -141,6 +141,13 @@ enum tq_rc tq_list_filtered(struct tq *q, const struct tq_filter *f, long limit,
  * (attempts+1, started = now, outcome "") and returns it: TQ_OK claimed,
  * TQ_NOT_FOUND none queued, TQ_ERROR. */
 enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out);
+/* The same for every other accepted child of study study_id at once (the
+ * Slurm executor submits them as one job array): *out is an array of *n
+ * jobs (tq_jobs_free; none: *n = 0).  TQ_OK or TQ_ERROR. */
+enum tq_rc tq_claim_siblings(struct tq *q, const char *study_id, struct tq_job **out, size_t *n);
+/* Sets the message of a running run job (what its executor reports about it,
+ * e.g. "Slurm job 12: PENDING (Priority)"): TQ_OK, TQ_NOT_FOUND, TQ_ERROR. */
+enum tq_rc tq_set_message(struct tq *q, const char *id, const char *message);
 /* These two change a running run job only (else TQ_NOT_FOUND). */
 enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid);
 enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,

@@ -20,7 +20,9 @@ enum tqi_stmt {
     S_GET,
     S_LOOKUP,
     S_CLAIM,
+    S_CLAIM_STUDY,      /* the accepted siblings of a claimed study child (Slurm arrays) */
     S_SET_PID,
+    S_SET_MESSAGE,      /* the message of a running job (the Slurm state) */
     S_PROGRESS,
     S_FINISH,
     S_REQUEUE,

@@ -249,16 +249,59 @@ enum tq_rc tq_claim_next(struct tq *q, struct tq_job *out)
     return ret;
 }
 
-enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
+enum tq_rc tq_claim_siblings(struct tq *q, const char *study_id, struct tq_job **out, size_t *n)
 {
-    if (tqi_begin_for(q, "tq_set_pid", id) < 0)
+    if (!out || !n) {
+        if (q)
+            tqi_set_err(q, "tq_claim_siblings: no output");
         return TQ_ERROR;
-    sqlite3_stmt *st = q->st[S_SET_PID];
-    TQI_BIND(st, TQI_TEXT(id), TQI_INT(pid));
-    int rc = tqi_run_stmt(q, st, "tq_set_pid");
+    }
+    *out = NULL;
+    *n = 0;
+    if (tqi_begin_for(q, "tq_claim_siblings", study_id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[S_CLAIM_STUDY];
+    TQI_BIND(st, TQI_TEXT(study_id), TQI_REAL(tqi_now_seconds()));
+    void *rows = NULL;
+    int rc = tqi_read_all(q, st, "tq_claim_siblings", sizeof **out, tqi_read_job_row,
+                          tqi_free_job_row, &rows, n);
+    if (rc == 0 && *n > 0)
+        rc = tqi_refresh_parent(q, study_id, 0);
+    rc = tqi_tx_end(q, "tq_claim_siblings", rc);
+    if (rc != 0) {
+        tq_jobs_free(rows, *n);
+        *n = 0;
+        return TQ_ERROR;
+    }
+    *out = rows;
+    return TQ_OK;
+}
+
+/* One column of a running run job: statement which with ?1 = id, ?2 = v.
+ * TQ_OK, TQ_NOT_FOUND (not a running run), TQ_ERROR. */
+static enum tq_rc set_on_running(struct tq *q, const char *fn, enum tqi_stmt which, const char *id,
+                                 struct tqi_value v)
+{
+    if (tqi_begin_for(q, fn, id) < 0)
+        return TQ_ERROR;
+    sqlite3_stmt *st = q->st[which];
+    const struct tqi_value values[2] = {TQI_TEXT(id), v};
+    tqi_bind_values(st, values, 2);
+    int rc = tqi_run_stmt(q, st, fn);
     if (rc == 0 && sqlite3_changes(q->db) == 0)
         rc = 1;
-    return tqi_tx_end(q, "tq_set_pid", rc);
+    return tqi_tx_end(q, fn, rc);
+}
+
+enum tq_rc tq_set_message(struct tq *q, const char *id, const char *message)
+{
+    return set_on_running(q, "tq_set_message", S_SET_MESSAGE, id,
+                          (struct tqi_value)TQI_TEXT(message));
+}
+
+enum tq_rc tq_set_pid(struct tq *q, const char *id, long pid)
+{
+    return set_on_running(q, "tq_set_pid", S_SET_PID, id, (struct tqi_value)TQI_INT(pid));
 }
 
 enum tq_rc tq_update_progress(struct tq *q, const char *id, double progress, double sim_time,

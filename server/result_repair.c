@@ -26,6 +26,7 @@
 #include <unistd.h>
 
 #include "errmsg.h"
+#include "spawn_attr.h"
 #include "io/fields.h"
 #include "io/output/xdmf.h"
 #include "jobdir.h"
@@ -127,23 +128,14 @@ static int run_h5clear(const char *tool, const char *h5, const char *log, char *
         errmsg_set(err, errsize, "cannot prepare h5clear: out of memory");
         return -1;
     }
-    if (posix_spawnattr_init(&attr) != 0) {
+    /* the supervisor thread blocks every signal: give the tool the defaults */
+    if (spawn_attr_defaults(&attr) != 0) {
         posix_spawn_file_actions_destroy(&fa);
         errmsg_set(err, errsize, "cannot prepare h5clear: out of memory");
         return -1;
     }
-    /* the supervisor thread blocks every signal: give the tool the defaults */
-    sigset_t none, all;
-    sigemptyset(&none);
-    sigfillset(&all);
-    sigdelset(&all, SIGKILL);
-    sigdelset(&all, SIGSTOP);
     int rc = -1, e = 0;
-    if ((e = posix_spawnattr_setsigmask(&attr, &none)) != 0 ||
-        (e = posix_spawnattr_setsigdefault(&attr, &all)) != 0 ||
-        (e = posix_spawnattr_setflags(&attr, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF)) !=
-            0 ||
-        (e = posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0)) != 0 ||
+    if ((e = posix_spawn_file_actions_addopen(&fa, 0, "/dev/null", O_RDONLY, 0)) != 0 ||
         (e = posix_spawn_file_actions_addopen(
              &fa, 1, log, O_WRONLY | O_CREAT | O_APPEND | O_NOFOLLOW, 0640)) != 0 ||
         (e = posix_spawn_file_actions_adddup2(&fa, 1, 2)) != 0) {

@@ -137,6 +137,10 @@ static json_t *process_desc(const char *id, bool full)
                                 json_pack("{s:s,s:i,s:{s:s}}", "title", "derived outputs",
                                           "minOccurs", 0, "schema", "$ref",
                                           "/schemas/study.schema.json#/properties/outputs"));
+            json_object_set_new(inputs, "max_parallel",
+                                json_pack("{s:s,s:i,s:{s:s}}", "title", "children at once",
+                                          "minOccurs", 0, "schema", "$ref",
+                                          "/schemas/study.schema.json#/properties/max_parallel"));
         }
         json_object_set_new(o, "inputs", inputs);
         json_t *outputs = json_object();

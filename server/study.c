@@ -448,8 +448,14 @@ static size_t validate(const json_t *study, size_t max_children, struct plan *pl
                          study ? type_name(study) : "empty");
         return 0;
     }
-    static const char *const keys[] = {"base", "sweep", "outputs", NULL};
+    static const char *const keys[] = {"base", "sweep", "outputs", "max_parallel", NULL};
     check_keys(study, "", keys, err);
+    /* how many children Slurm runs at once (the job array's %limit,
+     * executor_slurm.h); the local executor runs max_jobs at most anyway */
+    const json_t *mp = json_object_get(study, "max_parallel");
+    if (mp && !(json_is_integer(mp) && json_integer_value(mp) >= 1 &&
+                json_integer_value(mp) <= 1000000))
+        tlsph_errors_add(err, "/max_parallel", "max_parallel must be an integer in 1..1000000");
 
     const json_t *base = json_object_get(study, "base");
     if (!base)

@@ -40,6 +40,8 @@
 
 #include "engine_report.h"
 #include "errmsg.h"
+#include "executor.h"
+#include "executor_slurm.h"
 #include "finals.h"
 #include "jobdir.h"
 #include "queue.h"
@@ -90,6 +92,7 @@ struct tsup {
     char init_err[320];
 
     const struct tcfg *storage; /* NULL: the disk is not watched */
+    const struct tcfg *slurm;   /* NULL: the local executor */
     struct finals *finals;      /* final states still to be written */
 
     /* thread-private */
@@ -582,6 +585,39 @@ static void drain_wake(struct tsup *s)
 
 /* ------------------------------------------------------------------ thread */
 
+static void host_keep_records(void *sup, double now)
+{
+    keep_records(sup, now);
+}
+
+static bool host_room(void *sup)
+{
+    return room_to_start(sup);
+}
+
+/* The Slurm executor's loop on this thread, then the same end as the local one. */
+static void run_slurm(struct tsup *s)
+{
+    const struct texec_host h = {.q = s->q,
+                                 .finals = s->finals,
+                                 .jobs_dir = s->jobs_dir,
+                                 .engine_path = s->engine_path,
+                                 .threads_per_job = s->threads_per_job,
+                                 .max_attempts = s->max_attempts,
+                                 .wall_limit = s->wall_limit,
+                                 .wake_rd = s->wake_rd,
+                                 .stop = &s->stop,
+                                 .keep_records = host_keep_records,
+                                 .room = host_room,
+                                 .sup = s};
+    texec_slurm_run(&h, s->slurm);
+    const size_t lost = finals_retry(s->finals, s->q);
+    if (lost > 0)
+        tlog("supervisor: %zu final state(s) could not be recorded before the stop", lost);
+    tq_close(s->q);
+    s->q = NULL;
+}
+
 static void *sup_main(void *arg)
 {
     struct tsup *s = arg;
@@ -591,7 +627,8 @@ static void *sup_main(void *arg)
     pthread_sigmask(SIG_BLOCK, &all, NULL); /* signals belong to the main thread */
 
     int rc = tq_open(s->db_path, &s->q, err, sizeof err);
-    if (rc == 0 && tq_recover(s->q, s->max_attempts) < 0)
+    /* Slurm jobs outlive the daemon: the Slurm executor adopts them instead */
+    if (rc == 0 && !s->slurm && tq_recover(s->q, s->max_attempts) < 0)
         tlog("supervisor: start-up recovery failed");
     if (rc == 0)
         result_repair_each_left_open(s->jobs_dir, repair_if_final, s);
@@ -604,6 +641,10 @@ static void *sup_main(void *arg)
     pthread_mutex_unlock(&s->mu);
     if (rc < 0)
         return NULL;
+    if (s->slurm) {
+        run_slurm(s);
+        return NULL;
+    }
 
     struct pollfd *pfds = calloc((size_t)s->max_jobs + 1, sizeof *pfds);
     int *idx = calloc((size_t)s->max_jobs + 1, sizeof *idx);
@@ -766,6 +807,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     s->jobs_dir = absolute_path(cfg->jobs_dir);
     s->kids = calloc((size_t)cfg->max_jobs, sizeof *s->kids);
     s->storage = cfg->storage;
+    s->slurm = cfg->slurm;
     s->finals = finals_new(cfg->storage);
     if (!s->db_path || !s->engine_path || !s->jobs_dir || !s->kids || !s->finals) {
         errmsg_set(err, errsize, "out of memory");

@@ -15,7 +15,13 @@
  * below its floor no job is claimed, and the reserve file is allocated again
  * once the space is back (storage.h).
  *
- * Job directories: jobdir.h. */
+ * Job directories: jobdir.h.
+ *
+ * This is the local executor and the thread every executor runs on
+ * (executor.h): with slurm set in the configuration, the thread hands its
+ * loop to executor_slurm.h after the same start-up, and tsup_wake,
+ * tsup_unrecorded and tsup_stop work the same (a stop leaves the Slurm jobs
+ * running for the next daemon instead of requeueing them). */
 #ifndef TLSPHD_SUPERVISOR_H
 #define TLSPHD_SUPERVISOR_H
 
@@ -35,6 +41,8 @@ struct tsup_config {
     int max_attempts;          /* requeue limit after daemon crashes */
     const struct tcfg *storage; /* the data directory's floor and reserve (storage.h);
                                  * NULL: not watched.  Must outlive the supervisor */
+    const struct tcfg *slurm;  /* non-NULL: the Slurm executor with these settings
+                                * (executor.h); NULL: local engines.  Must outlive it */
 };
 
 struct tsup; /* opaque */

@@ -149,18 +149,7 @@ req GET "$B/jobs/$LID"
 check "removed job: 404" [ "$STATUS" = 404 ]
 
 # --------------------------------------------------------------- 3. study
-"$PY" - "$top_srcdir/examples/elastic-strip.json" >"$TMP/study.json" <<'PYEOF'
-import json, sys
-s = json.load(open(sys.argv[1]))
-s["time"]["end"] = 1e-4
-s["output"]["frames"] = 2
-print(json.dumps({"inputs": {"base": s,
-    "sweep": {"mode": "product", "parameters": [
-        {"pointer": "/parameters/vmax", "values": [0.05, 0.1, 0.2]},
-        {"pointer": "/parameters/tau", "values": [1e-5, 2e-5]}]},
-    "outputs": [{"name": "peak_force", "series": "groups/right/reaction_force",
-                 "component": 0, "reduce": "max"}]}}))
-PYEOF
+study_request 1e-4 2 1e-5,2e-5 >"$TMP/study.json"
 check "study request valid (execute schema)" bash -c "'$PY' '$here/validate.py' execute <'$TMP/study.json'"
 req POST "$B/processes/study/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/study.json"
 check "submit study: 201" [ "$STATUS" = 201 ]

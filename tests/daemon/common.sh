@@ -112,6 +112,27 @@ if len(sys.argv) > 4 and sys.argv[4] == "tiny":
 print(json.dumps(s))
 PYEOF
 }
+# study_request END FRAMES TAUS [MAX_PARALLEL]: the execute request of a study
+# of examples/elastic-strip.json (time.end END, FRAMES frames) over
+# /parameters/vmax (0.05, 0.1, 0.2) x /parameters/tau (TAUS, comma-separated),
+# with the output peak_force (and max_parallel when given)
+study_request() {
+    "$PY" - "$top_srcdir/examples/elastic-strip.json" "$@" <<'PYEOF'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["time"]["end"] = float(sys.argv[2])
+s["output"]["frames"] = int(sys.argv[3])
+inputs = {"base": s,
+    "sweep": {"mode": "product", "parameters": [
+        {"pointer": "/parameters/vmax", "values": [0.05, 0.1, 0.2]},
+        {"pointer": "/parameters/tau", "values": [float(t) for t in sys.argv[4].split(",")]}]},
+    "outputs": [{"name": "peak_force", "series": "groups/right/reaction_force",
+                 "component": 0, "reduce": "max"}]}
+if len(sys.argv) > 5:
+    inputs["max_parallel"] = int(sys.argv[5])
+print(json.dumps({"inputs": inputs}))
+PYEOF
+}
 # submit URL SCENE_JSON_FILE → prints the job id (empty on failure)
 submit() {
     curl -s -H 'Content-Type: application/json' --data-binary @"$2" "$1/processes/run/execution" |

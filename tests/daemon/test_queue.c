@@ -995,6 +995,39 @@ START_TEST(insert_recovered)
 }
 END_TEST
 
+/* The Slurm executor's claim of a study (all accepted children at once, one
+ * job array) and its messages on running jobs. */
+START_TEST(claim_siblings_and_message)
+{
+    insert_study("s", 4);
+    claim_expect("s-c0");
+    ck_assert_int_eq(tq_request_cancel(g_q, "s-c3"), 0); /* accepted: dismissed at once */
+    struct tq_job *rest;
+    size_t n;
+    ck_assert_int_eq(tq_claim_siblings(g_q, "s", &rest, &n), 0);
+    ck_assert_uint_eq(n, 2); /* c1, c2: c0 is running already, c3 dismissed */
+    for (size_t i = 0; i < n; i++) {
+        ck_assert_str_eq(rest[i].status, TQ_RUNNING);
+        ck_assert_int_eq(rest[i].attempts, 1);
+        ck_assert(rest[i].started > 0);
+    }
+    tq_jobs_free(rest, n);
+    assert_status("s", TQ_RUNNING);
+    ck_assert_int_eq(tq_claim_siblings(g_q, "s", &rest, &n), 0);
+    ck_assert_uint_eq(n, 0);
+    tq_jobs_free(rest, n);
+    struct tq_job none;
+    ck_assert_int_eq(tq_claim_next(g_q, &none), TQ_NOT_FOUND);
+
+    ck_assert_int_eq(tq_set_message(g_q, "s-c1", "Slurm job 7_1: PENDING (Priority)"), 0);
+    struct tq_job j = get("s-c1");
+    ck_assert_str_eq(j.message, "Slurm job 7_1: PENDING (Priority)");
+    tq_job_free(&j);
+    ck_assert_int_eq(tq_set_message(g_q, "s-c3", "x"), TQ_NOT_FOUND); /* not running */
+    ck_assert_int_eq(tq_set_message(g_q, "s", "x"), TQ_NOT_FOUND);    /* not a run */
+}
+END_TEST
+
 static Suite *queue_suite(void)
 {
     Suite *s = suite_create("queue");
@@ -1022,6 +1055,7 @@ static Suite *queue_suite(void)
     tcase_add_test(tc, counts_by_process);
     tcase_add_test(tc, check_file);
     tcase_add_test(tc, insert_recovered);
+    tcase_add_test(tc, claim_siblings_and_message);
     suite_add_tcase(s, tc);
     return s;
 }
