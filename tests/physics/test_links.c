@@ -233,6 +233,18 @@ START_TEST(one_broken_link_changes_two_forces)
 }
 END_TEST
 
+/* An immediate neighbour (|X_ij| < 1.85 spacings of 1 mm) at its link's
+ * weight f_ij = 1 - D_ij; it must be linked. */
+static double link_weight(const struct tlsph_model *m, size_t i, size_t j, double r, void *ctx)
+{
+    (void)ctx;
+    if (r >= 1.85 * 0.001)
+        return 0.0;
+    const int64_t k = link_of(m, i, j);
+    ck_assert_msg(k >= 0, "%zu-%zu is an immediate neighbour but not linked", i, j);
+    return 1.0 - m->links->D[k];
+}
+
 /* Brute force of eq. 29 on a deformed 3-D block with random link damages:
  * f_i = sum_j f_ij V_i V_j (P~_i + P~_j) grad W_ij over every j with
  * |X_ij| < 1.85 spacings (an O(n^2) search, the kernel evaluated directly),
@@ -257,26 +269,8 @@ START_TEST(forces_match_brute_force)
     tlsph_forces(m);
     double fmaxabs = 0.0, err = 0.0;
     for (size_t i = 0; i < m->p.n; i++) {
-        double f[3] = {0, 0, 0};
-        for (size_t j = 0; j < m->p.n; j++) {
-            double d[3], r = 0;
-            for (int c = 0; c < 3; c++) {
-                d[c] = m->p.X[3 * j + c] - m->p.X[3 * i + c];
-                r += d[c] * d[c];
-            }
-            r = sqrt(r);
-            if (j == i || r >= 1.85 * 0.001)
-                continue;
-            const int64_t k = link_of(m, i, j);
-            ck_assert_msg(k >= 0, "%zu-%zu is an immediate neighbour but not linked", i, j);
-            double w, dwdr;
-            tlsph_kernel(m->scene.kernel, 3, r, 0.5 * (m->p.h[i] + m->p.h[j]), &w, &dwdr);
-            for (int a = 0; a < 3; a++)
-                for (int c = 0; c < 3; c++)
-                    f[a] += (1.0 - m->links->D[k]) * m->p.vol0[i] * m->p.vol0[j] *
-                            (m->p.P_tilde[9 * i + 3 * a + c] + m->p.P_tilde[9 * j + 3 * a + c]) *
-                            dwdr / r * d[c];
-        }
+        double f[3];
+        brute_force_stress_force(m, i, link_weight, NULL, f);
         for (int a = 0; a < 3; a++) {
             fmaxabs = fmax(fmaxabs, fabs(f[a]));
             err = fmax(err, fabs(f[a] - m->p.f[3 * i + a]));

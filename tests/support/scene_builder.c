@@ -7,6 +7,8 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "sph/kernel.h"
+
 struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size)
 {
     struct tlsph_errors err;
@@ -86,4 +88,30 @@ double momentum_scale(const struct tlsph_model *m)
         s += m->p.mass[i] * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     }
     return s;
+}
+
+void brute_force_stress_force(const struct tlsph_model *m, size_t i, pair_weight_fn weight,
+                              void *ctx, double f[3])
+{
+    f[0] = f[1] = f[2] = 0.0;
+    for (size_t j = 0; j < m->p.n; j++) {
+        if (j == i)
+            continue;
+        double d[3], r = 0;
+        for (int c = 0; c < 3; c++) {
+            d[c] = m->p.X[3 * j + c] - m->p.X[3 * i + c];
+            r += d[c] * d[c];
+        }
+        r = sqrt(r);
+        const double wij = weight(m, i, j, r, ctx);
+        if (wij == 0.0)
+            continue;
+        double w, dwdr;
+        tlsph_kernel(m->scene.kernel, 3, r, 0.5 * (m->p.h[i] + m->p.h[j]), &w, &dwdr);
+        for (int a = 0; a < 3; a++)
+            for (int c = 0; c < 3; c++)
+                f[a] += wij * m->p.vol0[i] * m->p.vol0[j] *
+                        (m->p.P_tilde[9 * i + 3 * a + c] + m->p.P_tilde[9 * j + 3 * a + c]) *
+                        dwdr / r * d[c];
+    }
 }

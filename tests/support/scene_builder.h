@@ -26,5 +26,14 @@ void run_until(struct tlsph_model *m, double t_end);
 int model_has_module(const struct tlsph_model *m, const char *name);
 /* sum_i m_i |v_i|, kg m/s: the scale momentum drift is measured against. */
 double momentum_scale(const struct tlsph_model *m);
+/* The weight of pair (i, j) at reference distance r (m) in a brute-force sum:
+ * 0 for no pair. */
+typedef double (*pair_weight_fn)(const struct tlsph_model *m, size_t i, size_t j, double r,
+                                 void *ctx);
+/* The stress force on particle i (N) by an O(n) loop over every particle j:
+ * sum_j weight V_i V_j (P~_i + P~_j) grad W(X_ij), the kernel evaluated
+ * directly at the mean smoothing length; what the pair loop must reproduce. */
+void brute_force_stress_force(const struct tlsph_model *m, size_t i, pair_weight_fn weight,
+                              void *ctx, double f[3]);
 
 #endif
