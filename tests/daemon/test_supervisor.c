@@ -761,6 +761,7 @@ START_TEST(test_child_setup)
                  "echo \"nofile: $(ulimit -n)\"\n"
                  "echo \"core: $(ulimit -c)\"\n"
                  "echo \"cwd: $(pwd)\"\n"
+                 "echo \"wait policy: $OMP_WAIT_POLICY\"\n"
                  "ls -l /proc/$$/fd\n"
                  "echo '{\"event\":\"started\",\"end_time\":1.0}' >&3\n"
                  "echo '{\"event\":\"progress\",\"step\":5,\"time\":0.5,\"end_time\":1.0,"
@@ -800,6 +801,11 @@ START_TEST(test_child_setup)
                       (under_valgrind && strstr(log, "setrlimit(RLIMIT_NOFILE) refused")),
                   "log: %s", log);
     ck_assert_msg(strstr(log, "core: 0\n"), "log: %s", log);
+    /* engines wait passively (server/supervisor.c engine_environment) unless
+     * the daemon's environment says otherwise */
+    const char *policy = getenv("OMP_WAIT_POLICY");
+    snprintf(want, sizeof want, "wait policy: %s\n", policy ? policy : "passive");
+    ck_assert_msg(strstr(log, want), "log: %s\nwanted: %s", log, want);
     snprintf(want, sizeof want, "cwd: %s/%s\n", jobs_dir, id);
     ck_assert_msg(strstr(log, want), "log: %s", log);
     ck_assert_msg(!strstr(log, "queue.db"), "queue descriptor leaked into the engine: %s", log);
