@@ -94,23 +94,7 @@ START_TEST(forces_match_brute_force)
     m->scene.hourglass = 0;
     m->scene.viscosity = 0;
     srand(3);
-    for (size_t k = 0; k < 3 * m->p.n; k++)
-        m->p.x[k] = m->p.X[k] * 1.01 + 2e-5 * (rand() / (double)RAND_MAX - 0.5);
-    tlsph_kinematics(m, 0.0);
-    tlsph_constitutive(m, 0.0);
-    tlsph_forces(m);
-    double fmaxabs = 0.0, err = 0.0;
-    for (size_t i = 0; i < m->p.n; i++) {
-        double f[3];
-        brute_force_stress_force(m, i, within_support, NULL, f);
-        for (int a = 0; a < 3; a++) {
-            fmaxabs = fmax(fmaxabs, fabs(f[a]));
-            err = fmax(err, fabs(f[a] - m->p.f[3 * i + a]));
-        }
-    }
-    ck_assert(fmaxabs > 0.0);
-    ck_assert_msg(err <= 1e-12 * fmaxabs, "pair loop differs from brute force by %.3g (max %.3g)",
-                  err, fmaxabs);
+    check_forces_match_brute_force(m, within_support, NULL);
     tlsph_model_free(m);
 }
 END_TEST

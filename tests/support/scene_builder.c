@@ -7,7 +7,10 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "material/constitutive.h"
+#include "sph/forces.h"
 #include "sph/kernel.h"
+#include "sph/kinematics.h"
 
 struct tlsph_model *try_build_model(const char *json, char *pointer, size_t size)
 {
@@ -114,4 +117,25 @@ void brute_force_stress_force(const struct tlsph_model *m, size_t i, pair_weight
                         (m->p.P_tilde[9 * i + 3 * a + c] + m->p.P_tilde[9 * j + 3 * a + c]) *
                         dwdr / r * d[c];
     }
+}
+
+void check_forces_match_brute_force(struct tlsph_model *m, pair_weight_fn weight, void *ctx)
+{
+    for (size_t k = 0; k < 3 * m->p.n; k++)
+        m->p.x[k] = m->p.X[k] * 1.01 + 2e-5 * (rand() / (double)RAND_MAX - 0.5);
+    tlsph_kinematics(m, 0.0);
+    tlsph_constitutive(m, 0.0);
+    tlsph_forces(m);
+    double fmaxabs = 0.0, err = 0.0;
+    for (size_t i = 0; i < m->p.n; i++) {
+        double f[3];
+        brute_force_stress_force(m, i, weight, ctx, f);
+        for (int a = 0; a < 3; a++) {
+            fmaxabs = fmax(fmaxabs, fabs(f[a]));
+            err = fmax(err, fabs(f[a] - m->p.f[3 * i + a]));
+        }
+    }
+    ck_assert(fmaxabs > 0.0);
+    ck_assert_msg(err <= 1e-12 * fmaxabs, "pair loop differs from brute force by %.3g (max %.3g)",
+                  err, fmaxabs);
 }

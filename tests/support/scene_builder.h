@@ -35,5 +35,10 @@ typedef double (*pair_weight_fn)(const struct tlsph_model *m, size_t i, size_t j
  * directly at the mean smoothing length; what the pair loop must reproduce. */
 void brute_force_stress_force(const struct tlsph_model *m, size_t i, pair_weight_fn weight,
                               void *ctx, double f[3]);
+/* Deforms m (x = 1.01 X plus a random jitter of 2e-5 m from rand(): seed it
+ * first), evaluates kinematics, stress and pair forces, and fails the test
+ * unless every particle's force is brute_force_stress_force's within 1e-12 of
+ * the largest. */
+void check_forces_match_brute_force(struct tlsph_model *m, pair_weight_fn weight, void *ctx);
 
 #endif
