@@ -12,7 +12,6 @@ PACKAGES=(
   python3 python3-h5py python3-numpy python3-jsonschema python3-yaml
   curl procps valgrind
   librsvg2-bin bsdutils
-  slurm-wlm munge
 )
 missing=()
 for p in "${PACKAGES[@]}"; do
@@ -28,6 +27,19 @@ fi
 # tests/daemon/api_openapi.sh, pinned (npm; the test skips that check, saying
 # so, without it).  Not needed to build or run tlsph.  TLSPH_TEST_TOOLS moves it.
 if [ "${1:-}" = --test-tools ]; then
+  # A private single-node Slurm for tests/daemon/api_slurm.sh (it skips, saying
+  # so, without it).  Only here: on a systemd machine the packages enable Slurm's
+  # and munge's services, which tlsph itself never needs.
+  slurm_missing=()
+  for p in slurm-wlm munge; do
+    dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || slurm_missing+=("$p")
+  done
+  if [ ${#slurm_missing[@]} -gt 0 ]; then
+    echo "install-deps: installing ${slurm_missing[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    { $SUDO apt-get update -qq && $SUDO apt-get install -y -qq "${slurm_missing[@]}" >/dev/null; } ||
+      echo "install-deps: warning: slurm-wlm/munge could not be installed; api_slurm.sh will skip" >&2
+  fi
   TOOLS=${TLSPH_TEST_TOOLS:-/opt/tlsph-test-tools}
   OAS_VALIDATOR="@seriousme/openapi-schema-validator@2.11.0"
   # Debian's nodejs and npm, unless a nodejs with its own npm is installed (they conflict)
