@@ -256,7 +256,7 @@ static int write_plot(const char *out, const char *title, const json_t *d, const
         free(st);
         return RC_IO;
     }
-    plot_axes ax = {title, "wall time [s]", 1, 1};
+    plot_axes ax = {title, "wall time [s]", 1, 1, 1};
     int werr = svg_plot_write(f, &ax, lines, nl);
     if (fclose(f) != 0 || werr != 0) {
         fprintf(stderr, "tlsph: cannot write %s\n", out);

@@ -282,7 +282,7 @@ int cmd_plot(const settings *s, int argc, char **argv)
         }
     }
     if (rc == RC_OK) {
-        plot_axes ax = {title, xlabel, log_y, 0};
+        plot_axes ax = {title, xlabel, log_y, 0, 0};
         rc = write_svg(out, &ax, lines, nl);
         for (size_t l = 0; rc == RC_OK && l < nl; l++) {
             fprintf(stderr, "%s: %zu points", lines[l].label, lines[l].n);

@@ -118,7 +118,14 @@ static void draw_x_axis(FILE *f, const plot_layout *L, const plot_panel *P, cons
     fputs("</text>\n</g>\n", f);
 }
 
-static void draw_curves(FILE *f, const plot_layout *L, size_t p, const plot_line *lines)
+static void draw_markers(FILE *f, const plot_layout *L, const plot_panel *P, const plot_line *line, size_t l)
+{
+    for (size_t i = 0; i < line->n; i++)
+        fprintf(f, "<circle class=\"marker\" cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
+                plot_layout_px(L, P, line->x[i]), plot_layout_py(P, line->y[i]), colors[l % NCOLORS]);
+}
+
+static void draw_curves(FILE *f, const plot_layout *L, size_t p, const plot_line *lines, int markers)
 {
     const plot_panel *P = &L->panel[p];
     for (size_t k = 0; k < P->nlines; k++) {
@@ -132,7 +139,9 @@ static void draw_curves(FILE *f, const plot_layout *L, size_t p, const plot_line
         fputs("\"><title>", f);
         xml_text(f, lines[l].label);
         fputs("</title></polyline>\n", f);
-        if (lines[l].n == 1) { /* a polyline of one point draws nothing */
+        if (markers)
+            draw_markers(f, L, P, &lines[l], l);
+        else if (lines[l].n == 1) { /* a polyline of one point draws nothing */
             fprintf(f, "<circle cx=\"%.2f\" cy=\"%.2f\" r=\"3\" fill=\"%s\"/>\n",
                     plot_layout_px(L, P, lines[l].x[0]), plot_layout_py(P, lines[l].y[0]), colors[l % NCOLORS]);
         }
@@ -195,7 +204,7 @@ int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t 
         fprintf(f, "<rect class=\"frame\" id=\"frame-%zu\" x=\"%.2f\" y=\"%.2f\" width=\"%.2f\" "
                    "height=\"%.2f\" fill=\"none\" stroke=\"black\"/>\n",
                 p, P->frame.x, P->frame.y, P->frame.w, P->frame.h);
-        draw_curves(f, &L, p, lines);
+        draw_curves(f, &L, p, lines, ax->markers);
         draw_legend(f, p, P, lines);
     }
     draw_x_axis(f, &L, &L.panel[L.npanels - 1], ax->xlabel);

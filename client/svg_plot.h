@@ -14,12 +14,14 @@ typedef struct {
     const char *xlabel; /* e.g. "time [s]" */
     int log_y;          /* log10 y axes */
     int log_x;          /* log10 x axis (every x > 0) */
+    int markers;        /* a dot at every point: the data are a few discrete runs */
 } plot_axes;
 
 /* Writes a complete SVG document.  For tests and tools it marks what it draws:
  * each panel's frame is <rect class="frame" id="frame-P">, its legend box
  * <rect class="legend" id="legend-P">, and each line one
- * <polyline class="curve" data-panel="P"> with exactly n points.  Returns 0;
+ * <polyline class="curve" data-panel="P"> with exactly n points (with markers,
+ * followed by n <circle class="marker">).  Returns 0;
  * -1 on a write error or when out of memory; -2 when the lines need more than
  * PLOT_MAX_PANELS panels (plot_layout_make). */
 int svg_plot_write(FILE *f, const plot_axes *ax, const plot_line *lines, size_t nlines);

@@ -247,7 +247,7 @@ const struct tlsph_field tlsph_fields[] = {
      has_links, ex_link_damage},
     {"damage_initiation", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
      "damage-initiation variable D_init (damage starts at 1; GTN: f / f_c, coalescence "
-     "starts at 1)",
+     "starts at 1; johnson_cook_accumulated: D / D_c, the particle fails at 1)",
      has_damage, ex_damage_init},
     {"void_fraction", TLSPH_FIELD_FRAME, TLSPH_FLOAT32, 1, "1", NULL,
      "GTN void volume fraction f (damage D = q1 f*); 0 in bodies of other materials",

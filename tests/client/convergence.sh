@@ -55,6 +55,12 @@ cl convergence plot "$CID" -o "$TMP/err.svg" --reference t_half_ke=0.031758 --re
 check "plot: exit 0" rc_is 0
 check "plot: curves in frames, y label with a unit" "$PY" "$PC" svg "$TMP/err.svg" labels panels
 check "plot: no legend over a curve" "$PY" "$PC" svg "$TMP/err.svg" legend
+check "plot: a marker at every point of every curve" python3 -c "
+import re,sys
+s=open(sys.argv[1]).read()
+pts=sum(len(m.split()) for m in re.findall(r'<polyline class=\"curve\"[^>]*points=\"([^\"]*)\"', s))
+marks=len(re.findall(r'<circle class=\"marker\"', s))
+sys.exit(0 if pts > 0 and pts == marks else 1)" "$TMP/err.svg"
 check "plot: a true-error curve per output with a reference" bash -c "[ \$(grep -c 'true error' '$TMP/err.svg') -ge 2 ]"
 if command -v rsvg-convert >/dev/null 2>&1; then
     rsvg-convert -o "$TMP/err.png" "$TMP/err.svg"
