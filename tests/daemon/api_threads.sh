@@ -7,7 +7,8 @@
 #   - max_jobs 3, threads_per_job 2: a warning at start; two jobs run at once,
 #     1 thread each, and the third waits until one of them ends;
 #   - max_jobs 2, threads_per_job 2: lowered to 1 with a warning;
-#   - max_jobs 1, threads_per_job 2: the lone job gets both.
+#   - max_jobs 1, threads_per_job 2: the lone job gets both;
+#   - a run's inputs.threads: up to the cores (granted), above them 422.
 # Every wait is on job states, never on time.
 . "$(dirname "$0")/common.sh"
 
@@ -56,6 +57,19 @@ check "threads_per_job 2 x max_jobs 2 > cores 2: lowered to 1, warned" \
 T=$(submit "$E_URL" "$TMP/tiny.json")
 long_poll_final "$E_URL" "$T"
 check "  a job runs on 1 thread ($(threads_of "$E_URL" "$T"))" [ "$(threads_of "$E_URL" "$T")" = 1 ]
+# a run may ask for its threads: up to the cores, granted while they are free
+with_threads() { "$PY" -c "import json,sys; d=json.load(open(sys.argv[1])); d['inputs']['threads']=json.loads(sys.argv[2]); print(json.dumps(d))" "$TMP/tiny.json" "$1" >"$TMP/t.json"; }
+with_threads 2
+T=$(submit "$E_URL" "$TMP/t.json")
+long_poll_final "$E_URL" "$T"
+check "inputs.threads 2 (= cores): the lone job runs on 2 ($(threads_of "$E_URL" "$T"))" [ "$(threads_of "$E_URL" "$T")" = 2 ]
+for bad in 3 0 1.5 '"2"'; do
+    with_threads "$bad"
+    req POST "$E_URL/processes/run/execution" -H 'Content-Type: application/json' --data-binary @"$TMP/t.json"
+    check "inputs.threads $bad: 422 at #/inputs/threads naming the range ($(jget "$BODY" "[e['pointer'] for e in d.get('errors', [])]"))" \
+        [ "$STATUS:$(jget "$BODY" "any(e['pointer'] == '#/inputs/threads' and 'from 1 to 2' in e['detail'] for e in d['errors'])")" = 422:True ]
+done
+check "  problem valid" valid error
 stop_daemons
 
 # ---------------------------------------------------------- one job: all cores
