@@ -446,6 +446,8 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
     else
         tbudget_configure(c->cores, c->max_jobs, &c->threads_per_job, c->budget_warning,
                           sizeof c->budget_warning);
+    if (c->threads_per_job > TLSPH_MAX_THREADS) /* more cores than one engine takes */
+        c->threads_per_job = TLSPH_MAX_THREADS;
     if (snprintf(c->db_path, sizeof c->db_path, "%s/tlsphd.sqlite", c->data_dir) >=
             (int)sizeof c->db_path ||
         (c->shared_dir[0] ? snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s", c->shared_dir)

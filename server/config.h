@@ -13,10 +13,11 @@
  *   cores = N                 --cores         the CPUs tlsphd may run on (sched_getaffinity):
  *                                             the thread budget of the local executor
  *                                             (thread_budget.h)
- *   threads_per_job = N       --threads-per-job  cores / max_jobs, at least 1 (at most
- *                                             TLSPH_MAX_THREADS; with the local executor
- *                                             lowered to that with a warning when
- *                                             threads_per_job x max_jobs > cores)
+ *   threads_per_job = N       --threads-per-job  local executor: cores / max_jobs, at least 1,
+ *                                             and lowered to that with a warning
+ *                                             (budget_warning) when threads_per_job x
+ *                                             max_jobs > cores; slurm: cores (at most
+ *                                             TLSPH_MAX_THREADS either way)
  *   wall_limit = S            --wall-limit    3600
  *   max_particles = N         --max-particles the engine's default, TLSPH_DEFAULT_MAX_PARTICLES
  *                                             (2000000; at most TLSPH_MAX_PARTICLES)

@@ -12,6 +12,7 @@
 #include "jobdir.h"
 #include "numtext.h"
 #include "output_size.h"
+#include "run/protocol.h"
 #include "scene/scene.h"
 #include "storage.h"
 #include "study.h"
@@ -195,7 +196,9 @@ static long requested_threads(const struct jobs_env *env, const json_t *inputs,
     if (!t)
         return 0;
     const int slurm = !strcmp(env->cfg->executor, "slurm");
-    const long most = slurm ? env->cfg->threads_per_job : env->cfg->cores;
+    long most = slurm ? env->cfg->threads_per_job : env->cfg->cores;
+    if (most > TLSPH_MAX_THREADS)
+        most = TLSPH_MAX_THREADS; /* the engine's own ceiling (run/protocol.h) */
     if (!json_is_integer(t) || json_integer_value(t) < 1 || json_integer_value(t) > most) {
         tlsph_errors_add(err, "/threads",
                          "must be an integer from 1 to %ld, the %s of this server (OpenMP "
