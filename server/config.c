@@ -13,6 +13,7 @@
 
 #include "run/protocol.h"
 #include "scene/scene.h"
+#include "thread_budget.h"
 
 #ifndef TLSPH_ENGINE_DEFAULT
 #define TLSPH_ENGINE_DEFAULT "tlsph-run"
@@ -23,7 +24,7 @@ void tcfg_usage(FILE *f)
     fprintf(f,
             "usage: tlsphd [--listen ADDR:PORT] [--data-dir DIR] [--config FILE]\n"
             "              [--engine PATH] [--schemas-dir DIR] [--max-jobs N]\n"
-            "              [--threads-per-job N] [--wall-limit S] [--max-particles N]\n"
+            "              [--cores N] [--threads-per-job N] [--wall-limit S] [--max-particles N]\n"
             "              [--max-children N] [--body-limit BYTES] [--connection-limit N]\n"
             "              [--per-ip-limit N] [--connection-timeout S] [--header-timeout S]\n"
             "              [--body-timeout S] [--heavy-threads N] [--memory-limit-mb N]\n"
@@ -31,7 +32,8 @@ void tcfg_usage(FILE *f)
             "              [--min-free-mb N] [--max-output-mb N] [--disk-reserve-mb N]\n"
             "              [--executor local|slurm] [--shared-dir DIR] [--recover]\n"
             "defaults: --listen 127.0.0.1:8080, --data-dir $XDG_STATE_HOME/tlsphd or ./tlsphd-data,\n"
-            "          --max-jobs 1, --threads-per-job <cores>, --wall-limit 3600,\n"
+            "          --max-jobs 1, --cores <CPUs>, --threads-per-job <cores / max-jobs>,\n"
+            "          --wall-limit 3600,\n"
             "          --max-particles %ld, --min-free-mb 256, --max-output-mb 16384,\n"
             "          --disk-reserve-mb 8.  Config file: 'key = value' lines with the\n"
             "          same names (underscores), plus 'token_sha256 = HEX' (repeatable).\n"
@@ -157,6 +159,7 @@ static const struct key keys[] = {
     {"engine", "--engine", K_STRING, 0, 0, MEMBER(engine)},
     {"schemas_dir", "--schemas-dir", K_STRING, 0, 0, MEMBER(schemas_dir)},
     {"max_jobs", "--max-jobs", K_INT, 1, 1024, MEMBER(max_jobs)},
+    {"cores", "--cores", K_INT, 1, 4096, MEMBER(cores)},
     {"threads_per_job", "--threads-per-job", K_INT, 1, TLSPH_MAX_THREADS, MEMBER(threads_per_job)},
     {"wall_limit", "--wall-limit", K_DOUBLE, 1, 1e9, MEMBER(wall_limit)},
     {"max_particles", "--max-particles", K_LONG, 1, TLSPH_MAX_PARTICLES, MEMBER(max_particles)},
@@ -362,8 +365,7 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
     else
         snprintf(c->data_dir, sizeof c->data_dir, "./tlsphd-data");
     c->max_jobs = 1;
-    long cores = sysconf(_SC_NPROCESSORS_ONLN);
-    c->threads_per_job = cores > 0 ? (int)cores : 1;
+    c->threads_per_job = 0; /* settled below, once max_jobs and cores are known */
     c->wall_limit = 3600;
     c->max_particles = TLSPH_DEFAULT_MAX_PARTICLES;
     c->max_children = 1000;
@@ -435,6 +437,17 @@ enum tcfg_rc tcfg_load(struct tcfg *c, int argc, char **argv, char *err, size_t 
         snprintf(err, errsize, "executor must be \"local\" or \"slurm\", not \"%s\"", c->executor);
         return TCFG_ERROR;
     }
+    if (!c->cores)
+        c->cores = tbudget_detect_cores();
+    if (!strcmp(c->executor, "slurm")) /* Slurm allots cores: threads_per_job caps a task */
+        c->threads_per_job = c->threads_per_job          ? c->threads_per_job
+                             : c->cores < TLSPH_MAX_THREADS ? c->cores
+                                                            : TLSPH_MAX_THREADS;
+    else
+        tbudget_configure(c->cores, c->max_jobs, &c->threads_per_job, c->budget_warning,
+                          sizeof c->budget_warning);
+    if (c->threads_per_job > TLSPH_MAX_THREADS) /* more cores than one engine takes */
+        c->threads_per_job = TLSPH_MAX_THREADS;
     if (snprintf(c->db_path, sizeof c->db_path, "%s/tlsphd.sqlite", c->data_dir) >=
             (int)sizeof c->db_path ||
         (c->shared_dir[0] ? snprintf(c->jobs_dir, sizeof c->jobs_dir, "%s", c->shared_dir)

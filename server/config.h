@@ -10,7 +10,14 @@
  *                                             TLSPH_ENGINE_DEFAULT ($bindir/tlsph-run)
  *   schemas_dir = DIR         --schemas-dir   where openapi.json is read from (see config.c)
  *   max_jobs = N              --max-jobs      1
- *   threads_per_job = N       --threads-per-job  number of online cores (at most TLSPH_MAX_THREADS)
+ *   cores = N                 --cores         the CPUs tlsphd may run on (sched_getaffinity):
+ *                                             the thread budget of the local executor
+ *                                             (thread_budget.h)
+ *   threads_per_job = N       --threads-per-job  local executor: cores / max_jobs, at least 1,
+ *                                             and lowered to that with a warning
+ *                                             (budget_warning) when threads_per_job x
+ *                                             max_jobs > cores; slurm: cores (at most
+ *                                             TLSPH_MAX_THREADS either way)
  *   wall_limit = S            --wall-limit    3600
  *   max_particles = N         --max-particles the engine's default, TLSPH_DEFAULT_MAX_PARTICLES
  *                                             (2000000; at most TLSPH_MAX_PARTICLES)
@@ -79,6 +86,8 @@ struct tcfg {
     char schemas_dir[1024];
     int max_jobs;
     int threads_per_job;
+    int cores;               /* the local executor's thread budget (thread_budget.h) */
+    char budget_warning[256]; /* why tcfg_load changed threads_per_job, "" none (logged) */
     double wall_limit;
     long max_particles;
     long max_children;

@@ -12,6 +12,7 @@
 #include "jobdir.h"
 #include "numtext.h"
 #include "output_size.h"
+#include "run/protocol.h"
 #include "scene/scene.h"
 #include "storage.h"
 #include "study.h"
@@ -184,6 +185,30 @@ void jobs_submitted_free(struct jobs_submitted *s)
 
 /* ------------------------------------------------------------------ runs */
 
+/* The run's optional "threads" input: the OpenMP threads it asks for, at
+ * most the cores of the thread budget (thread_budget.h; with Slurm,
+ * threads_per_job, the cap of --cpus-per-task).  0 when absent (the
+ * configured threads_per_job), -1 with an error at /threads. */
+static long requested_threads(const struct jobs_env *env, const json_t *inputs,
+                              struct tlsph_errors *err)
+{
+    const json_t *t = json_object_get(inputs, "threads");
+    if (!t)
+        return 0;
+    const int slurm = !strcmp(env->cfg->executor, "slurm");
+    long most = slurm ? env->cfg->threads_per_job : env->cfg->cores;
+    if (most > TLSPH_MAX_THREADS)
+        most = TLSPH_MAX_THREADS; /* the engine's own ceiling (run/protocol.h) */
+    if (!json_is_integer(t) || json_integer_value(t) < 1 || json_integer_value(t) > most) {
+        tlsph_errors_add(err, "/threads",
+                         "must be an integer from 1 to %ld, the %s of this server (OpenMP "
+                         "threads of the run; omit it for the default, %d)",
+                         most, slurm ? "threads_per_job" : "cores", env->cfg->threads_per_job);
+        return -1;
+    }
+    return (long)json_integer_value(t);
+}
+
 enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct jobs_submitted *out)
 {
     struct tlsph_errors *err = &out->errors;
@@ -193,6 +218,9 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
         return JOBS_INVALID;
     }
     if (!apply_particle_limit(env, scene, err, "/scene/limits/max_particles"))
+        return JOBS_INVALID;
+    const long threads = requested_threads(env, inputs, err);
+    if (threads < 0)
         return JOBS_INVALID;
     char *text = numtext_json_dumps(scene, JSON_COMPACT);
     if (!text)
@@ -216,6 +244,8 @@ enum jobs_rc jobs_submit_run(const struct jobs_env *env, json_t *inputs, struct 
         goto done;
     struct tq_job j;
     new_row(env, &j, "run", text);
+    if (threads > 0)
+        j.threads = threads;
     if (job_id_new(j.id) != 0) {
         errmsg_set(out->why, sizeof out->why, "no random id: %s", strerror(errno));
         rc = JOBS_NO_DIRECTORY;

@@ -151,6 +151,7 @@ int main(int argc, char **argv)
         .jobs_dir = cfg.jobs_dir,
         .max_jobs = cfg.max_jobs,
         .threads_per_job = cfg.threads_per_job,
+        .cores = cfg.cores,
         .wall_limit = cfg.wall_limit,
         .kill_grace = cfg.kill_grace,
         .memory_limit_mb = cfg.memory_limit_mb,
@@ -219,9 +220,12 @@ int main(int argc, char **argv)
         tlog("warning: per_ip_limit 0 (no limit per address) on %s: one client can take every "
              "connection",
              cfg.listen);
-    tlog("listening on %s (data %s, engine %s, executor %s, max-jobs %d, threads-per-job %d, "
-         "auth %s)",
-         cfg.listen, cfg.data_dir, cfg.engine, cfg.executor, cfg.max_jobs, cfg.threads_per_job,
+    if (cfg.budget_warning[0])
+        tlog("warning: %s (docs/deployment.md, \"Threads and cores\")", cfg.budget_warning);
+    tlog("listening on %s (data %s, engine %s, executor %s, max-jobs %d, cores %d, "
+         "threads-per-job %d, auth %s)",
+         cfg.listen, cfg.data_dir, cfg.engine, cfg.executor, cfg.max_jobs, cfg.cores,
+         cfg.threads_per_job,
          tauth_enabled(&cfg.auth) ? "bearer" : "off");
 
     int sig = 0;

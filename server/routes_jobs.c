@@ -375,7 +375,7 @@ enum process { PROCESS_RUN, PROCESS_STUDY, PROCESS_CONVERGENCE };
 
 static void submit(struct hreq *r, const struct route_call *c, struct tq *q, enum process pr)
 {
-    static const char *const run_inputs[] = {"scene", NULL};
+    static const char *const run_inputs[] = {"scene", "threads", NULL};
     static const char *const study_inputs[] = {"base", "sweep", "outputs", "max_parallel", NULL};
     static const char *const conv_inputs[] = {"base", "ladder", "outputs", "target", NULL};
     static const char *const names[] = {"run", "study", "convergence"};

@@ -116,6 +116,11 @@ static json_t *process_desc(const char *id, bool full)
                                 json_pack("{s:s,s:s,s:{s:s}}", "title", "scene", "description",
                                           "the scene document", "schema", "$ref",
                                           "/schemas/scene.schema.json"));
+            json_object_set_new(inputs, "threads",
+                                input_ref("OpenMP threads",
+                                          "/schemas/execute.schema.json#/$defs/run/properties/"
+                                          "inputs/properties/threads",
+                                          1));
         } else if (conv) {
             const char *c = "/schemas/study.schema.json#/$defs/convergence/properties/";
             char ref[128];

@@ -47,6 +47,7 @@
 #include "queue.h"
 #include "result_repair.h"
 #include "storage.h"
+#include "thread_budget.h"
 #include "util/clock.h"
 
 #define TSUP_TICK_MS 200             /* poll timeout: reaping, limits, cancels */
@@ -60,6 +61,7 @@ struct child {
     bool used;
     char id[JOB_ID_LEN + 1];
     pid_t pid;
+    int threads;             /* the engine's OpenMP threads (booked in the budget) */
     int fd;                  /* progress pipe read end, -1 once closed */
     double t_start;          /* monotonic */
     double wall_limit;       /* s, <= 0 none */
@@ -102,6 +104,7 @@ struct tsup {
     bool below_floor;           /* claims stopped for the free-space floor (logged once) */
     struct child *kids;      /* max_jobs slots */
     int nrunning;
+    struct tbudget budget;   /* threads of the running engines against the cores */
     pid_t self;
 };
 
@@ -246,6 +249,7 @@ static void finish_child(struct tsup *s, struct child *c, int wstatus)
         finals_record(s->finals, s->q, c->id, out.status, out.outcome, out.message, r->cost);
     }
     free(out.message);
+    tbudget_give(&s->budget, c->threads);
     child_clear(c);
     s->nrunning--;
 }
@@ -452,8 +456,9 @@ static void fail_start(struct tsup *s, const char *id, const char *outcome, cons
     finals_record(s->finals, s->q, id, TQ_FAILED, outcome, message, NULL);
 }
 
-/* Starts a claimed job in slot c. On failure the job is finished as failed. */
-static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
+/* Starts a claimed job in slot c with threads OpenMP threads (>= 1, booked
+ * in the budget once it runs).  On failure the job is finished as failed. */
+static void start_job(struct tsup *s, struct child *c, const struct tq_job *j, int threads)
 {
     char dir[PATH_MAX], scene[PATH_MAX], logp[PATH_MAX];
     const char *id = j->id;
@@ -479,11 +484,8 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
         return;
     }
 
-    long threads = j->threads > 0 ? j->threads : s->threads_per_job;
-    if (threads < 1)
-        threads = 1;
     char tbuf[32];
-    snprintf(tbuf, sizeof tbuf, "%ld", threads);
+    snprintf(tbuf, sizeof tbuf, "%d", threads);
     char *argv[] = {s->engine_path, scene, (char *)"-o", dir, (char *)"--progress-fd",
                     (char *)"3", (char *)"--threads", tbuf, NULL};
 
@@ -524,6 +526,8 @@ static void start_job(struct tsup *s, struct child *c, const struct tq_job *j)
     c->used = true;
     memcpy(c->id, id, JOB_ID_LEN + 1);
     c->pid = pid;
+    c->threads = threads;
+    tbudget_take(&s->budget, threads);
     c->fd = pfd[0];
     c->t_start = tlsph_monotonic_seconds();
     c->wall_limit = j->wall_limit > 0 ? j->wall_limit : s->wall_limit;
@@ -574,8 +578,8 @@ static void claim_jobs(struct tsup *s)
                 slot = &s->kids[i];
                 break;
             }
-        if (!slot)
-            return;
+        if (!slot || tbudget_grant(&s->budget, 1) == 0)
+            return; /* no free slot, or no free core: claimed when an engine ends */
         struct tq_job j;
         memset(&j, 0, sizeof j);
         enum tq_rc rc = tq_claim_next(s->q, &j);
@@ -584,7 +588,11 @@ static void claim_jobs(struct tsup *s)
                 tlog("supervisor: cannot claim a job");
             return;
         }
-        start_job(s, slot, &j);
+        /* a job keeps the threads it was granted at start: OpenMP cannot
+         * change a running engine's count, and a job granted fewer than it
+         * asked for still beats one that waits for a core */
+        const long want = j.threads > 0 ? j.threads : s->threads_per_job;
+        start_job(s, slot, &j, tbudget_grant(&s->budget, want > INT_MAX ? INT_MAX : (int)want));
         tq_job_free(&j);
     }
 }
@@ -833,6 +841,7 @@ int tsup_start(const struct tsup_config *cfg, struct tsup **out, char *err, size
     pthread_cond_init(&s->cv, NULL);
     s->max_jobs = cfg->max_jobs;
     s->threads_per_job = cfg->threads_per_job;
+    s->budget.cores = cfg->cores > 0 ? cfg->cores : cfg->max_jobs * cfg->threads_per_job;
     s->max_attempts = cfg->max_attempts;
     s->wall_limit = cfg->wall_limit;
     s->kill_grace = cfg->kill_grace >= 0 ? cfg->kill_grace : 0;

@@ -3,6 +3,7 @@
  * One thread claims accepted jobs from the queue (up to max_jobs at once) and
  * runs each as a child process: fork + exec of the engine CLI
  *   tlsph-run JOBDIR/scene.json -o JOBDIR --progress-fd 3 --threads N
+ * (N = the job's threads within the thread budget, thread_budget.h)
  * in its own process group, with PR_SET_PDEATHSIG(SIGKILL) (so a dying daemon
  * takes its engines along), rlimits (address space, core dumps off, open files),
  * stdout+stderr to JOBDIR/log.txt (for people only), and a wall-clock limit.
@@ -35,6 +36,9 @@ struct tsup_config {
     const char *jobs_dir;      /* one directory per job underneath */
     int max_jobs;              /* concurrent engine processes, >= 1 */
     int threads_per_job;       /* OpenMP threads per engine, >= 1 */
+    int cores;                 /* the thread budget: the running engines' threads never
+                                * add up to more (thread_budget.h); 0: max_jobs x
+                                * threads_per_job, i.e. no budget beyond max_jobs */
     double wall_limit;         /* default wall-clock limit per job, s */
     double kill_grace;         /* s between SIGTERM and SIGKILL */
     long memory_limit_mb;      /* RLIMIT_AS per engine, 0 = none */

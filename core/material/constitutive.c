@@ -7,6 +7,7 @@
 #include "util/mat3.h"
 #include "material/material_point.h"
 #include "material/strength/strength.h"
+#include "sph/kinematics.h"
 #include "util/parallel.h"
 
 /* The "tangent" hourglass stiffness: once a particle has flowed, its spring
@@ -109,7 +110,12 @@ void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i)
     }
 }
 
-void tlsph_constitutive(struct tlsph_model *m, double dt)
+/* The update of every body; with_kinematics: each thread first gathers the
+ * kinematics of the particles it then updates (tlsph_kinematics_for), in the
+ * same parallel region, so the phase pair costs one region and one barrier
+ * instead of two.  The reductions and the static split of each body's range
+ * are those of separate loops, so the results are the same bit for bit. */
+static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinematics)
 {
     struct tlsph_particles *p = &m->p;
     size_t inverted = 0, failures = 0;
@@ -126,11 +132,17 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
         const double G43 = 4.0 / 3.0 * mat->shear_modulus, rho0 = mat->density;
         const double spacing = body->spacing;
 
-#pragma omp parallel for schedule(static)                                                         \
-    reduction(+ : inverted, failures, plastic_work, flowing, iterations, damage_work)              \
-    reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)              \
-    if (m->body_end[b] - m->body_begin[b] >= TLSPH_PARALLEL_MIN_ITEMS)
-        for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
+        const size_t lo = m->body_begin[b], hi = m->body_end[b];
+        /* one region per body: the optional gather, then the update; the
+         * loop inside keeps the indentation it had as a `parallel for` */
+#pragma omp parallel reduction(+ : inverted, failures, plastic_work, flowing, iterations, damage_work) \
+    reduction(min : first_bad, first_failure, min_detF, dt_min) reduction(max : cmax)                 \
+    if (hi - lo >= TLSPH_PARALLEL_MIN_ITEMS)
+        { /* clang-format off */
+        if (with_kinematics)
+            tlsph_kinematics_for(m, lo, hi, dt);
+#pragma omp for schedule(static) nowait
+        for (size_t i = lo; i < hi; i++) {
             struct tlsph_point_state st = {0}, *sp = NULL;
             if (plastic) {
                 load_state(p, i, arrays, &st);
@@ -191,6 +203,7 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
             cmax = fmax(cmax, c);
             dt_min = fmin(dt_min, spacing * r.min_stretch / (c + speed));
         }
+        } /* clang-format on; the end of the region: the pair's one barrier */
     }
     m->inverted = inverted;
     m->first_inverted_id = inverted ? first_bad : -1;
@@ -209,4 +222,14 @@ void tlsph_constitutive(struct tlsph_model *m, double dt)
     m->return_iterations += iterations;
     m->dt_cfl = dt_min;
     m->max_wave_speed = cmax;
+}
+
+void tlsph_constitutive(struct tlsph_model *m, double dt)
+{
+    constitutive_pass(m, dt, 0);
+}
+
+void tlsph_constitutive_with_kinematics(struct tlsph_model *m, double dt)
+{
+    constitutive_pass(m, dt, 1);
 }

@@ -19,6 +19,11 @@
  * (material/failure.h) releases what it carried. */
 void tlsph_constitutive(struct tlsph_model *m, double dt);
 
+/* tlsph_kinematics then tlsph_constitutive, in one parallel region per body
+ * (each thread gathers the particles it updates), with the same results bit
+ * for bit.  Only when tlsph_kinematics_fusable(m) (sph/kinematics.h). */
+void tlsph_constitutive_with_kinematics(struct tlsph_model *m, double dt);
+
 /* The material state of particle i at t = 0 (its body is set): temperature
  * (NaN where the material has none) and the damage model's initial point state
  * (point_init, material/damage/damage.h).  The rest of the history starts at 0. */

@@ -18,11 +18,17 @@
  * tlsph_model_step). */
 void tlsph_evaluate(struct tlsph_model *m, double dt)
 {
-    tlsph_kinematics(m, dt);
-    /* the phase timed as a whole (two clock reads a step), never per particle */
-    const double t0 = tlsph_monotonic_seconds();
-    tlsph_constitutive(m, dt);
-    m->material_seconds += tlsph_monotonic_seconds() - t0;
+    if (tlsph_kinematics_fusable(m)) {
+        /* one region and one barrier for both phases (never a porous model,
+         * whose constitutive phase is timed alone) */
+        tlsph_constitutive_with_kinematics(m, dt);
+    } else {
+        tlsph_kinematics(m, dt);
+        /* the phase timed as a whole (two clock reads a step), never per particle */
+        const double t0 = tlsph_monotonic_seconds();
+        tlsph_constitutive(m, dt);
+        m->material_seconds += tlsph_monotonic_seconds() - t0;
+    }
     tlsph_failure(m);
     if (m->crack->update) /* the treatment's own state: virtual links' damage */
         m->crack->update(m);
@@ -107,6 +113,26 @@ double tlsph_internal_energy(const struct tlsph_model *m)
     return ei;
 }
 
+/* Kinetic and internal energy in one loop: tlsph_kinetic_energy and
+ * tlsph_internal_energy with one parallel region and one barrier instead of
+ * two.  The same static split and per-thread sums, so the same values bit for
+ * bit. */
+static void step_energies(struct tlsph_model *m, double *kinetic, double *internal)
+{
+    double ke = 0.0, ei = 0.0;
+    const double *v = m->p.v, *mass = m->p.mass, *e = m->p.e;
+#pragma omp parallel for schedule(static) reduction(+ : ke, ei) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
+    for (size_t i = 0; i < m->p.n; i++) {
+        ke += 0.5 * mass[i] *
+              (v[3 * i] * v[3 * i] + v[3 * i + 1] * v[3 * i + 1] + v[3 * i + 2] * v[3 * i + 2]);
+        ei += mass[i] * e[i];
+    }
+    if (m->rigid) /* as in tlsph_kinetic_energy */
+        ke += tlsph_rigid_kinetic_energy(m);
+    *kinetic = ke;
+    *internal = ei;
+}
+
 /* One step, phase by phase: what each reads, writes, and books into the
  * energy account (m->energy; the balance is tlsph_energy_balance).
  *
@@ -176,8 +202,7 @@ void tlsph_model_step(struct tlsph_model *m)
     m->step++;
 
     struct tlsph_energy *e = &m->energy;
-    e->kinetic = tlsph_kinetic_energy(m);
-    e->internal = tlsph_internal_energy(m);
+    step_energies(m, &e->kinetic, &e->internal);
     const double size = fabs(e->kinetic) + fabs(e->internal) + fabs(e->external_work) +
                         fabs(e->hourglass) + fabs(e->viscous) + fabs(e->contact);
     if (size > e->scale)

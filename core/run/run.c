@@ -12,6 +12,7 @@
 #include "run/integrate.h"
 #include "run/progress.h"
 #include "util/clock.h"
+#include "util/parallel.h"
 
 static size_t peak_rss_bytes(void)
 {
@@ -30,6 +31,7 @@ static void fill_cost(const struct tlsph_model *m, double wall, struct tlsph_cos
     c->particle_steps_per_second = wall > 0 ? (double)m->p.n * (double)m->step / wall : 0.0;
     c->peak_memory_bytes = peak_rss_bytes();
     c->bytes_per_particle = m->p.n ? (double)m->bytes_allocated / (double)m->p.n : 0.0;
+    c->threads = tlsph_threads();
     c->contact = m->contact != NULL;
     if (c->contact) {
         const struct tlsph_contact_cost cc = tlsph_contact_cost(m);
@@ -49,6 +51,8 @@ static json_t *cost_json(const struct tlsph_cost *c)
         (json_int_t)c->pairs, "steps", (json_int_t)c->steps, "wall_seconds", c->wall_seconds,
         "particle_steps_per_second", c->particle_steps_per_second, "peak_memory_bytes",
         (json_int_t)c->peak_memory_bytes, "bytes_per_particle", c->bytes_per_particle);
+    if (o)
+        json_object_set_new(o, "threads", json_integer(c->threads));
     if (o && c->contact) {
         json_object_set_new(o, "contact_searches", json_integer(c->contact_searches));
         json_object_set_new(o, "contact_search_share", json_real(c->contact_search_share));
@@ -286,9 +290,10 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
     }
     if (o->log)
         fprintf(o->log,
-                "tlsph: %s after %ld steps, t = %.6g s, %.2f s wall, %.3g particle-steps/s, "
-                "%.0f bytes/particle, peak RSS %.1f MiB\n",
-                status, m->step, m->t, cost.wall_seconds, cost.particle_steps_per_second,
+                "tlsph: %s after %ld steps, t = %.6g s, %.2f s wall (%d thread%s), %.3g "
+                "particle-steps/s, %.0f bytes/particle, peak RSS %.1f MiB\n",
+                status, m->step, m->t, cost.wall_seconds, cost.threads,
+                cost.threads == 1 ? "" : "s", cost.particle_steps_per_second,
                 cost.bytes_per_particle, (double)cost.peak_memory_bytes / 1048576.0);
     return code;
 

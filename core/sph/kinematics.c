@@ -85,6 +85,38 @@ static void (*const passes[TLSPH_APPROX_COUNT])(struct tlsph_model *, double) = 
     [TLSPH_APPROX_VIRTUAL_LINKS] = gather_virtual_links,
 };
 
+/* Orphaned worksharing loops (kinematics.h): no parallel region of their own
+ * and no barrier at the end. */
+static void for_intact(struct tlsph_model *m, size_t lo, size_t hi, double dt)
+{
+#pragma omp for schedule(static) nowait
+    for (size_t i = lo; i < hi; i++)
+        gather_particle(m, i, dt, TLSPH_APPROX_INTACT);
+}
+
+static void for_virtual_links(struct tlsph_model *m, size_t lo, size_t hi, double dt)
+{
+#pragma omp for schedule(static) nowait
+    for (size_t i = lo; i < hi; i++)
+        gather_particle(m, i, dt, TLSPH_APPROX_VIRTUAL_LINKS);
+}
+
+int tlsph_kinematics_fusable(const struct tlsph_model *m)
+{
+    const enum tlsph_approximation v = m->crack->variant;
+    const size_t nb = m->scene.nbodies;
+    return (v == TLSPH_APPROX_INTACT || v == TLSPH_APPROX_VIRTUAL_LINKS) && !m->p.void_fraction &&
+           nb > 0 && m->body_begin[0] == 0 && m->body_end[nb - 1] == m->p.n;
+}
+
+void tlsph_kinematics_for(struct tlsph_model *m, size_t lo, size_t hi, double dt)
+{
+    if (m->crack->variant == TLSPH_APPROX_VIRTUAL_LINKS)
+        for_virtual_links(m, lo, hi, dt);
+    else
+        for_intact(m, lo, hi, dt);
+}
+
 void tlsph_kinematics(struct tlsph_model *m, double dt)
 {
     passes[m->crack->variant](m, dt);

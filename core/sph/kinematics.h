@@ -17,6 +17,26 @@
  * Fdot = 0 and no update. */
 void tlsph_kinematics(struct tlsph_model *m, double dt);
 
+/* Whether the kinematics may share a parallel loop with the stress update
+ * (tlsph_constitutive_with_kinematics): true when the treatment's gather of a
+ * particle reads no field that the update of another particle writes.  The
+ * intact and virtual-link gathers read x and v (and the links' own D_ij);
+ * the damage-aware and pseudo-spring ones read the neighbours' D, which the
+ * update writes, so they keep their own pass.  Also false for a porous model,
+ * whose constitutive phase is timed alone (cost.material_phase_share), and
+ * when the bodies' ranges do not cover the particles. */
+int tlsph_kinematics_fusable(const struct tlsph_model *m);
+
+/* The gather of particles [lo, hi) as an orphaned `omp for schedule(static)
+ * nowait`: called by every thread of a parallel region, each thread does the
+ * particles that a static loop over [lo, hi) in that region gives it and goes
+ * on without waiting; outside a parallel region it does them all.  A static
+ * loop that follows over the same range in the same region gives each thread
+ * the same particles (OpenMP's rule for static schedules), so it may read
+ * what this wrote for its own particles without a barrier.  Only when
+ * tlsph_kinematics_fusable(m). */
+void tlsph_kinematics_for(struct tlsph_model *m, size_t lo, size_t hi, double dt);
+
 /* The start of particle i's gather, shared by every treatment: what each of
  * its pairs is measured against, i's reference position X_i (m), displacement
  * u_i = x_i - X_i (m) and velocity v_i (m/s).  This and tlsph_pair_delta are

@@ -11,4 +11,20 @@
  * runs give it up. */
 #define TLSPH_PARALLEL_MIN_ITEMS 4096
 
+#ifdef _OPENMP
+#include <omp.h>
+#endif
+
+/* The OpenMP threads a parallel region of this run gets (tlsph-run --threads,
+ * OMP_NUM_THREADS); 1 without OpenMP.  Reported in the cost record, so that a
+ * run says what it ran on (the daemon's thread budget, docs/deployment.md). */
+static inline int tlsph_threads(void)
+{
+#ifdef _OPENMP
+    return omp_get_max_threads();
+#else
+    return 1;
+#endif
+}
+
 #endif

@@ -31,6 +31,7 @@ struct tlsph_cost {
     double particle_steps_per_second;
     size_t peak_memory_bytes; /* peak resident set of the process */
     double bytes_per_particle;
+    int threads;              /* OpenMP threads of the run's parallel loops */
     /* Only with contact (contact set; the others write none of these):
      * searches made, and the shares of wall_seconds spent in the contact
      * searches and in the whole contact phase (searches included), 1. */

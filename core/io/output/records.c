@@ -9,6 +9,7 @@
 
 #include "io/output/h5_attr.h"
 #include "io/output/h5_dataset.h"
+#include "util/parallel.h"
 
 /* Sizes of the strings rewritten at close (longer values are truncated). */
 #define STATUS_LEN 32
@@ -23,6 +24,7 @@ struct records {
     double wall_seconds, particle_steps_per_second;
     int64_t peak_memory_bytes;
     double bytes_per_particle;
+    int64_t threads;
     int contact; /* the contact attributes exist (a run with contact) */
     int64_t contact_searches;
     double contact_search_share, contact_phase_share;
@@ -70,6 +72,7 @@ static const struct record_attr record_attrs[] = {
     NUMBER(COST, particle_steps_per_second, TLSPH_FLOAT64),
     NUMBER(COST, peak_memory_bytes, TLSPH_INT64),
     NUMBER(COST, bytes_per_particle, TLSPH_FLOAT64),
+    NUMBER(COST, threads, TLSPH_INT64),
     CONTACT(contact_searches, TLSPH_INT64),
     CONTACT(contact_search_share, TLSPH_FLOAT64),
     CONTACT(contact_phase_share, TLSPH_FLOAT64),
@@ -137,6 +140,7 @@ int tlsph_records_create(hid_t file, const struct tlsph_model *m)
                         .particle_steps_per_second = NAN,
                         .peak_memory_bytes = -1,
                         .bytes_per_particle = NAN,
+                        .threads = tlsph_threads(),
                         .contact = m->contact != NULL,
                         .contact_searches = -1,
                         .contact_search_share = NAN,
@@ -161,6 +165,7 @@ int tlsph_records_write(hid_t file, const struct tlsph_cost *cost, const char *s
         r.particle_steps_per_second = cost->particle_steps_per_second;
         r.peak_memory_bytes = (int64_t)cost->peak_memory_bytes;
         r.bytes_per_particle = cost->bytes_per_particle;
+        r.threads = cost->threads;
         r.contact = cost->contact;
         r.contact_searches = cost->contact_searches;
         r.contact_search_share = cost->contact_search_share;
