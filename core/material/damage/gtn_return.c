@@ -1,6 +1,7 @@
 #include "material/damage/gtn_return.h"
 
 #include <math.h>
+#include <string.h>
 
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
@@ -218,6 +219,204 @@ static double trial_phi(const struct tlsph_material *m, const struct tlsph_porou
 static const struct tlsph_porous_solver solver =
     TLSPH_POROUS_SOLVER(3, TLSPH_GTN_MAX_ITERATIONS, struct eval);
 
+/* Void closure (gtn_return.h): the same system with f pinned at 0, so that
+ * dv = log(1 - f_n) - log(1 + N) squeezes out every void, on the unknowns
+ * (dq, dM); the normality residual drops out (its f column is the closure). */
+static void closed_evaluate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                            double scale, const double *u, void *state)
+{
+    struct eval *s = state;
+    const double full[3] = {u[0], 0.0, u[1]};
+    evaluate(m, in, scale, full, state);
+    s->head.merit = s->R[0] * s->R[0] + s->R[2] * s->R[2];
+    s->head.done = fabs(s->R[0]) <= TOLERANCE * s->size[0] && fabs(s->R[2]) <= TOLERANCE * s->size[2];
+}
+
+static int closed_direction(const void *state, double *d)
+{
+    const struct eval *e = state;
+    const double a = e->dR[0][0], b = e->dR[0][2], c = e->dR[2][0], dd = e->dR[2][2];
+    const double det = a * dd - b * c;
+    if (!(fabs(det) > 0.0) || !isfinite(det))
+        return 0;
+    d[0] = (-e->R[0] * dd + e->R[2] * b) / det;
+    d[1] = (-e->R[2] * a + e->R[0] * c) / det;
+    return isfinite(d[0]) && isfinite(d[1]);
+}
+
+static void closed_admissible(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                              double scale, double *u)
+{
+    double full[3] = {u[0], 0.0, u[1]};
+    keep_admissible(m, in, scale, full);
+    u[0] = full[0];
+    u[1] = full[2];
+}
+
+/* The dense matrix's radial return at the start-of-step flow stress, with the
+ * pressure after the voids are squeezed out. */
+static void closed_guess(const struct tlsph_material *m, const struct tlsph_porous_input *in, double sM,
+                         double p_tr, double K_t, double *u)
+{
+    (void)m;
+    const double dv = log1p(-in->f);
+    const double dq = fmax(in->q_trial - in->J * sM, 0.0) / (3.0 * in->G);
+    const double W = (in->q_trial - 3.0 * in->G * dq) * dq - in->J * (p_tr + K_t * dv) * dv;
+    u[0] = dq;
+    u[1] = fmax(W, 0.0) / (in->J * sM);
+}
+
+/* The closed solution stands only where voids of TLSPH_VOIDS_CLOSED could
+ * not hold its pressure either: beyond the cap of that surface (its point at
+ * zero deviator), 2 q1 f cosh(3/2 q2 p/sigma_M) > 1 + (q1 f)^2.  The closed
+ * state has squeezed out every void, so any end state with f >= that
+ * fraction would carry a still higher pressure: the porous solution, if the
+ * solver could resolve it, has fewer voids than that.  Below the cap (a
+ * small f under shear or tension, nucleation starting from f = 0) the porous
+ * solution stands. */
+static int beyond_closed_cap(const double *g, double p, double sigma_M, double f_closed)
+{
+    const double D = g[GTN_Q1] * f_closed;
+    return p > 0.0 && 2.0 * D * cosh(1.5 * g[GTN_Q2] * p / sigma_M) > 1.0 + D * D;
+}
+
+static const struct tlsph_porous_solver closed_solver = {
+    .n = 2, .budget = TLSPH_GTN_MAX_ITERATIONS, .size = sizeof(struct eval), .trial_phi = trial_phi,
+    .first_guess = closed_guess, .admissible = closed_admissible, .evaluate = closed_evaluate,
+    .direction = closed_direction};
+
+/* The closed return: (dq, 0, dM) in u and its state in e when it converges
+ * and stands (always, or beyond the cap of the surface with f_closed); 0
+ * otherwise. */
+static int closed_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double yield,
+                         double p_tr, double K_tr, int always, double f_closed, double u[3], struct eval *e,
+                         struct eval *scratch, int *evals)
+{
+    double c[2];
+    if (!tlsph_porous_solve(&closed_solver, m, in, yield, p_tr, K_tr, c, e, scratch, evals) ||
+        !(always || beyond_closed_cap(m->damage.params, e->p, e->sigma_M, f_closed)))
+        return 0;
+    u[0] = c[0];
+    u[1] = 0.0;
+    u[2] = c[1];
+    return 1;
+}
+
+/* The yield and normality residuals at fixed dM, solved for (dq, f) by
+ * Newton with backtracking on R1^2 + R2^2 from u: with sigma_M fixed, this
+ * system is smooth.  Returns 1 when both are at their round-off floors. */
+static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                            double u[3], struct eval *e, int *evals)
+{
+    keep_admissible(m, in, scale, u);
+    evaluate(m, in, scale, u, e);
+    ++*evals;
+    for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
+        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1])
+            return 1;
+        const double a = e->dR[0][0], b = e->dR[0][1], c = e->dR[1][0], d = e->dR[1][1];
+        const double det = a * d - b * c;
+        if (!(fabs(det) > 0.0) || !isfinite(det))
+            return 0;
+        const double d0 = (-e->R[0] * d + e->R[1] * b) / det, d1 = (-e->R[1] * a + e->R[0] * c) / det;
+        const double merit = e->R[0] * e->R[0] + e->R[1] * e->R[1];
+        int moved = 0;
+        for (double lambda = 1.0; lambda >= 1e-6 && !moved; lambda *= 0.5) {
+            double v[3] = {u[0] + lambda * d0, u[1] + lambda * d1, u[2]};
+            struct eval t;
+            keep_admissible(m, in, scale, v);
+            v[2] = u[2];
+            evaluate(m, in, scale, v, &t);
+            ++*evals;
+            if (isfinite(t.R[0]) && isfinite(t.R[1]) &&
+                t.R[0] * t.R[0] + t.R[1] * t.R[1] <= (1.0 - 1e-4 * lambda) * merit) {
+                memcpy(u, v, sizeof v);
+                *e = t;
+                moved = 1;
+            }
+        }
+        if (!moved)
+            return 0;
+    }
+    return 0;
+}
+
+/* The fallback for a flow stress with a kink: Johnson-Cook has no rate effect
+ * below the reference rate and 1 + C ln(rate/rate_0) above, so its slope in
+ * dM jumps there (by C sigma_0/dt, 1.3e14 Pa per unit strain for copper at a
+ * step of 3e-8 s), and when the step's root lies just past the kink Newton
+ * on the whole system bounces across it (measured: a copper bar pulled at
+ * 40 m/s, the root at rate 1.009/s against rate_0 = 1/s; 248 evaluations, no
+ * convergence).  Here the equal-work residual R3 is solved in dM alone by
+ * Illinois regula falsi, a bracketing method that a kink does not disturb,
+ * with (dq, f) solved at each dM (at_matrix_strain, smooth at fixed sigma_M).
+ * A dM whose flow stress leaves the trial deviator inside the surface even
+ * at dq = 0 has no (dq, f): it is too large, an upper end without a value,
+ * and the bracket then bisects.  Returns 1 when converged, with u and e. */
+enum { TOO_LARGE = 1, SOLVED = 0, LOST = -1 };
+
+static int side_of(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                   double u[3], struct eval *e, int *evals)
+{
+    if (at_matrix_strain(m, in, scale, u, e, evals))
+        return SOLVED;
+    return u[0] == 0.0 && e->R[0] < 0.0 ? TOO_LARGE : LOST;
+}
+
+static int nested_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double p_tr,
+                         double u[3], struct eval *e, int *evals)
+{
+    const double scale = tlsph_porous_strain_scale(in, p_tr);
+    double lo = 1e-12 * scale, hi = fmax(u[2], 2.0 * lo), rl, rh = NAN;
+    double ul[3] = {u[0], u[1], lo}, uh[3] = {u[0], u[1], hi};
+    struct eval el, eh;
+    if (side_of(m, in, scale, ul, &el, evals) != SOLVED || !((rl = el.R[2]) < 0.0))
+        return 0;
+    for (int grow = 0;; grow++) {
+        const int k = side_of(m, in, scale, uh, &eh, evals);
+        if (k == TOO_LARGE)
+            break;
+        if (k == LOST || grow == 60)
+            return 0;
+        if ((rh = eh.R[2]) > 0.0)
+            break;
+        lo = hi, rl = rh; /* still short: move both ends up */
+        memcpy(ul, uh, sizeof uh);
+        hi *= 2.0;
+        uh[2] = hi;
+    }
+    int side = 0;
+    for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
+        double x = isfinite(rh) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
+        if (!(x > lo && x < hi))
+            x = 0.5 * (lo + hi);
+        double v[3] = {ul[0], ul[1], x};
+        struct eval t;
+        const int k = side_of(m, in, scale, v, &t, evals);
+        if (k == LOST)
+            return 0;
+        if (k == SOLVED) {
+            memcpy(u, v, sizeof v);
+            *e = t;
+            if (fabs(t.R[2]) <= TOLERANCE * t.size[2])
+                return 1;
+        }
+        if (k == SOLVED && t.R[2] < 0.0) {
+            lo = x, rl = t.R[2];
+            memcpy(ul, v, sizeof v);
+            if (side < 0)
+                rh *= 0.5;
+            side = -1;
+        } else {
+            hi = x, rh = k == SOLVED ? t.R[2] : NAN;
+            if (side > 0)
+                rl *= 0.5;
+            side = 1;
+        }
+    }
+    return 0;
+}
+
 int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                      struct tlsph_gtn_result *out)
 {
@@ -233,7 +432,39 @@ int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_i
     double u[3];
     struct eval e, scratch;
     int evals = 0;
-    const int ok = tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+    const double *g = m->damage.params;
+    const int no_nucleation = !(g[GTN_FN] > 0.0);
+    int ok = 0;
+    if ((in->f == 0.0 && no_nucleation) || beyond_closed_cap(g, p_tr, yield, TLSPH_VOIDS_CLOSED))
+        /* closed voids stay closed without nucleation; a trial beyond the
+         * closed cap is tried closed first (the porous solution there has
+         * fewer voids than 1e-9) */
+        ok = closed_return(m, in, yield, p_tr, K_tr, in->f == 0.0 && no_nucleation, TLSPH_VOIDS_CLOSED, u, &e,
+                           &scratch, &evals);
+    if (!ok) {
+        ok = tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+        if (!ok || e.f < TLSPH_VOIDS_CLOSED) {
+            /* crushed below the closed fraction (the step compacts, or its
+             * closed state is beyond the cap), or no solution: the dense
+             * matrix's return */
+            const int shrinking = ok && e.dv < 0.0; /* the step compacts: voids are being crushed */
+            struct eval d;
+            double c[3];
+            if (closed_return(m, in, yield, p_tr, K_tr, shrinking, TLSPH_VOIDS_CLOSED, c, &d, &scratch, &evals)) {
+                ok = 1;
+                memcpy(u, c, sizeof c);
+                e = d;
+            }
+        }
+    }
+    if (!ok) {
+        first_guess(m, in, yield, p_tr, K_tr, u);
+        ok = nested_return(m, in, p_tr, u, &e, &evals);
+    }
+    if (!ok)
+        /* no solver resolves the porous step, and it would end with fewer
+         * voids than 1e-6: closed rather than a stopped run */
+        ok = closed_return(m, in, yield, p_tr, K_tr, 0, TLSPH_VOIDS_CLOSED_UNRESOLVED, u, &e, &scratch, &evals);
     out->flow.iterations = evals;
     out->flow.converged = ok;
     out->flow.dq = u[0];

@@ -40,6 +40,45 @@
  * stability contract stops the run).  With f = 0 and no nucleation it is the
  * J2 radial return.
  *
+ * Void closure.  Under a pressure many times the matrix flow stress (an
+ * impact face: 55 sigma_M on copper at 150 m/s) the return keeps the point
+ * on the surface's cap by driving f down as exp(-3/2 q2 |y|): GTN to 1e-300
+ * and then below what a double holds, where the system has no solution; the
+ * Aravas-type return of the Gurson family (porous_return.h) loses f to
+ * round-off earlier, near 1e-11, where it is the difference of the voids the
+ * step starts with and those it crushes, and its solves stall (hundreds of
+ * evaluations, then failure).  Either way the run would stop.  The voids are
+ * then physically closed, and a porous model at f = 0 is the dense matrix
+ * (J2; without nucleation f stays 0: growth is proportional to a plastic
+ * volume change the dense matrix does not have).  The closed step ends with
+ * f = 0: dv = log(1 - f_n) - log(1 + N) squeezes out every void, and yield
+ * and equal work fix dq and dM.  It is taken
+ *  - where the porous solution ends below TLSPH_VOIDS_CLOSED (1e-9) and the
+ *    step compacts (dv < 0), or where the closed state lies beyond the cap of the
+ *    surface with f = 1e-9 (a pressure above 13 sigma_M at q1 = 1.5,
+ *    q2 = 1), where no end state with more voids exists (a trial state
+ *    beyond that cap is tried closed first, saving the porous solvers'
+ *    hundreds of evaluations);
+ *  - always once f = 0 and nothing nucleates;
+ *  - as the last resort, when no solver resolves the porous step and the
+ *    closed state lies beyond the cap of TLSPH_VOIDS_CLOSED_UNRESOLVED
+ *    (1e-6): the porous step would end with fewer voids than that, and the
+ *    alternative is a stopped run.
+ * Elsewhere (voids nucleating from f = 0 while the step dilates, under shear
+ * or tension) the porous solution stands.  The thresholds: voids of 1e-9 regrow to 1e-4 only after
+ * a plastic strain of about ln(1e5)/(3/2 q1 q2 sinh(3/2 q2 T)), 2.4 at
+ * triaxiality T = 1 and 0.5 at T = 2 (from 1e-6: 1.0 and 0.2); shock-closed
+ * voids do not reopen as the model would let them, so closure is the
+ * physical reading, but it is a modelling choice and docs/damage.md says so.
+ *
+ * A kink in the flow stress.  Johnson-Cook's rate factor is 1 below the
+ * reference rate and 1 + C ln(rate/rate_0) above, so the slope of sigma_M in
+ * dM jumps at dM = rate_0 dt; when the root lies just past it, Newton on the
+ * whole system bounces across the kink.  The fallback then solves equal work
+ * in dM alone by a bracketing method (Illinois regula falsi), with yield and
+ * normality solved for (dq, f) at each dM, where sigma_M is fixed and the
+ * system smooth (nested_return in gtn_return.c).
+ *
  * Units: SI. */
 #ifndef TLSPH_DAMAGE_GTN_RETURN_H
 #define TLSPH_DAMAGE_GTN_RETURN_H

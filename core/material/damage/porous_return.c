@@ -99,7 +99,7 @@ static int matrix_state(const struct tlsph_material *m, const struct tlsph_porou
 
 /* The iterate (a, b): returns 0 when it has no admissible internal state. */
 static int iterate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                   double scale, double a, double b, struct eval *e)
+                   double scale, double a, double b, int closing, struct eval *e)
 {
     const double *g = m->damage.params;
     const double q1 = g[POR_Q1], q2 = g[POR_Q2], q3 = g[POR_Q3], J = in->J;
@@ -162,9 +162,12 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
         f_k[1] = e->f * kappa_b / (1.0 - e->kappa);
     }
     /* f within the solver's tolerance of 0 (relative to the terms c0 + N it is
-     * the difference of) is 0: the voids have closed */
-    if (fabs(e->f) <= TOLERANCE * (fabs(e->c0) + e->N))
+     * the difference of) is 0: the voids have closed; a closing iterate
+     * (closed_at) has chosen a so that they are */
+    if (closing || fabs(e->f) <= TOLERANCE * (fabs(e->c0) + e->N)) {
         e->f = 0.0;
+        f_k[0] = f_k[1] = 0.0;
+    }
     if (!(e->f >= 0.0 && e->f < 1.0) || !(e->sM > 0.0))
         return 0;
     const double W_k[2] = {W_a, W_b}, dM_k[2] = {dM_a, dM_b};
@@ -217,7 +220,7 @@ static void evaluate(const struct tlsph_material *m, const struct tlsph_porous_i
                      double scale, const double *u, void *state)
 {
     struct eval *e = state;
-    e->head.ok = iterate(m, in, scale, u[0], u[1], e);
+    e->head.ok = iterate(m, in, scale, u[0], u[1], 0, e);
     e->head.done = e->head.ok && fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
                    fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
 }
@@ -226,7 +229,7 @@ int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_por
                           double scale, double a, double b, double F[2], double dF[2][2])
 {
     struct eval e;
-    if (!iterate(m, in, scale, a, b, &e))
+    if (!iterate(m, in, scale, a, b, 0, &e))
         return 0;
     for (int i = 0; i < 2; i++) {
         F[i] = e.F[i];
@@ -453,6 +456,87 @@ static int reduced_solve(const struct tlsph_material *m, const struct tlsph_poro
     return ok;
 }
 
+/* Void closure (porous_return.h).  With every void squeezed out, f = 0 at
+ * the end: a = ln(1 - f_n) - ln(1 + N) (N, the voids nucleated in the step,
+ * depends on the matrix strain: fixed-point passes, a contraction by the
+ * small slope of N), and the yield condition of the dense matrix,
+ * x = sigma_e/sigma_M = 1, fixes b.  Returns x^2 - 1 at b (NaN if the state
+ * cannot be formed), with e and (a, b) in u. */
+static double closed_at(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        double scale, double b, double u[2], struct eval *e, int *evals)
+{
+    double N = 0.0;
+    for (int pass = 0; pass < 8; pass++) {
+        u[0] = log1p(-in->f) - log1p(N);
+        u[1] = b;
+        ++*evals;
+        if (!iterate(m, in, scale, u[0], b, 1, e))
+            return NAN;
+        const int settled = fabs(e->N - N) <= 1e-15 * (in->f + e->N);
+        N = e->N;
+        if (settled)
+            break;
+    }
+    const double x = e->se / e->sM;
+    return x * x - 1.0;
+}
+
+/* x falls monotonically in b (sigma_e falls, sigma_M does not), from x_tr at
+ * b = 0 to 0 at the full relaxation q_tr/(3G): Illinois regula falsi on
+ * x^2 - 1.  Returns 1 with e and (a, b) in u. */
+static int closed_solve(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                        double p_tr, double u[2], struct eval *e, int *evals)
+{
+    const double scale = tlsph_porous_strain_scale(in, p_tr);
+    double bl = 0.0, bh = in->q_trial / (3.0 * in->G);
+    double gl = closed_at(m, in, scale, bl, u, e, evals);
+    if (!isfinite(gl))
+        return 0;
+    if (gl <= 0.0)
+        return 1; /* the deviator is within the dense surface: compaction alone */
+    struct eval t;
+    double v[2];
+    double gh = closed_at(m, in, scale, bh, v, &t, evals);
+    if (!(gh < 0.0))
+        return 0;
+    int side = 0;
+    for (int it = 0; it < REDUCED_BUDGET && bh - bl > 4.0 * DBL_EPSILON * bh; it++) {
+        double b = bl - gl * (bh - bl) / (gh - gl);
+        if (!(b > bl && b < bh))
+            b = 0.5 * (bl + bh);
+        const double g = closed_at(m, in, scale, b, v, &t, evals);
+        if (!isfinite(g))
+            return 0;
+        u[0] = v[0];
+        u[1] = v[1];
+        *e = t;
+        if (fabs(g) <= TOLERANCE * (g + 2.0))
+            return 1;
+        if (g > 0.0) {
+            bl = b, gl = g;
+            if (side < 0)
+                gh *= 0.5;
+            side = -1;
+        } else {
+            bh = b, gh = g;
+            if (side > 0)
+                gl *= 0.5;
+            side = 1;
+        }
+    }
+    return bh - bl <= 4.0 * DBL_EPSILON * bh;
+}
+
+/* The closed state stands only where voids of TLSPH_VOIDS_CLOSED could not
+ * hold its pressure either: beyond the cap of that surface,
+ * 2 q1 f* cosh(3/2 q2 p/sigma_M) > 1 + q3 f*^2 (gtn_return.c has the
+ * argument). */
+static int beyond_closed_cap(const double *g, double p, double sigma_M, double f_closed)
+{
+    const double fs = tlsph_porous_fstar(g, f_closed);
+    return p > 0.0 && 2.0 * g[POR_Q1] * fs * cosh(1.5 * g[POR_Q2] * p / sigma_M) > 1.0 + g[POR_Q3] * fs * fs;
+}
+
 int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         struct tlsph_porous_result *out)
 {
@@ -468,9 +552,37 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
     double u[2];
     struct eval e, scratch;
     int evals = 0;
-    const int ok =
-        tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals) ||
-        reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals);
+    /* A trial state beyond the closed cap is tried closed first: where the
+     * closed state stands the porous one has fewer voids than the solvers
+     * resolve, and they would spend hundreds of evaluations finding that out. */
+    const double *g = m->damage.params;
+    int closed = beyond_closed_cap(g, p_tr, yield, TLSPH_VOIDS_CLOSED) && closed_solve(m, in, p_tr, u, &e, &evals) &&
+                 beyond_closed_cap(g, e.p, e.sM, TLSPH_VOIDS_CLOSED);
+    int ok = closed || tlsph_porous_solve(&solver, m, in, yield, p_tr, K_tr, u, &e, &scratch, &evals);
+    if (!closed && (!ok || e.f < TLSPH_VOIDS_CLOSED)) {
+        /* crushed below the closed fraction (the step compacts, or its
+         * closed state is beyond the cap), or the solvers lost in the cap's
+         * steep valley: the closed state where it stands, else the reduced
+         * solves */
+        const int shrinking = ok && u[0] < 0.0; /* the step compacts: voids are being crushed */
+        double c[2];
+        struct eval d;
+        const int solved = closed_solve(m, in, p_tr, c, &d, &evals);
+        if (solved && (shrinking || beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED))) {
+            ok = closed = 1;
+            u[0] = c[0];
+            u[1] = c[1];
+            e = d;
+        } else if (!ok && !(ok = reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals)) && solved &&
+                   beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED_UNRESOLVED)) {
+            /* no solver resolves the porous step, and it would end with fewer
+             * voids than 1e-6: closed rather than a stopped run */
+            ok = closed = 1;
+            u[0] = c[0];
+            u[1] = c[1];
+            e = d;
+        }
+    }
     out->flow.iterations = evals;
     out->flow.converged = ok;
     if (!ok) {
@@ -482,15 +594,15 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
     out->flow.dv = u[0];
     out->flow.dq = u[1];
     out->flow.dM = e.dM;
-    out->flow.f = e.f;
-    out->df_growth = e.c0 - in->f;
+    out->flow.f = closed ? 0.0 : e.f;
+    out->df_growth = closed ? -in->f - e.N : e.c0 - in->f; /* closure crushes the nucleated too */
     out->df_nucleated = e.N;
-    out->df_shear = e.kappa * e.f;
+    out->df_shear = closed ? 0.0 : e.kappa * e.f;
     out->flow.T = e.T;
     out->sigma_M = e.sM;
     out->p = e.p;
     out->K_t = e.K_t;
     out->flow.work = e.W;
-    out->phi = e.F[1];
+    out->phi = closed ? e.se * e.se / (e.sM * e.sM) - 1.0 : e.F[1];
     return 1;
 }

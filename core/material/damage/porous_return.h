@@ -52,6 +52,12 @@
  * is reported (result .flow.converged = 0, the stability contract stops the run).
  * With f = 0, no nucleation and no shear it is the J2 radial return.
  *
+ * Crushed voids close (gtn_return.h: when, why, the thresholds): where the
+ * porous step ends below 1e-9 voids and compacts (a < 0), or its closed state
+ * (f = 0, a = ln(1 - f_n) - ln(1 + N), the dense matrix's yield x = 1 solved
+ * for b by Illinois regula falsi) lies beyond the cap of the 1e-9 surface,
+ * or, when no solver resolves the step, beyond that of the 1e-6 surface.
+ *
  * Units: SI. */
 #ifndef TLSPH_DAMAGE_POROUS_RETURN_H
 #define TLSPH_DAMAGE_POROUS_RETURN_H

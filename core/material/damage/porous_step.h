@@ -88,6 +88,13 @@ double tlsph_porous_strain_scale(const struct tlsph_porous_input *in, double p);
 double tlsph_porous_frozen_root(double top, double two_D, double q1, double q2, double fs,
                                 double x_tr, double y_tr, double cG, double cK, double *x);
 
+/* The void fraction below which crushed voids count as closed, and the one
+ * whose cap decides where a step no solver resolves is taken closed rather
+ * than stopping the run (both returns; gtn_return.h explains the closure and
+ * the two choices). */
+#define TLSPH_VOIDS_CLOSED 1e-9
+#define TLSPH_VOIDS_CLOSED_UNRESOLVED 1e-6
+
 /* The solver both returns share: Newton with a backtracking line search from
  * the frozen first guess, then continuation.  A return describes its system
  * by this table; its iterate state (of .size bytes) begins with a struct
