@@ -49,6 +49,9 @@ finish() {
 
 free_port() { "$PY" -c 'import socket; s=socket.socket(); s.bind(("127.0.0.1",0)); print(s.getsockname()[1])'; }
 
+# The daemon's thread budget follows the machine's cores (--cores defaults to
+# the CPUs it may use); the tests say 2, so that jobs the tests expect to run
+# side by side do so on a one-CPU runner too (a test's own --cores wins).
 # start_daemon VAR_PREFIX DATA_DIR [extra args...]: starts tlsphd on a free port,
 # sets ${VAR}_PID, ${VAR}_URL, ${VAR}_LOG; waits for /healthz.
 start_daemon() {
@@ -56,7 +59,7 @@ start_daemon() {
     local port; port=$(free_port)
     local log="$TMP/$var.$port.log"
     "$TLSPHD" --listen "127.0.0.1:$port" --data-dir "$data" --engine "$ENGINE" \
-        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 "$@" >"$log" 2>&1 &
+        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 --cores 2 "$@" >"$log" 2>&1 &
     local pid=$!
     DAEMON_PIDS="$DAEMON_PIDS $pid"
     eval "${var}_PID=$pid; ${var}_URL=http://127.0.0.1:$port; ${var}_LOG=$log"
@@ -75,7 +78,7 @@ start_refused() {
     local var=$1 data=$2; shift 2
     local log="$TMP/$var.log" port; port=$(free_port)
     "$TLSPHD" --listen "127.0.0.1:$port" --data-dir "$data" --engine "$ENGINE" \
-        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 "$@" >"$log" 2>&1 &
+        --schemas-dir "$top_srcdir/schemas" --threads-per-job 1 --cores 2 "$@" >"$log" 2>&1 &
     local pid=$! rc=running
     DAEMON_PIDS="$DAEMON_PIDS $pid"
     exited_or_up() { ! kill -0 "$pid" 2>/dev/null || curl -sf "http://127.0.0.1:$port/healthz" >/dev/null; }
