@@ -123,7 +123,7 @@ def main():
                                                   cost["steps"], err, shown,
                                                   cost["wall_seconds"]))
     for e in errors:
-        print("contract broken: " + e, file=sys.stderr)
+        print("case failed: " + e, file=sys.stderr)
     return 1 if errors else 0
 
 
