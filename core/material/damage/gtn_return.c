@@ -159,7 +159,6 @@ static void keep_admissible(const struct tlsph_material *m, const struct tlsph_p
     u[1] = fmin(fmax(u[1], 0.0), 1.0 - 1e-9);
     u[2] = fmax(u[2], 1e-12 * scale);
 }
-
 /* First guess: the return with the matrix flow stress and the void fraction
  * frozen at their start-of-step values and the EOS linearised (bulk modulus
  * K_t).  In the plane x = q/(J sigma_M), y = sigma_m/sigma_M the elastic
@@ -308,7 +307,9 @@ static int closed_return(const struct tlsph_material *m, const struct tlsph_poro
 static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
                             double u[3], struct eval *e, int *evals)
 {
+    const double dM = u[2]; /* the caller's, below keep_admissible's floor too */
     keep_admissible(m, in, scale, u);
+    u[2] = dM;
     evaluate(m, in, scale, u, e);
     ++*evals;
     for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
@@ -367,7 +368,13 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
                          double u[3], struct eval *e, int *evals)
 {
     const double scale = tlsph_porous_strain_scale(in, p_tr);
-    double lo = 1e-12 * scale, hi = fmax(u[2], 2.0 * lo), rl, rh = NAN;
+    /* From the first yield of a law with an infinite slope at eps_M = 0
+     * (A + B eps^n, n < 1) the root can lie far below Newton's floor of 1e-12
+     * of the strain scale (measured: dM = 3e-17 for copper, n = 0.31, a
+     * trial 5e-5 outside the surface); the bracket starts near the smallest
+     * normal double and bisects in the logarithm while its ends are decades
+     * apart. */
+    double lo = 1e-300, hi = fmax(u[2], 1e-12 * scale), rl, rh = NAN;
     double ul[3] = {u[0], u[1], lo}, uh[3] = {u[0], u[1], hi};
     struct eval el, eh;
     if (side_of(m, in, scale, ul, &el, evals) != SOLVED || !((rl = el.R[2]) < 0.0))
@@ -388,7 +395,9 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
     int side = 0;
     for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
         double x = isfinite(rh) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
-        if (!(x > lo && x < hi))
+        if (hi > 1e3 * lo)
+            x = sqrt(lo) * sqrt(hi);
+        else if (!(x > lo && x < hi))
             x = 0.5 * (lo + hi);
         double v[3] = {ul[0], ul[1], x};
         struct eval t;
@@ -414,7 +423,9 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
             side = 1;
         }
     }
-    return 0;
+    /* the bracket closed to the resolution of dM: the last solved iterate is
+     * the root to round-off */
+    return hi - lo <= 4e-16 * hi && e->head.ok && fabs(e->R[2]) <= 1e-8 * e->size[2];
 }
 
 int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
