@@ -56,6 +56,11 @@
 #define TLSPH_DEFAULT_SUPPORT_FACTOR        2.01
 #define TLSPH_DEFAULT_HOURGLASS             1 /* enabled */
 #define TLSPH_DEFAULT_HOURGLASS_COEFFICIENT 1.0
+/* hourglass.stiffness: 1 = "tangent" (the spring follows the elasto-plastic
+ * tangent where a particle has flowed).  Measured more accurate on the Taylor
+ * bars (docs/performance.md); no effect on a scene without plasticity, whose
+ * model never allocates the scale array (core/run/model.c). */
+#define TLSPH_DEFAULT_HOURGLASS_TANGENT     1
 #define TLSPH_DEFAULT_VISCOSITY             0 /* disabled */
 #define TLSPH_DEFAULT_VISCOSITY_LINEAR      1.0
 #define TLSPH_DEFAULT_VISCOSITY_QUADRATIC   0.0

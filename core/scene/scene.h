@@ -218,9 +218,9 @@ struct tlsph_scene {
     double support_factor;        /* kernel support radius / spacing, 1.2..4 */
     int hourglass;                /* enabled */
     double hourglass_coefficient; /* alpha (Ganzenmueller 2015), 1 */
-    int hourglass_tangent;        /* spring modulus: 0 = Young's modulus everywhere; 1 = the
-                                     elasto-plastic tangent E H / (E + H) where the pair's
-                                     particles flowed plastically in the last step */
+    int hourglass_tangent;        /* spring modulus: 0 = Young's modulus everywhere; 1 (the
+                                     default) = the elasto-plastic tangent E H / (E + H)
+                                     where the pair's particles have flowed plastically */
     int viscosity;                /* enabled */
     double viscosity_linear;      /* beta1 (paper 001 eq. 18), 1 */
     double viscosity_quadratic;   /* beta2, 1 */

@@ -64,11 +64,13 @@ static const struct tlsph_key hourglass_keys[] = {
      .range = {0.0, 100.0, JC_CLOSED, JC_CLOSED}, .unit = "1",
      .def = TLSPH_DEFAULT_HOURGLASS_COEFFICIENT, .offset = AT(hourglass_coefficient),
      .description = "hourglass control coefficient alpha (Ganzenmueller 2015)"},
-    {.name = "stiffness", .kind = CHOICE, .flags = DEFAULT, .def = 0, .size = 16,
-     .choices = stiffnesses, .noun = "hourglass stiffness", .offset = AT(hourglass_tangent),
-     .description = "modulus of the hourglass spring: elastic = Young's modulus everywhere; "
-                    "tangent = the elasto-plastic tangent E H / (E + H) in particles that "
-                    "have flowed, never rising again"},
+    {.name = "stiffness", .kind = CHOICE, .flags = DEFAULT,
+     .def = TLSPH_DEFAULT_HOURGLASS_TANGENT, .size = 16, .choices = stiffnesses,
+     .noun = "hourglass stiffness", .offset = AT(hourglass_tangent),
+     .description = "modulus of the hourglass spring: tangent (default) = the elasto-plastic "
+                    "tangent E H / (E + H) in particles that have flowed, never rising "
+                    "again; elastic = Young's modulus everywhere (the former default); no "
+                    "effect without plasticity"},
 };
 static const struct tlsph_key_table hourglass_table =
     TLSPH_KEY_TABLE("/discretization/hourglass", NULL, hourglass_keys);

@@ -111,7 +111,7 @@ START_TEST(test_defaults_and_derived)
     ck_assert_int_eq(s.dimension, 3);
     ck_assert(s.cfl == 0.3 && s.fixed_dt == 0.0 && s.max_steps == 0);
     ck_assert(s.kernel == TLSPH_KERNEL_WENDLAND_C2 && s.support_factor == 2.01);
-    ck_assert(s.hourglass == 1 && s.hourglass_coefficient == 1.0);
+    ck_assert(s.hourglass == 1 && s.hourglass_coefficient == 1.0 && s.hourglass_tangent == 1);
     ck_assert(s.viscosity == 0 && s.viscosity_linear == 1.0 && s.viscosity_quadratic == 0.0);
     ck_assert(s.check_every == 10 && s.energy_tolerance == 0.05 && s.speed_limit_factor == 1.0);
     ck_assert(s.max_particles == 2000000 && s.frames == 20 && s.series_every == 10);
