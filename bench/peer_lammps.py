@@ -14,12 +14,18 @@ usage:
                      (rigid_bodies) instead of the kinematic wall
         tangent      the tangent hourglass spring
         elastic-spring  the elastic (E) hourglass spring
+        frames-N     N frames instead of 2 (for rates during the impact)
         strength-F   A and B times F (e.g. strength-0.85: the flow stress
                      scaled, to see how far the constants would have to move)
   peer_lammps.py lammps RESULT_DIR OUT_DIR [no-rate]
       writes OUT_DIR/data.rod (the particles of tlsph's result at t = 0:
       positions, volumes, masses) and OUT_DIR/in.taylor for LAMMPS with the
       same material, spacing and kernel support.
+  peer_lammps.py rate-factor RESULT_DIR
+      how much the Johnson-Cook rate term raised the flow stress over the
+      impact: the plastic-power-weighted mean of 1 + C ln(epsdot_p/epsdot_0)
+      over the flowing particles of every frame (run with frames-N), and the
+      weighted median plastic strain rate, as JSON.
   peer_lammps.py measure-lammps DUMP SPACING_M
       length, foot diameter (bench/taylor_metrics.py definitions) and the
       peak plastic strain of LAMMPS's final dump, as JSON.
@@ -83,6 +89,8 @@ def scene(spacing, variants):
             s["discretization"]["hourglass"]["stiffness"] = "tangent"
         elif v == "elastic-spring":
             s["discretization"]["hourglass"]["stiffness"] = "elastic"
+        elif v.startswith("frames-"):
+            s["output"]["frames"] = int(v.split("-", 1)[1])
         elif v.startswith("strength-"):
             f = float(v.split("-", 1)[1])
             st["yield_stress"] *= f
@@ -160,6 +168,29 @@ print           "PEER_END step $(step) time $(f_dtfix)"
     open(os.path.join(out_dir, "in.taylor"), "w").write(inp)
 
 
+def rate_factor(result_dir):
+    with Result(result_dir) as r:
+        st = r.scene["materials"]["ofhc_copper"]["strength"]
+        C, e0 = st["rate_coefficient"], st.get("reference_strain_rate", 1.0)
+        vol = r.field("volume")
+        rates, weights = [], []
+        for k in range(len(r.frame_times("plastic_strain_rate"))):
+            rate = r.field("plastic_strain_rate", frame=k)
+            w = r.field("von_mises", frame=k) * rate * vol  # plastic power
+            on = rate > e0
+            rates.append(rate[on])
+            weights.append(w[on])
+    rate, w = np.concatenate(rates), np.concatenate(weights)
+    f = 1.0 + C * np.log(rate / e0)
+    o = np.argsort(rate)
+    cw = np.cumsum(w[o]) / w.sum()
+    return {"weighted_rate_factor": float((f * w).sum() / w.sum()),
+            "weighted_median_rate": float(rate[o][np.searchsorted(cw, 0.5)]),
+            "rate_p10": float(rate[o][np.searchsorted(cw, 0.1)]),
+            "rate_p90": float(rate[o][np.searchsorted(cw, 0.9)]),
+            "samples": int(len(rate))}
+
+
 def measure_lammps(dump, h):
     rows = []
     with open(dump) as f:
@@ -182,6 +213,8 @@ def main(argv):
         print(json.dumps(scene(float(argv[2]), argv[3:])))
     elif len(argv) >= 4 and argv[1] == "lammps":
         lammps(argv[2], argv[3], "no-rate" in argv[4:])
+    elif len(argv) == 3 and argv[1] == "rate-factor":
+        print(json.dumps(rate_factor(argv[2])))
     elif len(argv) == 4 and argv[1] == "measure-lammps":
         print(json.dumps(measure_lammps(argv[2], float(argv[3]))))
     else:
