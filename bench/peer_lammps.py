@@ -157,12 +157,16 @@ fix             dtfix tlsph smd/adjust_dt 0.1
 fix             integ tlsph smd/integrate_tlsph
 compute         ep tlsph smd/plastic/strain
 variable        t equal f_dtfix
-fix             stop tlsph halt 10 v_t > {t_end} error soft message no
+fix             stop tlsph halt 10 v_t > {t_end} error continue message no
 thermo          500
 thermo_style    custom step dt f_dtfix ke
 thermo_modify   norm no
 run             10000000
-write_dump      tlsph custom final.dump id x y z c_ep modify sort id
+# the final state (a dump written inside a run: its compute is current there)
+unfix           stop
+dump            final tlsph custom 1 final.dump id x y z c_ep
+dump_modify     final sort id
+run             0 post no
 print           "PEER_END step $(step) time $(f_dtfix)"
 """
     open(os.path.join(out_dir, "in.taylor"), "w").write(inp)
