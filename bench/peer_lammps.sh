@@ -13,7 +13,9 @@
 # LAMMPS: $LAMMPS_BIN if set; else $LAMMPS_DIR/build/lmp (default
 # /tmp/lammps-machdyn), built there once from Debian's source package
 # (apt-get source lammps; as root the script adds a deb-src line and installs
-# libeigen3-dev; cmake with MACHDYN only, nice -n 10, -j2: ~30 min of CPU).
+# libeigen3-dev; cmake with MACHDYN only, nice -n 10, -j2: 30 min on the
+# 2-core VM while other jobs ran).  Serial (MPI stubs) where MPI headers are
+# missing (openmpi-bin without libopenmpi-dev).
 # PEER_BUILD=0 never builds.  Without a binary it runs tlsph alone and says so.
 #
 # usage: bench/peer_lammps.sh [SPACING_M] [PAIRS]   (default 0.0006 = 5 334
