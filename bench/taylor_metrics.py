@@ -34,6 +34,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 from tlsph_result import Result  # noqa: E402
 
 
+def extents(x, h):
+    """Length, foot diameter and lift-off (mm) of a bar with particle centres x
+    [N, 3] (m, axis z, anvil z = 0) and spacing h (m), as defined above; also
+    used for other codes' bars (bench/peer_lammps.py)."""
+    r = np.hypot(x[:, 0], x[:, 1])
+    z = x[:, 2]
+    bottom = max(z.min() - 0.5 * h, 0.0)
+    lowest = z < z.min() + 0.5 * h
+    return {
+        "length_mm": (z.max() + 0.5 * h - bottom) * 1e3,
+        "foot_diameter_mm": 2e3 * (r[lowest].max() + 0.5 * h),
+        "lift_off_mm": bottom * 1e3,
+    }
+
+
 def metrics(path):
     with Result(path) as f:
         h = f.spacing()
@@ -44,8 +59,6 @@ def metrics(path):
         ke0 = float(f.series("kinetic_energy")[1][0])
         r = np.hypot(x[:, 0], x[:, 1])
         z = x[:, 2]
-        bottom = max(z.min() - 0.5 * h, 0.0)
-        lowest = z < z.min() + 0.5 * h
         foot_anvil = z < 0.5 * h
         out = {
             "spacing_mm": h * 1e3,
@@ -55,9 +68,7 @@ def metrics(path):
             "particle_steps_per_second": float(cost["particle_steps_per_second"]),
             "bytes_per_particle": float(cost["bytes_per_particle"]),
             "t_end_us": t_end * 1e6,
-            "length_mm": (z.max() + 0.5 * h - bottom) * 1e3,
-            "foot_diameter_mm": 2e3 * (r[lowest].max() + 0.5 * h),
-            "lift_off_mm": bottom * 1e3,
+            **extents(x, h),
             "length_anvil_mm": (z.max() + 0.5 * h) * 1e3,
             "foot_diameter_centres_mm": 2e3 * r[foot_anvil].max() if foot_anvil.any() else float("nan"),
             "max_plastic_strain": float(f.field("plastic_strain").max())
