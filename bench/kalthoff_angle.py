@@ -27,12 +27,13 @@ usage: kalthoff_angle.py RESULT_DIR [RUN_LOG] [--tip X Y] [--threshold D] [--row
         initial, length, particles, steps, wall time, balance)
 Needs h5py and numpy (/usr/bin/python3)."""
 import math
-import re
 import sys
 from collections import deque
 
 import h5py
 import numpy as np
+
+from run_log import steps_and_wall
 
 EXPERIMENT = 70.0
 
@@ -121,12 +122,7 @@ def main(argv):
             pos.append(args[i])
             i += 1
     m = measure(pos[0], tip, threshold)
-    steps = wall = "?"
-    if len(pos) > 1:
-        txt = open(pos[1]).read()
-        g = re.search(r"after (\d+) steps, t = [^,]+, ([0-9.]+) s wall", txt)
-        if g:
-            steps, wall = g.group(1), g.group(2)
+    steps, wall = steps_and_wall(pos[1] if len(pos) > 1 else None)
     if row:
         print("| %.3g mm | %.1f° | %+.1f° | %.1f° | %.1f° | %.1f mm | %d | %d | %s | %s s | %.1e |" %
               (m["spacing"] * 1e3, m["angle"], m["angle"] - EXPERIMENT, m["chord"], m["initial"],

@@ -12,11 +12,12 @@ its mean over the frames in [1.5, 3] ms, as docs/contact.md measures it.
 usage: links_beam.py RESULT_DIR [RUN_LOG]   (prints one markdown table row)
 Needs h5py (/usr/bin/python3)."""
 import math
-import re
 import sys
 
 import h5py
 import numpy as np
+
+from run_log import steps_and_wall
 
 H, L, SIGMA_Y, V = 0.00635, 0.07112, 277.8e6, 20.0
 G = 14311.4 * 0.01474 * 0.05  # kg/m: the rigid box of the example
@@ -45,12 +46,7 @@ def main(argv):
     ke0 = 0.5 * G * V * V
     balance = np.abs(obs["energy_balance/value"][:]).max() / ke0
     spacing = math.sqrt(p["volume"][0])  # 2-D: the particle's area, spacing^2
-    steps = wall = "?"
-    if len(argv) > 2:
-        log = open(argv[2]).read()
-        m = re.search(r"after (\d+) steps, t = [^,]+, ([0-9.]+) s wall", log)
-        if m:
-            steps, wall = m.group(1), m.group(2)
+    steps, wall = steps_and_wall(argv[2] if len(argv) > 2 else None)
     ref = reference()
     print("| %.4g mm (%d) | %d | %s | %.2f mm | %.3f mm | %+.1f %% | %d | %.1e | %s s |" %
           (spacing * 1e3, round(H / spacing), int(beam.sum()), steps, peak * 1e3, perm * 1e3,

@@ -29,12 +29,12 @@ paper gives none):
 usage: notched_beams.py RESULT_DIR SCENE.json [RUN_LOG]  (prints a markdown row)
 Needs h5py (/usr/bin/python3)."""
 import json
-import math
-import re
 import sys
 
 import h5py
 import numpy as np
+
+from run_log import steps_and_wall
 
 H = 0.00635
 
@@ -105,11 +105,7 @@ def main(argv):
     hs = scene["rigid_bodies"][0]["shape"]["half_sizes"]
     G = scene["rigid_bodies"][0]["motion"]["density"] * 4 * hs[0] * hs[1]
     balance = np.abs(obs["energy_balance/value"][:]).max() / (0.5 * G * V * V)
-    steps = wall = "?"
-    if len(argv) > 3:
-        m = re.search(r"after (\d+) steps, t = [^,]+, ([0-9.]+) s wall", open(argv[3]).read())
-        if m:
-            steps, wall = m.group(1), m.group(2)
+    steps, wall = steps_and_wall(argv[3] if len(argv) > 3 else None)
     print("| %.1f | %.2f mm | %.2f mm | %s | %d | %d | %s | %s s | %.1e |" %
           (V, perm * 1e3, peak * 1e3, "; ".join(outcome), broken, len(X), steps, wall, balance))
     return 0
