@@ -82,18 +82,25 @@ static double largest_eigenvalue(const double A[9])
     return fmax(lam[0], fmax(lam[1], lam[2]));
 }
 
-/* Grows the damage of a point that flowed plastically by dgamma this step and
- * returns the energy released (J/m^3).  tau_dev: effective deviatoric Kirchhoff
- * stress after the return (any basis); p: effective pressure (Pa). */
+/* Grows the damage of a point that flowed plastically by dgamma this step (or
+ * of any point, for a state_based criterion) and returns the energy released
+ * (J/m^3).  tau_dev: effective deviatoric Kirchhoff stress after the return (any
+ * basis); p: effective pressure (Pa); lns_max: log of the largest principal stretch. */
 static double damage_growth(const struct tlsph_material *mat, double dgamma, double J, double p,
-                            const double tau_dev[9], double triax, struct tlsph_point_state *s)
+                            const double tau_dev[9], double triax, double lns_max,
+                            struct tlsph_point_state *s)
 {
     const struct tlsph_damage_model *model = mat->damage.model;
     struct tlsph_damage_step step = {
         .deps_p = dgamma, .rate = s->rate, .T = s->T, .triaxiality = triax, .sigma1 = 0.0};
     if (model->needs_sigma1)
         step.sigma1 = largest_eigenvalue(tau_dev) / J - p;
-    s->damage_init += model->initiation(mat, &step);
+    if (model->state_based) {
+        step.stretch1 = expm1(lns_max);
+        s->damage_init = fmax(s->damage_init, model->initiation(mat, &step));
+    } else {
+        s->damage_init += model->initiation(mat, &step);
+    }
     const double D0 = s->damage, D1 = fmax(D0, tlsph_damage_evolution(&mat->damage, s->damage_init));
     if (D1 == D0)
         return 0.0;
@@ -236,8 +243,9 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
         const double q = sqrt(1.5 * t2) / J; /* Cauchy von Mises */
         if (q > 0.0)
             r->triaxiality = -p / q;
-        if (dgamma > 0.0)
-            r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality, s);
+        if (dgamma > 0.0 || mat->damage.model->state_based)
+            r->damage_work = damage_growth(mat, dgamma, J, p, tau, r->triaxiality,
+                                           fmax(lns[0], fmax(lns[1], lns[2])), s);
         if (s->damage >= 1.0) {
             tlsph_point_no_stress(r, J, smin, K_t);
             return;

@@ -19,7 +19,14 @@
  *  4. Energy: along the whole path to failure, the work int P : dF (trapezoid)
  *     equals the booked plastic work plus the booked damage energy (nothing is
  *     stored at failure), within 1e-3 of the work: damage dissipation is what
- *     the drop of the stress releases, nothing more or less. */
+ *     the drop of the stress releases, nothing more or less.
+ *  5. Rankine on the particle (paper 001 eq. 40 maximised over directions):
+ *     an elastic point (yield stress 100 GPa, never reached) under uniaxial
+ *     stress fails (D from 0 to 1) where its largest principal stretch minus
+ *     1 = exp(axial log strain) - 1 reaches the threshold 0.0044: not at 1e-9
+ *     below it, at 1e-9 above; no plastic flow; the released energy is the
+ *     stored energy (E eps^2 / 2 to 1 %, measured 1.1e-4: the log-strain
+ *     energy of the Hencky model) and the failed point carries no stress. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -203,6 +210,37 @@ START_TEST(damage_needs_plastic_flow_to_grow)
 }
 END_TEST
 
+START_TEST(rankine_fails_at_the_threshold_stretch)
+{
+    const double E = 1.9e11, limit = 0.0044, ea_fail = log1p(limit);
+    const struct tlsph_material m =
+        material("{\"density\":8000,\"youngs_modulus\":1.9e11,\"poisson_ratio\":0.3,"
+                 "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":1e11,"
+                 "\"hardening_modulus\":0},"
+                 "\"damage\":{\"type\":\"rankine\",\"stretch\":0.0044}}");
+    struct tlsph_point_state s = {0};
+    struct tlsph_point_result r;
+    double et = 0.0;
+    for (int k = 1; k <= 10; k++)
+        uniaxial_step(&m, 0.1 * k * ea_fail * (1.0 - 1e-9), &et, 1e-9, &s, &r);
+    printf("Rankine: below the threshold D_init = %.12f, D = %g, eps_p = %g\n", s.damage_init,
+           s.damage, s.eps_p);
+    ck_assert_msg(s.damage == 0.0 && s.damage_init < 1.0, "failed below the threshold");
+    ck_assert_msg(fabs(s.damage_init - 1.0) < 1e-8, "D_init %.12f, expected 1 - 1e-9",
+                  s.damage_init);
+    const double stored = 0.5 * E * ea_fail * ea_fail;
+    uniaxial_step(&m, ea_fail * (1.0 + 1e-9), &et, 1e-9, &s, &r);
+    printf("Rankine: above D = %g, released %.6g J/m^3 (E eps^2/2 = %.6g)\n", s.damage,
+           r.damage_work, stored);
+    ck_assert_msg(s.damage == 1.0, "not failed above the threshold (D = %g)", s.damage);
+    ck_assert(s.eps_p == 0.0);
+    ck_assert_msg(fabs(r.damage_work / stored - 1.0) < 0.01, "released %g, stored %g",
+                  r.damage_work, stored);
+    uniaxial_step(&m, 2.0 * ea_fail, &et, 1e-9, &s, &r);
+    ck_assert(r.sigma[0] == 0.0 && r.P[0] == 0.0);
+}
+END_TEST
+
 int main(void)
 {
     Suite *su = suite_create("damage");
@@ -212,6 +250,7 @@ int main(void)
     tcase_add_loop_test(tc, cockcroft_latham_initiates_at_the_critical_work, 0, 3);
     tcase_add_test(tc, work_is_plastic_plus_damage_dissipation);
     tcase_add_test(tc, damage_needs_plastic_flow_to_grow);
+    tcase_add_test(tc, rankine_fails_at_the_threshold_stretch);
     suite_add_tcase(su, tc);
     return tlsph_check_run(su);
 }

@@ -55,6 +55,8 @@ struct tlsph_damage_step {
     double triaxiality; /* sigma_m / sigma_eq of the effective stress at the end of the step, 1 */
     double sigma1;      /* largest principal effective Cauchy stress, Pa (models with
                            needs_sigma1 only; 0 otherwise) */
+    double stretch1;    /* largest principal stretch minus 1, sqrt of C's largest eigenvalue
+                           minus 1 (models with state_based only; 0 otherwise) */
 };
 
 struct tlsph_key_table; /* core/scene/keys.h */
@@ -74,6 +76,11 @@ struct tlsph_damage_model {
      * m->damage.evolution_factor = INFINITY and the caller reads no evolution
      * block (paper 003's accumulated Johnson-Cook damage). */
     int sudden;
+    /* 1 for a criterion of the strain state rather than of plastic flow (Rankine):
+     * it runs every step, plastic or not, its initiation returns the value of
+     * D_init at this state (not an increment; the point keeps the maximum over
+     * its history) and deps_p may be 0. */
+    int state_based;
     unsigned fields;    /* TLSPH_DAMAGE_FIELD_* arrays it needs allocated */
     /* Reads the model's parameters (its "type" and "evolution" keys are handled
      * by the caller) into m->damage.params / m->damage.terms.  m's elastic

@@ -6,7 +6,7 @@
  * ROW(name) stands for the descriptor tlsph_damage_<name>, whose .name is "name". */
 #define DAMAGE_MODELS(ROW)                                                                         \
     ROW(cockcroft_latham) ROW(johnson_cook) ROW(gtn) ROW(gurson) ROW(gtn_aravas) ROW(sm_gurson)   \
-        ROW(m_gurson) ROW(johnson_cook_accumulated)
+        ROW(m_gurson) ROW(johnson_cook_accumulated) ROW(rankine)
 
 #define DECLARE(id) extern const struct tlsph_damage_model tlsph_damage_##id;
 DAMAGE_MODELS(DECLARE)
