@@ -690,7 +690,7 @@ START_TEST(test_registries_find_their_rows)
     ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_eos_names(), eos_name), 2);
     ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_strength_names(), strength_name), 5);
     ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_strength_plastic_names(), strength_name), 4);
-    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_damage_names(), damage_name), 8);
+    ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_damage_names(), damage_name), 9);
     char bcs[256];
     tlsph_bc_names(bcs, sizeof bcs, 0, "", ", ");
     ck_assert_int_eq(each_listed_name_finds_its_row(bcs, bc_name), 5);
