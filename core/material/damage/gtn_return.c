@@ -231,16 +231,22 @@ static void closed_evaluate(const struct tlsph_material *m, const struct tlsph_p
     s->head.done = fabs(s->R[0]) <= TOLERANCE * s->size[0] && fabs(s->R[2]) <= TOLERANCE * s->size[2];
 }
 
-static int closed_direction(const void *state, double *d)
+/* The Newton step of residuals i and j of e in unknowns k and l (Cramer's
+ * rule): d = -[dR_ik dR_il; dR_jk dR_jl]^-1 (R_i, R_j); 0 when singular. */
+static int newton2(const struct eval *e, int i, int j, int k, int l, double d[2])
 {
-    const struct eval *e = state;
-    const double a = e->dR[0][0], b = e->dR[0][2], c = e->dR[2][0], dd = e->dR[2][2];
+    const double a = e->dR[i][k], b = e->dR[i][l], c = e->dR[j][k], dd = e->dR[j][l];
     const double det = a * dd - b * c;
     if (!(fabs(det) > 0.0) || !isfinite(det))
         return 0;
-    d[0] = (-e->R[0] * dd + e->R[2] * b) / det;
-    d[1] = (-e->R[2] * a + e->R[0] * c) / det;
+    d[0] = (-e->R[i] * dd + e->R[j] * b) / det;
+    d[1] = (-e->R[j] * a + e->R[i] * c) / det;
     return isfinite(d[0]) && isfinite(d[1]);
+}
+
+static int closed_direction(const void *state, double *d)
+{
+    return newton2(state, 0, 2, 0, 2, d);
 }
 
 static void closed_admissible(const struct tlsph_material *m, const struct tlsph_porous_input *in,
@@ -315,11 +321,10 @@ static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_p
     for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
         if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1])
             return 1;
-        const double a = e->dR[0][0], b = e->dR[0][1], c = e->dR[1][0], d = e->dR[1][1];
-        const double det = a * d - b * c;
-        if (!(fabs(det) > 0.0) || !isfinite(det))
+        double step[2];
+        if (!newton2(e, 0, 1, 0, 1, step))
             return 0;
-        const double d0 = (-e->R[0] * d + e->R[1] * b) / det, d1 = (-e->R[1] * a + e->R[0] * c) / det;
+        const double d0 = step[0], d1 = step[1];
         const double merit = e->R[0] * e->R[0] + e->R[1] * e->R[1];
         int moved = 0;
         for (double lambda = 1.0; lambda >= 1e-6 && !moved; lambda *= 0.5) {

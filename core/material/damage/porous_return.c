@@ -568,16 +568,13 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
         double c[2];
         struct eval d;
         const int solved = closed_solve(m, in, p_tr, c, &d, &evals);
-        if (solved && (shrinking || beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED))) {
-            ok = closed = 1;
-            u[0] = c[0];
-            u[1] = c[1];
-            e = d;
-        } else if (!ok && !(ok = reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals)) && solved &&
-                   beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED_UNRESOLVED)) {
+        closed = solved && (shrinking || beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED));
+        if (!closed && !ok && !(ok = reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals)))
             /* no solver resolves the porous step, and it would end with fewer
              * voids than 1e-6: closed rather than a stopped run */
-            ok = closed = 1;
+            closed = solved && beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED_UNRESOLVED);
+        if (closed) {
+            ok = 1;
             u[0] = c[0];
             u[1] = c[1];
             e = d;
@@ -594,15 +591,15 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
     out->flow.dv = u[0];
     out->flow.dq = u[1];
     out->flow.dM = e.dM;
-    out->flow.f = closed ? 0.0 : e.f;
+    out->flow.f = e.f; /* exactly 0 after a closing iterate */
     out->df_growth = closed ? -in->f - e.N : e.c0 - in->f; /* closure crushes the nucleated too */
     out->df_nucleated = e.N;
-    out->df_shear = closed ? 0.0 : e.kappa * e.f;
+    out->df_shear = e.kappa * e.f;
     out->flow.T = e.T;
     out->sigma_M = e.sM;
     out->p = e.p;
     out->K_t = e.K_t;
     out->flow.work = e.W;
-    out->phi = closed ? e.se * e.se / (e.sM * e.sM) - 1.0 : e.F[1];
+    out->phi = e.F[1]; /* x^2 - 1 after a closing iterate (f* = 0) */
     return 1;
 }
