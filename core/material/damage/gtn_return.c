@@ -290,6 +290,9 @@ static const struct tlsph_porous_solver closed_solver = {
     .first_guess = closed_guess, .admissible = closed_admissible, .evaluate = closed_evaluate,
     .direction = closed_direction};
 
+static int nested_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double p_tr,
+                         int fixed_f, double u[3], struct eval *e, int *evals, int *off);
+
 /* The closed return: (dq, 0, dM) in u and its state in e when it converges
  * and stands (always, or beyond the cap of the surface with f_closed); 0
  * otherwise. */
@@ -298,13 +301,24 @@ static int closed_return(const struct tlsph_material *m, const struct tlsph_poro
                          struct eval *scratch, int *evals)
 {
     double c[2];
-    if (!tlsph_porous_solve(&closed_solver, m, in, yield, p_tr, K_tr, c, e, scratch, evals) ||
-        !(always || beyond_closed_cap(m->damage.params, e->p, e->sigma_M, f_closed)))
-        return 0;
-    u[0] = c[0];
-    u[1] = 0.0;
-    u[2] = c[1];
-    return 1;
+    if (tlsph_porous_solve(&closed_solver, m, in, yield, p_tr, K_tr, c, e, scratch, evals)) {
+        u[0] = c[0];
+        u[1] = 0.0;
+        u[2] = c[1];
+    } else {
+        /* a root just past Johnson-Cook's rate kink (measured: the copper
+         * Taylor bar, dM = 1.41e-8 against rate_0 dt = 1.25e-8; Newton
+         * stalls at |R1| 1.2 times its floor): the bracket in dM, dq from
+         * yield at f = 0 */
+        int off;
+        closed_guess(m, in, yield, p_tr, K_tr, c);
+        u[0] = c[0];
+        u[1] = 0.0;
+        u[2] = c[1];
+        if (!nested_return(m, in, p_tr, 1, u, e, evals, &off))
+            return 0;
+    }
+    return always || beyond_closed_cap(m->damage.params, e->p, e->sigma_M, f_closed);
 }
 
 /* The yield and normality residuals at fixed dM, solved for (dq, f) by
@@ -319,9 +333,28 @@ static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_p
     evaluate(m, in, scale, u, e);
     ++*evals;
     for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
-        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1])
-            return 1;
+        const int within = fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1];
         double step[2];
+        if (within) {
+            /* polished until the residuals stop falling: the bracket reads
+             * R3 here, and (dq, f) off by R1's tolerance alone move R3 by
+             * ten times its own floor (measured at a rate kink) */
+            struct eval t;
+            double v[3] = {u[0], u[1], u[2]};
+            if (!newton2(e, 0, 1, 0, 1, step))
+                return 1;
+            v[0] += step[0], v[1] += step[1];
+            keep_admissible(m, in, scale, v);
+            v[2] = u[2];
+            evaluate(m, in, scale, v, &t);
+            ++*evals;
+            const double merit = e->R[0] * e->R[0] + e->R[1] * e->R[1];
+            if (!(t.R[0] * t.R[0] + t.R[1] * t.R[1] < 0.25 * merit))
+                return 1;
+            memcpy(u, v, sizeof v);
+            *e = t;
+            continue;
+        }
         if (!newton2(e, 0, 1, 0, 1, step))
             return 0;
         const double d0 = step[0], d1 = step[1];
@@ -359,18 +392,73 @@ static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_p
  * A dM whose flow stress leaves the trial deviator inside the surface even
  * at dq = 0 has no (dq, f): it is too large, an upper end without a value,
  * and the bracket then bisects.  Returns 1 when converged, with u and e. */
-enum { TOO_LARGE = 1, SOLVED = 0, LOST = -1 };
+enum { TOO_LARGE = 1, SOLVED = 0, LOST = -1, TOO_SMALL = -2 };
 
-static int side_of(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
-                   double u[3], struct eval *e, int *evals)
+/* The yield residual at fixed (f, dM), solved for dq in [0, q_tr/(3G)] by
+ * Newton kept inside a bracket: with sigma_M fixed but for the heating (a
+ * weak, smooth coupling), R1 falls as dq grows.  TOO_LARGE where the point
+ * lies inside the surface even at dq = 0 (dM hardens past the trial state),
+ * TOO_SMALL where it lies outside even with the whole deviator gone (the
+ * pressure is beyond the cap at this flow stress: dM must grow). */
+static int yield_at(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                    double u[3], struct eval *e, int *evals)
 {
+    double lo = 0.0, hi = in->q_trial / (3.0 * in->G);
+    double v[3] = {lo, u[1], u[2]};
+    evaluate(m, in, scale, v, e);
+    ++*evals;
+    if (!(e->R[0] > 0.0)) {
+        memcpy(u, v, sizeof v);
+        return fabs(e->R[0]) <= TOLERANCE * e->size[0] ? SOLVED : TOO_LARGE;
+    }
+    v[0] = hi;
+    evaluate(m, in, scale, v, e);
+    ++*evals;
+    if (e->R[0] > 0.0)
+        return TOO_SMALL;
+    v[0] = fmin(fmax(u[0], lo), hi);
+    /* polished past the tolerance until R1 stops falling: the bracket above
+     * reads R3 at this dq, and dq's error of R1's tolerance alone moves R3 by
+     * 1e-12 of its scale (measured), a hundred times R3's own floor */
+    double best = INFINITY;
+    for (int it = 0; it < 100; it++) {
+        evaluate(m, in, scale, v, e);
+        ++*evals;
+        if (fabs(e->R[0]) <= TOLERANCE * e->size[0]) {
+            if (e->R[0] == 0.0 || !(fabs(e->R[0]) < 0.5 * best)) {
+                memcpy(u, v, sizeof v);
+                return SOLVED;
+            }
+            best = fabs(e->R[0]);
+        }
+        if (e->R[0] > 0.0)
+            lo = v[0];
+        else
+            hi = v[0];
+        if (hi - lo <= 4e-16 * hi)
+            break; /* e is the state at v, the bracket's resolution */
+        const double newton = v[0] - e->R[0] / e->dR[0][0];
+        v[0] = newton > lo && newton < hi ? newton : 0.5 * (lo + hi);
+    }
+    memcpy(u, v, sizeof v);
+    return fabs(e->R[0]) <= TOLERANCE * e->size[0] ? SOLVED : LOST;
+}
+
+/* Where the bracket in dM stands at u: SOLVED with the other unknowns
+ * solved for (dq and f by Newton, or dq alone at the f of u when fixed_f),
+ * or which way dM is off when there is no solution. */
+static int side_of(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                   int fixed_f, double u[3], struct eval *e, int *evals)
+{
+    if (fixed_f)
+        return yield_at(m, in, scale, u, e, evals);
     if (at_matrix_strain(m, in, scale, u, e, evals))
         return SOLVED;
     return u[0] == 0.0 && e->R[0] < 0.0 ? TOO_LARGE : LOST;
 }
 
 static int nested_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double p_tr,
-                         double u[3], struct eval *e, int *evals)
+                         int fixed_f, double u[3], struct eval *e, int *evals, int *off)
 {
     const double scale = tlsph_porous_strain_scale(in, p_tr);
     /* From the first yield of a law with an infinite slope at eps_M = 0
@@ -378,59 +466,237 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
      * of the strain scale (measured: dM = 3e-17 for copper, n = 0.31, a
      * trial 5e-5 outside the surface); the bracket starts near the smallest
      * normal double and bisects in the logarithm while its ends are decades
-     * apart. */
-    double lo = 1e-300, hi = fmax(u[2], 1e-12 * scale), rl, rh = NAN;
+     * apart.  At fixed f a dM can also be TOO_SMALL (yield_at): a lower end
+     * without a value.  When the bracket closes on no root, *off says
+     * whether it closed on the lower edge of the solvable dM with R3 > 0
+     * there (TOO_SMALL) or on the upper edge with R3 < 0 (TOO_LARGE). */
+    double lo = 1e-300, hi = fmax(u[2], 1e-12 * scale), rl = NAN, rh = NAN;
     double ul[3] = {u[0], u[1], lo}, uh[3] = {u[0], u[1], hi};
     struct eval el, eh;
-    if (side_of(m, in, scale, ul, &el, evals) != SOLVED || !((rl = el.R[2]) < 0.0))
-        return 0;
-    for (int grow = 0;; grow++) {
-        const int k = side_of(m, in, scale, uh, &eh, evals);
-        if (k == TOO_LARGE)
-            break;
-        if (k == LOST || grow == 60)
+    int lo_kind = side_of(m, in, scale, fixed_f, ul, &el, evals), hi_kind = LOST;
+    *off = LOST;
+    if (lo_kind == SOLVED) {
+        if (!((rl = el.R[2]) < 0.0))
             return 0;
-        if ((rh = eh.R[2]) > 0.0)
+    } else if (lo_kind == TOO_LARGE) {
+        /* inside the surface without deviatoric flow at the smallest dM */
+        *off = TOO_LARGE;
+        return 0;
+    } else if (lo_kind != TOO_SMALL) {
+        return 0;
+    }
+    for (int grow = 0;; grow++) {
+        hi_kind = side_of(m, in, scale, fixed_f, uh, &eh, evals);
+        if (hi_kind == TOO_LARGE)
             break;
-        lo = hi, rl = rh; /* still short: move both ends up */
+        if (hi_kind == LOST || grow == 60)
+            return 0;
+        if (hi_kind == SOLVED && (rh = eh.R[2]) > 0.0)
+            break;
+        /* still short: move both ends up */
+        lo = hi, lo_kind = hi_kind;
+        rl = hi_kind == SOLVED ? rh : NAN;
+        rh = NAN;
         memcpy(ul, uh, sizeof uh);
         hi *= 2.0;
         uh[2] = hi;
     }
-    int side = 0;
+    int side = 0, solved = 0;
     for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
-        double x = isfinite(rh) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
+        double x = isfinite(rh) && isfinite(rl) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
         if (hi > 1e3 * lo)
             x = sqrt(lo) * sqrt(hi);
         else if (!(x > lo && x < hi))
             x = 0.5 * (lo + hi);
         double v[3] = {ul[0], ul[1], x};
         struct eval t;
-        const int k = side_of(m, in, scale, v, &t, evals);
+        const int k = side_of(m, in, scale, fixed_f, v, &t, evals);
         if (k == LOST)
             return 0;
         if (k == SOLVED) {
             memcpy(u, v, sizeof v);
             *e = t;
+            solved = 1;
             if (fabs(t.R[2]) <= TOLERANCE * t.size[2])
                 return 1;
         }
-        if (k == SOLVED && t.R[2] < 0.0) {
-            lo = x, rl = t.R[2];
+        if (k == TOO_SMALL || (k == SOLVED && t.R[2] < 0.0)) {
+            lo = x, lo_kind = k;
+            rl = k == SOLVED ? t.R[2] : NAN;
             memcpy(ul, v, sizeof v);
             if (side < 0)
                 rh *= 0.5;
             side = -1;
         } else {
-            hi = x, rh = k == SOLVED ? t.R[2] : NAN;
+            hi = x, hi_kind = k;
+            rh = k == SOLVED ? t.R[2] : NAN;
             if (side > 0)
                 rl *= 0.5;
             side = 1;
         }
     }
     /* the bracket closed to the resolution of dM: the last solved iterate is
-     * the root to round-off */
-    return hi - lo <= 4e-16 * hi && e->head.ok && fabs(e->R[2]) <= 1e-8 * e->size[2];
+     * the root to round-off, or the bracket sits on an edge of the
+     * solvable dM */
+    if (solved && hi - lo <= 4e-16 * hi && e->head.ok && fabs(e->R[2]) <= 1e-8 * e->size[2])
+        return 1;
+    if (lo_kind == TOO_SMALL && hi_kind == SOLVED)
+        *off = TOO_SMALL;
+    else if (lo_kind == SOLVED && hi_kind == TOO_LARGE)
+        *off = TOO_LARGE;
+    return 0;
+}
+
+/* The yield and equal-work residuals at fixed f, solved for (dq, dM) by
+ * Newton with backtracking on R1^2 + R3^2 from u.  Returns 1 when both are at
+ * their round-off floors. */
+static int newton_at_void_fraction(const struct tlsph_material *m, const struct tlsph_porous_input *in,
+                                   double scale, double u[3], struct eval *e, int *evals)
+{
+    const double f = u[1];
+    keep_admissible(m, in, scale, u);
+    u[1] = f;
+    evaluate(m, in, scale, u, e);
+    ++*evals;
+    for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
+        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[2]) <= TOLERANCE * e->size[2])
+            return 1;
+        double step[2];
+        if (!newton2(e, 0, 2, 0, 2, step))
+            return 0;
+        const double merit = e->R[0] * e->R[0] + e->R[2] * e->R[2];
+        int moved = 0;
+        for (double lambda = 1.0; lambda >= 1e-6 && !moved; lambda *= 0.5) {
+            double v[3] = {u[0] + lambda * step[0], f, u[2] + lambda * step[1]};
+            struct eval t;
+            keep_admissible(m, in, scale, v);
+            v[1] = f;
+            evaluate(m, in, scale, v, &t);
+            ++*evals;
+            if (isfinite(t.R[0]) && isfinite(t.R[2]) &&
+                t.R[0] * t.R[0] + t.R[2] * t.R[2] <= (1.0 - 1e-4 * lambda) * merit) {
+                memcpy(u, v, sizeof v);
+                *e = t;
+                moved = 1;
+            }
+        }
+        if (!moved)
+            return 0;
+    }
+    return 0;
+}
+
+/* (dq, dM) at the fixed f of u: Newton, and where a kink in the flow stress
+ * defeats it, the bracket in dM with dq from yield (nested_return).  SOLVED
+ * with u and e; without a solution, which way f is off: TOO_LARGE (too many
+ * voids: inside the surface without deviatoric flow at the smallest matrix
+ * strain), TOO_SMALL (too few: beyond the surface's cap at the smallest
+ * matrix strain, and no larger one found a solution), or LOST. */
+static int at_void_fraction(const struct tlsph_material *m, const struct tlsph_porous_input *in, double p_tr,
+                            double scale, double u[3], struct eval *e, int *evals)
+{
+    double v[3];
+    memcpy(v, u, sizeof v);
+    if (newton_at_void_fraction(m, in, scale, u, e, evals))
+        return SOLVED;
+    int off;
+    if (nested_return(m, in, p_tr, 1, v, e, evals, &off)) {
+        memcpy(u, v, sizeof v);
+        return SOLVED;
+    }
+    return off;
+}
+
+/* Tension the small voids cannot relieve.  With x near 1 normality reads
+ * 2 (f - f_n) = 3 q1 q2 f sinh(3/2 q2 y) dq, which has a small positive f only
+ * while 3 q1 q2 sinh(3/2 q2 y) dq < 2 (measured: the copper Taylor bar with
+ * Mie-Grueneisen behind the shock, f_n 1.05e-7, p = -1.15 GPa, y = 4.3,
+ * dq = 1.5e-3: the factor is 2.07).  The step's root then lies where the
+ * voids have grown enough for their dilatation to relieve the tension, far
+ * from the start; Newton slides towards the spurious root with f < 0 instead.
+ * Here the normality residual R2 is followed along f, with (dq, dM) solved at
+ * each f (yield and equal work, at_void_fraction): at f = f_n the step has no
+ * plastic dilatation (R2 = -dq Phi_y < 0 in tension), and where the grown
+ * voids have taken the elastic volume back to J_e = 1 the pressure no longer
+ * pulls (Phi_y <= 0, R2 = 2 x dv > 0).  Between them Illinois regula falsi
+ * finds a root, in the logarithm of f while the ends are decades apart.
+ * Where that relief lies beyond the voids of failure, no end state short of
+ * failure exists (0 returned; the caller's last resort follows).  Returns 1
+ * when converged, with u and e. */
+static int grown_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double p_tr,
+                        double u[3], struct eval *e, int *evals)
+{
+    const double *g = m->damage.params;
+    const double scale = tlsph_porous_strain_scale(in, p_tr);
+    const double dv_relief = log(in->J) - in->lnJp; /* J exp(-(lnJp + dv)) = 1 */
+    if (!(p_tr < 0.0) || !(dv_relief > 0.0))
+        return 0;
+    /* f_fail: where D = q1 f* reaches the failure residual (gtn.h) */
+    const double D_fail = 1.0 - TLSPH_GTN_FAILURE_RESIDUAL;
+    const double f_fail = D_fail / g[GTN_Q1] <= g[GTN_FC]
+                              ? D_fail / g[GTN_Q1]
+                              : g[GTN_FC] + (D_fail / g[GTN_Q1] - g[GTN_FC]) * (g[GTN_FF] - g[GTN_FC]) /
+                                                (1.0 / g[GTN_Q1] - g[GTN_FC]);
+    double lo = in->f, hi = fmin(1.0 - (1.0 - in->f) * exp(-dv_relief), f_fail);
+    if (!(hi > lo))
+        return 0;
+    /* At the relief end R2 > 0 whatever (dq, dM) are (Phi_y <= 0 there), so
+     * it needs no solve; its value is unknown until a solved iterate
+     * replaces it, and the bracket bisects meanwhile. */
+    double ul[3] = {u[0], lo, u[2]}, uh[3] = {u[0], hi, u[2]};
+    struct eval el;
+    if (at_void_fraction(m, in, p_tr, scale, ul, &el, evals) != SOLVED)
+        return 0;
+    double rl = el.R[1], rh = NAN;
+    if (!(rl < 0.0))
+        return 0;
+    int side = 0, solved = 0;
+    for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
+        double x = isfinite(rh) && isfinite(rl) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
+        if (hi > 1e3 * lo && lo > 0.0)
+            x = sqrt(lo) * sqrt(hi);
+        else if (!(x > lo && x < hi))
+            x = 0.5 * (lo + hi);
+        /* each solve starts from the nearer end's solution */
+        double v[3];
+        memcpy(v, (x - lo < hi - x && isfinite(rl)) || !isfinite(rh) ? ul : uh, sizeof v);
+        v[1] = x;
+        struct eval t;
+        const int k = at_void_fraction(m, in, p_tr, scale, v, &t, evals);
+        if (k == LOST)
+            return 0;
+        if (k != SOLVED) {
+            /* TOO_SMALL: at this f the tension lies beyond the surface's cap,
+             * too few voids to hold it; TOO_LARGE: the work of this much
+             * dilatation hardens the matrix past the trial state */
+            if (k == TOO_SMALL)
+                lo = x, rl = NAN;
+            else
+                hi = x, rh = NAN;
+            side = 0;
+            continue;
+        }
+        memcpy(u, v, sizeof v);
+        *e = t;
+        solved = 1;
+        if (fabs(t.R[1]) <= TOLERANCE * t.size[1])
+            return 1;
+        if (t.R[1] < 0.0) {
+            lo = x, rl = t.R[1];
+            memcpy(ul, v, sizeof v);
+            if (side < 0)
+                rh *= 0.5;
+            side = -1;
+        } else {
+            hi = x, rh = t.R[1];
+            memcpy(uh, v, sizeof v);
+            if (side > 0)
+                rl *= 0.5;
+            side = 1;
+        }
+    }
+    /* the bracket closed to the resolution of f */
+    return solved && hi - lo <= 4e-16 * hi && fabs(e->R[1]) <= 1e-8 * e->size[1];
 }
 
 int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
@@ -475,7 +741,12 @@ int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_i
     }
     if (!ok) {
         first_guess(m, in, yield, p_tr, K_tr, u);
-        ok = nested_return(m, in, p_tr, u, &e, &evals);
+        int off;
+        ok = nested_return(m, in, p_tr, 0, u, &e, &evals, &off);
+    }
+    if (!ok) {
+        first_guess(m, in, yield, p_tr, K_tr, u);
+        ok = grown_return(m, in, p_tr, u, &e, &evals);
     }
     if (!ok)
         /* no solver resolves the porous step, and it would end with fewer
