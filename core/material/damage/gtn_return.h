@@ -79,6 +79,16 @@
  * normality solved for (dq, f) at each dM, where sigma_M is fixed and the
  * system smooth (nested_return in gtn_return.c).
  *
+ * Tension the small voids cannot relieve.  With x near 1 normality reads
+ * 2 (f - f_n) = 3 q1 q2 f sinh(3/2 q2 y) dq, which has a small positive f only
+ * while 3 q1 q2 sinh(3/2 q2 y) dq < 2 (behind the shock of a copper Taylor bar
+ * with Mie-Grueneisen it is 2.07).  The root then lies where the voids have
+ * grown enough, and Newton slides towards the spurious one with f < 0.  The
+ * last fallback follows the normality residual along f, from f_n (R2 < 0 in
+ * tension) to the f whose dilatation relieves the elastic volume to J_e = 1
+ * (R2 > 0), by a bracket, with yield and equal work solved for (dq, dM) at
+ * each f (grown_return in gtn_return.c).
+ *
  * Units: SI. */
 #ifndef TLSPH_DAMAGE_GTN_RETURN_H
 #define TLSPH_DAMAGE_GTN_RETURN_H
