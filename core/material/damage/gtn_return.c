@@ -5,6 +5,7 @@
 
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
+#include "material/damage/bracket.h"
 #include "material/damage/gtn.h"
 
 #define TOLERANCE 1e-12
@@ -321,63 +322,50 @@ static int closed_return(const struct tlsph_material *m, const struct tlsph_poro
     return always || beyond_closed_cap(m->damage.params, e->p, e->sigma_M, f_closed);
 }
 
-/* The yield and normality residuals at fixed dM, solved for (dq, f) by
- * Newton with backtracking on R1^2 + R2^2 from u: with sigma_M fixed, this
- * system is smooth.  Returns 1 when both are at their round-off floors. */
-static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
-                            double u[3], struct eval *e, int *evals)
+/* Yield R1 and residual j (1: normality, 2: equal work) solved for the
+ * unknowns dq and u[j] (f, dM) by Newton with backtracking on R1^2 + Rj^2
+ * from u, the third unknown pinned (dM or f): with sigma_M fixed (j = 1) or
+ * f fixed (j = 2) this system is smooth.  Once both residuals are at their
+ * round-off floors, Newton goes on while the residuals keep falling by half:
+ * the brackets around this solve read the pinned unknown's residual, and
+ * (dq, f) off by R1's tolerance alone move R3 by ten to a hundred times its
+ * own floor (measured at a rate kink), noise instead of a sign.  Returns 1
+ * when converged. */
+static int pinned_newton(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                         int j, double u[3], struct eval *e, int *evals)
 {
-    const double dM = u[2]; /* the caller's, below keep_admissible's floor too */
+    const int pin = 3 - j;
+    const double pinned = u[pin]; /* the caller's, below keep_admissible's floor too */
     keep_admissible(m, in, scale, u);
-    u[2] = dM;
+    u[pin] = pinned;
     evaluate(m, in, scale, u, e);
     ++*evals;
     for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
-        const int within = fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[1]) <= TOLERANCE * e->size[1];
+        const int within = fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[j]) <= TOLERANCE * e->size[j];
         double step[2];
-        if (within) {
-            /* polished until the residuals stop falling: the bracket reads
-             * R3 here, and (dq, f) off by R1's tolerance alone move R3 by
-             * ten times its own floor (measured at a rate kink) */
-            struct eval t;
-            double v[3] = {u[0], u[1], u[2]};
-            if (!newton2(e, 0, 1, 0, 1, step))
-                return 1;
-            v[0] += step[0], v[1] += step[1];
-            keep_admissible(m, in, scale, v);
-            v[2] = u[2];
-            evaluate(m, in, scale, v, &t);
-            ++*evals;
-            const double merit = e->R[0] * e->R[0] + e->R[1] * e->R[1];
-            if (!(t.R[0] * t.R[0] + t.R[1] * t.R[1] < 0.25 * merit))
-                return 1;
-            memcpy(u, v, sizeof v);
-            *e = t;
-            continue;
-        }
-        if (!newton2(e, 0, 1, 0, 1, step))
-            return 0;
-        const double d0 = step[0], d1 = step[1];
-        const double merit = e->R[0] * e->R[0] + e->R[1] * e->R[1];
+        if (!newton2(e, 0, j, 0, j, step))
+            return within;
+        const double merit = e->R[0] * e->R[0] + e->R[j] * e->R[j];
         int moved = 0;
-        for (double lambda = 1.0; lambda >= 1e-6 && !moved; lambda *= 0.5) {
-            double v[3] = {u[0] + lambda * d0, u[1] + lambda * d1, u[2]};
+        for (double lambda = 1.0; lambda >= (within ? 1.0 : 1e-6) && !moved; lambda *= 0.5) {
+            double v[3] = {u[0] + lambda * step[0], u[1], u[2]};
+            v[j] += lambda * step[1];
             struct eval t;
             keep_admissible(m, in, scale, v);
-            v[2] = u[2];
+            v[pin] = pinned;
             evaluate(m, in, scale, v, &t);
             ++*evals;
-            if (isfinite(t.R[0]) && isfinite(t.R[1]) &&
-                t.R[0] * t.R[0] + t.R[1] * t.R[1] <= (1.0 - 1e-4 * lambda) * merit) {
+            const double tm = t.R[0] * t.R[0] + t.R[j] * t.R[j];
+            if (isfinite(tm) && tm <= (within ? 0.25 : 1.0 - 1e-4 * lambda) * merit) {
                 memcpy(u, v, sizeof v);
                 *e = t;
                 moved = 1;
             }
         }
         if (!moved)
-            return 0;
+            return within;
     }
-    return 0;
+    return fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[j]) <= TOLERANCE * e->size[j];
 }
 
 /* The fallback for a flow stress with a kink: Johnson-Cook has no rate effect
@@ -388,7 +376,7 @@ static int at_matrix_strain(const struct tlsph_material *m, const struct tlsph_p
  * 40 m/s, the root at rate 1.009/s against rate_0 = 1/s; 248 evaluations, no
  * convergence).  Here the equal-work residual R3 is solved in dM alone by
  * Illinois regula falsi, a bracketing method that a kink does not disturb,
- * with (dq, f) solved at each dM (at_matrix_strain, smooth at fixed sigma_M).
+ * with (dq, f) solved at each dM (pinned_newton, smooth at fixed sigma_M).
  * A dM whose flow stress leaves the trial deviator inside the surface even
  * at dq = 0 has no (dq, f): it is too large, an upper end without a value,
  * and the bracket then bisects.  Returns 1 when converged, with u and e. */
@@ -452,7 +440,7 @@ static int side_of(const struct tlsph_material *m, const struct tlsph_porous_inp
 {
     if (fixed_f)
         return yield_at(m, in, scale, u, e, evals);
-    if (at_matrix_strain(m, in, scale, u, e, evals))
+    if (pinned_newton(m, in, scale, 1, u, e, evals))
         return SOLVED;
     return u[0] == 0.0 && e->R[0] < 0.0 ? TOO_LARGE : LOST;
 }
@@ -501,13 +489,10 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
         hi *= 2.0;
         uh[2] = hi;
     }
-    int side = 0, solved = 0;
-    for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
-        double x = isfinite(rh) && isfinite(rl) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
-        if (hi > 1e3 * lo)
-            x = sqrt(lo) * sqrt(hi);
-        else if (!(x > lo && x < hi))
-            x = 0.5 * (lo + hi);
+    struct tlsph_bracket br = {.lo = lo, .hi = hi, .r_lo = rl, .r_hi = rh};
+    int solved = 0;
+    for (int it = 0; it < 200 && !tlsph_bracket_closed(&br); it++) {
+        const double x = tlsph_bracket_next(&br, 1);
         double v[3] = {ul[0], ul[1], x};
         struct eval t;
         const int k = side_of(m, in, scale, fixed_f, v, &t, evals);
@@ -521,68 +506,23 @@ static int nested_return(const struct tlsph_material *m, const struct tlsph_poro
                 return 1;
         }
         if (k == TOO_SMALL || (k == SOLVED && t.R[2] < 0.0)) {
-            lo = x, lo_kind = k;
-            rl = k == SOLVED ? t.R[2] : NAN;
+            tlsph_bracket_lower(&br, x, k == SOLVED ? t.R[2] : NAN);
+            lo_kind = k;
             memcpy(ul, v, sizeof v);
-            if (side < 0)
-                rh *= 0.5;
-            side = -1;
         } else {
-            hi = x, hi_kind = k;
-            rh = k == SOLVED ? t.R[2] : NAN;
-            if (side > 0)
-                rl *= 0.5;
-            side = 1;
+            tlsph_bracket_upper(&br, x, k == SOLVED ? t.R[2] : NAN);
+            hi_kind = k;
         }
     }
     /* the bracket closed to the resolution of dM: the last solved iterate is
      * the root to round-off, or the bracket sits on an edge of the
      * solvable dM */
-    if (solved && hi - lo <= 4e-16 * hi && e->head.ok && fabs(e->R[2]) <= 1e-8 * e->size[2])
+    if (solved && tlsph_bracket_closed(&br) && e->head.ok && fabs(e->R[2]) <= 1e-8 * e->size[2])
         return 1;
     if (lo_kind == TOO_SMALL && hi_kind == SOLVED)
         *off = TOO_SMALL;
     else if (lo_kind == SOLVED && hi_kind == TOO_LARGE)
         *off = TOO_LARGE;
-    return 0;
-}
-
-/* The yield and equal-work residuals at fixed f, solved for (dq, dM) by
- * Newton with backtracking on R1^2 + R3^2 from u.  Returns 1 when both are at
- * their round-off floors. */
-static int newton_at_void_fraction(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                                   double scale, double u[3], struct eval *e, int *evals)
-{
-    const double f = u[1];
-    keep_admissible(m, in, scale, u);
-    u[1] = f;
-    evaluate(m, in, scale, u, e);
-    ++*evals;
-    for (int it = 0; it < TLSPH_GTN_MAX_ITERATIONS; it++) {
-        if (fabs(e->R[0]) <= TOLERANCE * e->size[0] && fabs(e->R[2]) <= TOLERANCE * e->size[2])
-            return 1;
-        double step[2];
-        if (!newton2(e, 0, 2, 0, 2, step))
-            return 0;
-        const double merit = e->R[0] * e->R[0] + e->R[2] * e->R[2];
-        int moved = 0;
-        for (double lambda = 1.0; lambda >= 1e-6 && !moved; lambda *= 0.5) {
-            double v[3] = {u[0] + lambda * step[0], f, u[2] + lambda * step[1]};
-            struct eval t;
-            keep_admissible(m, in, scale, v);
-            v[1] = f;
-            evaluate(m, in, scale, v, &t);
-            ++*evals;
-            if (isfinite(t.R[0]) && isfinite(t.R[2]) &&
-                t.R[0] * t.R[0] + t.R[2] * t.R[2] <= (1.0 - 1e-4 * lambda) * merit) {
-                memcpy(u, v, sizeof v);
-                *e = t;
-                moved = 1;
-            }
-        }
-        if (!moved)
-            return 0;
-    }
     return 0;
 }
 
@@ -597,7 +537,7 @@ static int at_void_fraction(const struct tlsph_material *m, const struct tlsph_p
 {
     double v[3];
     memcpy(v, u, sizeof v);
-    if (newton_at_void_fraction(m, in, scale, u, e, evals))
+    if (pinned_newton(m, in, scale, 2, u, e, evals))
         return SOLVED;
     int off;
     if (nested_return(m, in, p_tr, 1, v, e, evals, &off)) {
@@ -650,30 +590,23 @@ static int grown_return(const struct tlsph_material *m, const struct tlsph_porou
     double rl = el.R[1], rh = NAN;
     if (!(rl < 0.0))
         return 0;
-    int side = 0, solved = 0;
-    for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
-        double x = isfinite(rh) && isfinite(rl) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
-        if (hi > 1e3 * lo && lo > 0.0)
-            x = sqrt(lo) * sqrt(hi);
-        else if (!(x > lo && x < hi))
-            x = 0.5 * (lo + hi);
-        /* each solve starts from the nearer end's solution */
+    struct tlsph_bracket br = {.lo = lo, .hi = hi, .r_lo = rl, .r_hi = rh};
+    int solved = 0;
+    for (int it = 0; it < 200 && !tlsph_bracket_closed(&br); it++) {
+        const double x = tlsph_bracket_next(&br, 1);
+        /* each solve starts from the nearer solved end's solution */
         double v[3];
-        memcpy(v, (x - lo < hi - x && isfinite(rl)) || !isfinite(rh) ? ul : uh, sizeof v);
+        memcpy(v, (x - br.lo < br.hi - x && isfinite(br.r_lo)) || !isfinite(br.r_hi) ? ul : uh, sizeof v);
         v[1] = x;
         struct eval t;
         const int k = at_void_fraction(m, in, p_tr, scale, v, &t, evals);
         if (k == LOST)
             return 0;
         if (k != SOLVED) {
-            /* TOO_SMALL: at this f the tension lies beyond the surface's cap,
-             * too few voids to hold it; TOO_LARGE: the work of this much
-             * dilatation hardens the matrix past the trial state */
-            if (k == TOO_SMALL)
-                lo = x, rl = NAN;
-            else
-                hi = x, rh = NAN;
-            side = 0;
+            /* TOO_SMALL: the tension lies beyond the surface's cap, too few
+             * voids to hold it; TOO_LARGE: the work of this much dilatation
+             * hardens the matrix past the trial state, too many */
+            tlsph_bracket_side(&br, x, k == TOO_SMALL ? -1 : 1);
             continue;
         }
         memcpy(u, v, sizeof v);
@@ -682,21 +615,15 @@ static int grown_return(const struct tlsph_material *m, const struct tlsph_porou
         if (fabs(t.R[1]) <= TOLERANCE * t.size[1])
             return 1;
         if (t.R[1] < 0.0) {
-            lo = x, rl = t.R[1];
+            tlsph_bracket_lower(&br, x, t.R[1]);
             memcpy(ul, v, sizeof v);
-            if (side < 0)
-                rh *= 0.5;
-            side = -1;
         } else {
-            hi = x, rh = t.R[1];
+            tlsph_bracket_upper(&br, x, t.R[1]);
             memcpy(uh, v, sizeof v);
-            if (side > 0)
-                rl *= 0.5;
-            side = 1;
         }
     }
     /* the bracket closed to the resolution of f */
-    return solved && hi - lo <= 4e-16 * hi && fabs(e->R[1]) <= 1e-8 * e->size[1];
+    return solved && tlsph_bracket_closed(&br) && fabs(e->R[1]) <= 1e-8 * e->size[1];
 }
 
 int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,

@@ -3,6 +3,7 @@
 #include <float.h>
 #include <math.h>
 
+#include "material/damage/bracket.h"
 #include "material/damage/porous.h"
 #include "material/eos/eos.h"
 #include "material/strength/strength.h"
@@ -626,21 +627,16 @@ static int grown_solve(const struct tlsph_material *m, const struct tlsph_porous
         return 0;
     }
     bl = b;
-    int side = 0, solved = 0;
-    for (int it = 0; it < 200 && hi - lo > 4e-16 * hi; it++) {
-        double x = isfinite(rl) && isfinite(rh) ? lo - rl * (hi - lo) / (rh - rl) : 0.5 * (lo + hi);
-        if (!(x > lo && x < hi))
-            x = 0.5 * (lo + hi);
-        b = x - lo < hi - x || !isfinite(bh) ? bl : bh;
+    struct tlsph_bracket br = {.lo = lo, .hi = hi, .r_lo = rl, .r_hi = rh};
+    int solved = 0;
+    for (int it = 0; it < 200 && !tlsph_bracket_closed(&br); it++) {
+        const double x = tlsph_bracket_next(&br, 0);
+        b = x - br.lo < br.hi - x || !isfinite(bh) ? bl : bh;
         const int k = yield_in_b(m, in, scale, x, &b, &t, evals);
         if (k == LOST)
             return 0;
         if (k != SOLVED) {
-            if (k == TOO_FEW)
-                lo = x, rl = NAN;
-            else
-                hi = x, rh = NAN;
-            side = 0;
+            tlsph_bracket_side(&br, x, k == TOO_FEW ? -1 : 1);
             continue;
         }
         u[0] = x, u[1] = b, *e = t;
@@ -648,19 +644,15 @@ static int grown_solve(const struct tlsph_material *m, const struct tlsph_porous
         if (t.head.done)
             return 1;
         if (t.F[0] < 0.0) {
-            lo = x, rl = t.F[0], bl = b;
-            if (side < 0)
-                rh *= 0.5;
-            side = -1;
+            tlsph_bracket_lower(&br, x, t.F[0]);
+            bl = b;
         } else {
-            hi = x, rh = t.F[0], bh = b;
-            if (side > 0)
-                rl *= 0.5;
-            side = 1;
+            tlsph_bracket_upper(&br, x, t.F[0]);
+            bh = b;
         }
     }
     /* the bracket closed to the resolution of a */
-    return solved && hi - lo <= 4e-16 * hi && fabs(e->F[0]) <= 1e-8 * e->size[0] + e->floor[0];
+    return solved && tlsph_bracket_closed(&br) && fabs(e->F[0]) <= 1e-8 * e->size[0] + e->floor[0];
 }
 
 int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
