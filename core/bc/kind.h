@@ -95,6 +95,13 @@ struct tlsph_bc_kind {
     int (*check)(const struct tlsph_model *m, const struct tlsph_bc *bc, const char *pointer,
                  struct tlsph_errors *err);
 
+    /* Setup, after select (pairs and correction matrices built): the kind's
+     * per-particle data of group g (a pressure: each particle's reference area
+     * vector), allocated with tlsph_alloc into g's fields and freed with the
+     * model.  Reports at pointer and returns -1, or 0.  NULL: none. */
+    int (*prepare)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                   const char *pointer, struct tlsph_errors *err);
+
     /* The step's phases, in the order they come (core/run/integrate.c); NULL =
      * the kind does not act then.  Within a phase the conditions act in scene
      * order.  g is the condition's group; g->impulse (N s) collects the momentum
@@ -126,7 +133,10 @@ struct tlsph_bc_kind {
 
     /* During force evaluation, after the pair forces: adds the condition's
      * forces (N) to m->p.f and their power at the current (half-step)
-     * velocities to *power (W); the caller books dt * power as external work. */
+     * velocities to *power (W); the caller books dt * power as external work.
+     * (A kind whose force varies in time books instead, in its constrain hook,
+     * the work of each half kick at the mean of the velocities before and
+     * after it: a pressure.) */
     void (*force)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
                   double *power);
 
