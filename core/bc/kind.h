@@ -1,6 +1,6 @@
 /* Boundary-condition kinds as a table of descriptors.
  *
- * A kind (fixed, velocity, wall, symmetry, body_force) lives whole in one file,
+ * A kind (fixed, velocity, wall, symmetry, body_force, pressure) lives whole in one file,
  * core/bc/<name>.c, which defines its descriptor; core/bc/registry.c lists the
  * descriptors, one row each.  The scene names a row by its "type"; the scene
  * parser (core/scene/parse_bcs.c), the step (core/bc/boundary.c), the module

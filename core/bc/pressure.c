@@ -49,7 +49,7 @@
 /* Where the numbers live in struct tlsph_bc (scene.h): the normal in
  * bc->normal, these two in bc->params. */
 #define HAS_NORMAL 6 /* 1: bc->normal is the outward normal of every particle */
-#define AREA 7       /* the surface's reference area (m^2, m in 2-D); 0: sum of V_i / s */
+#define AREA       7 /* the surface's reference area (m^2, m in 2-D); 0: sum of V_i / s */
 
 static const char *const tvar[] = {"t"};
 
@@ -61,8 +61,9 @@ static int parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc, 
     tlsph_pointer_join(p, sizeof p, P, "pressure");
     const json_t *v = json_object_get(obj, "pressure");
     if (!v) {
-        tlsph_errors_add(err, p, "required field 'pressure' (Pa: a number or an expression of t) "
-                                 "is missing");
+        tlsph_errors_add(err, p,
+                         "required field 'pressure' (Pa: a number or an expression of t) "
+                         "is missing");
         bad = 1;
     } else if (!json_is_number(v) && !json_is_string(v)) {
         tlsph_errors_add(err, p,
@@ -229,8 +230,7 @@ static int prepare(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_grou
     return 0;
 }
 
-static void force(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
-                  double *power)
+static void force(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g, double *power)
 {
     (void)power; /* booked kick by kick in constrain */
     const double p = tlsph_expr_eval(&bc->expr[0], &m->t);
@@ -252,8 +252,8 @@ static void force(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group
 
 /* After a half kick of m->dt / 2 (0 at setup) with the forces m->p.f: the
  * pressure's work over it, at the mean velocity of the kick. */
-static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
-                      double t, double t_mid, double *work)
+static void constrain(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g, double t,
+                      double t_mid, double *work)
 {
     (void)bc, (void)t, (void)t_mid;
     const double half = 0.5 * m->dt;

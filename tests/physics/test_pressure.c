@@ -33,8 +33,8 @@
 #include "support/check_main.h"
 #include "support/scene_builder.h"
 
-#define STEEL                                                                                  \
-    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"                    \
+#define STEEL                                                               \
+    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11," \
     "\"poisson_ratio\":0.3}}"
 
 /* A box of 10 x 6 x 4 mm (10 x 6 mm in 2-D), spacing 1 mm, a pressure of 1 MPa
@@ -72,8 +72,10 @@ static void check_force(const double got[3], const double want[3], double tol, c
     fprintf(stderr, "%s: force (%.15g, %.15g, %.15g) N, expected (%.15g, %.15g, %.15g)\n", what,
             got[0], got[1], got[2], want[0], want[1], want[2]);
     for (int c = 0; c < 3; c++)
-        ck_assert_msg(fabs(got[c] - want[c]) <= tol * scale, "%s: component %d %.15g N, expected "
-                      "%.15g N", what, c, got[c], want[c]);
+        ck_assert_msg(fabs(got[c] - want[c]) <= tol * scale,
+                      "%s: component %d %.15g N, expected "
+                      "%.15g N",
+                      what, c, got[c], want[c]);
 }
 
 START_TEST(flat_face_force_is_pressure_times_area)
@@ -108,8 +110,8 @@ static void deform(struct tlsph_model *m, const double A[9])
     tlsph_kinematics(m, 0.0);
     for (size_t i = 0; i < m->p.n; i++)
         for (int k = 0; k < 9; k++)
-            ck_assert_msg(fabs(m->p.F[9 * i + k] - A[k]) < 1e-12, "F[%d] of particle %zu: %.17g",
-                          k, i, m->p.F[9 * i + k]);
+            ck_assert_msg(fabs(m->p.F[9 * i + k] - A[k]) < 1e-12, "F[%d] of particle %zu: %.17g", k,
+                          i, m->p.F[9 * i + k]);
 }
 
 START_TEST(force_follows_nanson)
@@ -158,11 +160,9 @@ START_TEST(energy_balance_closes_under_pressure)
     fprintf(stderr,
             "pressurised block, %ld steps: pressure work %.6g J, kinetic %.6g J, internal "
             "%.6g J, worst balance %.3g of the largest term\n",
-            m->step, m->energy.external_work, m->energy.kinetic, m->energy.internal,
-            worst / scale);
+            m->step, m->energy.external_work, m->energy.kinetic, m->energy.internal, worst / scale);
     ck_assert(m->energy.external_work > 0.0);
-    ck_assert_msg(worst < 1e-3 * scale, "energy balance %.3g of the largest term",
-                  worst / scale);
+    ck_assert_msg(worst < 1e-3 * scale, "energy balance %.3g of the largest term", worst / scale);
     tlsph_model_free(m);
 }
 END_TEST
@@ -288,9 +288,10 @@ START_TEST(pressed_plate_is_in_uniaxial_stress)
         sig[1] += m->dt * syy / (double)count;
         time += m->dt;
     }
-    fprintf(stderr, "plate h = %g mm, %zu particles, %ld steps: sigma_xx %.6g MPa, sigma_yy %.4g "
-            "MPa in the middle\n", h * 1e3, m->p.n, m->step, sig[0] / time * 1e-6,
-            sig[1] / time * 1e-6);
+    fprintf(stderr,
+            "plate h = %g mm, %zu particles, %ld steps: sigma_xx %.6g MPa, sigma_yy %.4g "
+            "MPa in the middle\n",
+            h * 1e3, m->p.n, m->step, sig[0] / time * 1e-6, sig[1] / time * 1e-6);
     ck_assert_msg(fabs(sig[0] / time + p0) < 0.01 * p0, "sigma_xx %.6g Pa, expected %.6g Pa",
                   sig[0] / time, -p0);
     tlsph_model_free(m);
@@ -298,5 +299,5 @@ START_TEST(pressed_plate_is_in_uniaxial_stress)
 END_TEST
 
 TLSPH_CHECK_MAIN("pressure", 300, flat_face_force_is_pressure_times_area, force_follows_nanson,
-                 energy_balance_closes_under_pressure,
-                 internal_pressure_on_thick_ring_follows_lame, pressed_plate_is_in_uniaxial_stress)
+                 energy_balance_closes_under_pressure, internal_pressure_on_thick_ring_follows_lame,
+                 pressed_plate_is_in_uniaxial_stress)
