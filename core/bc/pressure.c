@@ -27,13 +27,16 @@
  *  - direction: the scene's "normal" (a flat face), or each particle's own
  *    outward normal: the normal of the plane (line in 2-D) fitted through the
  *    selected particles within its support (the smallest principal direction
- *    of their scatter about their centroid), oriented outwards by the colour
- *    gradient c_i = sum_j V_j |W'| (X_i - X_j) / |X_i - X_j|, which points
- *    away from the body's particles.  The fit is exact on a flat face up to its
- *    edges and corners (where the colour gradient alone tilts by 45 degrees and
- *    the load would lose 1 - cos 45 of its share) and symmetric on conforming
- *    shells (a radial normal); where the fit is undetermined (a lone particle,
- *    a single row in 3-D) the colour gradient's direction is used.
+ *    of their scatter about their centroid), refined by a quadric through the
+ *    particle (quadric_normal: a one-sided patch of a curved surface tilts the
+ *    plane), oriented outwards by the colour gradient
+ *    c_i = sum_j V_j |W'| (X_i - X_j) / |X_i - X_j|, which points away from
+ *    the body's particles.  The fit is exact on a flat face up to its edges
+ *    and corners (where the colour gradient alone tilts by 45 degrees and the
+ *    load would lose 1 - cos 45 of its share), radial on conforming shells,
+ *    and within 1e-4 rad of radial at the ends of a loaded cylinder wall (the
+ *    plane alone: 0.05 rad); where the fit is undetermined (a lone particle, a
+ *    single row in 3-D) the colour gradient's direction is used.
  * A selected particle whose colour gradient vanishes (its neighbours surround
  * it: not on the surface) is refused, and so is a "normal" that points into
  * the body (against the colour gradient summed over the group). */
@@ -108,9 +111,76 @@ static void colour_gradient(const struct tlsph_model *m, size_t i, double c[3])
     }
 }
 
-/* Unit normal of the plane (2-D: line) through the group's particles in i's
- * support (mark[j]: j is in the group), i included, into n; 0, or -1 when
- * undetermined. */
+/* Refines n, the normal of the plane fitted at particle i (tangents t1, t2;
+ * t2 unused in 2-D), to the surface's normal at i: the least-squares quadric
+ * through i,  w = c1 u + c2 v + c3 u^2 + c4 u v + c5 v^2  (2-D: c1 u + c3 u^2),
+ * over the group's particles in i's support, (u, v, w) their offsets from i
+ * along t1, t2, n in spacings; then n ~ n - c1 t1 - c2 t2.  A plane through a
+ * one-sided patch of a curved surface (near the edge of the loaded region)
+ * tilts with the sag it cannot follow; the quadric follows it.  On a flat
+ * face w = 0 and n stays.  Leaves n when the system is singular. */
+static void quadric_normal(const struct tlsph_model *m, size_t i, const unsigned char *mark,
+                           const double t1[3], const double t2[3], double n[3])
+{
+    const int nb = m->dim == 2 ? 2 : 5;
+    double M[5][6] = {{0}}; /* normal equations, the right-hand side in column 5 */
+    const double *X = m->p.X;
+    const double s = m->scene.bodies[m->p.body[i]].spacing;
+    for (int64_t k = m->pairs.start[i]; k < m->pairs.start[i + 1]; k++) {
+        const size_t j = (size_t)m->pairs.j[k];
+        if (!mark[j])
+            continue;
+        double d[3];
+        for (int c = 0; c < 3; c++)
+            d[c] = (X[3 * j + c] - X[3 * i + c]) / s;
+        const double u = d[0] * t1[0] + d[1] * t1[1] + d[2] * t1[2];
+        const double v = nb == 5 ? d[0] * t2[0] + d[1] * t2[1] + d[2] * t2[2] : 0.0;
+        const double w = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
+        const double phi2[2] = {u, u * u}, phi5[5] = {u, v, u * u, u * v, v * v};
+        const double *phi = nb == 5 ? phi5 : phi2;
+        for (int a = 0; a < nb; a++) {
+            for (int b = 0; b < nb; b++)
+                M[a][b] += phi[a] * phi[b];
+            M[a][5] += phi[a] * w;
+        }
+    }
+    double big = 0.0;
+    for (int a = 0; a < nb; a++)
+        big = fmax(big, M[a][a]);
+    for (int col = 0; col < nb; col++) { /* Gauss-Jordan, partial pivoting */
+        int piv = col;
+        for (int r = col + 1; r < nb; r++)
+            if (fabs(M[r][col]) > fabs(M[piv][col]))
+                piv = r;
+        if (!(fabs(M[piv][col]) > 1e-9 * big))
+            return;
+        for (int c = 0; c < 6; c++) {
+            const double tmp = M[col][c];
+            M[col][c] = M[piv][c];
+            M[piv][c] = tmp;
+        }
+        for (int r = 0; r < nb; r++) {
+            if (r == col)
+                continue;
+            const double f = M[r][col] / M[col][col];
+            for (int c = col; c < 6; c++)
+                M[r][c] -= f * M[col][c];
+        }
+    }
+    const double c1 = M[0][5] / M[0][0], c2 = nb == 5 ? M[1][5] / M[1][1] : 0.0;
+    double len = 0.0;
+    for (int c = 0; c < 3; c++) {
+        n[c] -= c1 * t1[c] + c2 * (nb == 5 ? t2[c] : 0.0);
+        len += n[c] * n[c];
+    }
+    len = sqrt(len);
+    for (int c = 0; c < 3; c++)
+        n[c] /= len;
+}
+
+/* Unit normal of the surface through the group's particles in i's support
+ * (mark[j]: j is in the group), i included, into n: the normal of their
+ * plane (2-D: line), refined by quadric_normal; 0, or -1 when undetermined. */
 static int fitted_normal(const struct tlsph_model *m, size_t i, const unsigned char *mark,
                          double n[3])
 {
@@ -147,15 +217,20 @@ static int fitted_normal(const struct tlsph_model *m, size_t i, const unsigned c
     for (int k = 1; k < 3; k++)
         if (lam[k] < lam[lo])
             lo = k;
-    double mid = -1.0; /* the next smallest: the surface's spread along it */
-    for (int k = 0; k < 3; k++)
-        if (k != lo && (mid < 0.0 || lam[k] < mid))
-            mid = lam[k];
+    /* the next smallest, mi: the surface's spread along it (in 2-D the
+     * in-plane tangent); hi the third */
+    const int mi = lam[(lo + 1) % 3] <= lam[(lo + 2) % 3] ? (lo + 1) % 3 : (lo + 2) % 3;
+    const int hi = 3 - lo - mi;
     /* a plane needs spread in d - 1 directions, well above the sag across it */
-    if (!(mid > 0.0) || lam[lo] > 0.25 * mid)
+    if (!(lam[mi] > 0.0) || lam[lo] > 0.25 * lam[mi])
         return -1;
-    for (int d = 0; d < 3; d++)
+    double t1[3], t2[3];
+    for (int d = 0; d < 3; d++) {
         n[d] = Q[3 * d + lo];
+        t1[d] = Q[3 * d + mi];
+        t2[d] = Q[3 * d + hi];
+    }
+    quadric_normal(m, i, mark, t1, t2, n);
     return 0;
 }
 

@@ -298,6 +298,68 @@ START_TEST(pressed_plate_is_in_uniaxial_stress)
 }
 END_TEST
 
+/* examples/pressurised-cylinder.json at setup (its conforming shells, 6176
+ * particles): each condition's force on the undeformed vessel.
+ *  - The inner wall (2040 particles): the net force is 0 by symmetry (1e-12 of
+ *    p 2 pi a L); the normals are radial, so the radial force is p times its
+ *    "area" 2 pi a L and there is no axial force on either half.  Near the wall's
+ *    ends the patch a particle's normal is fitted to is one-sided, and a plane
+ *    through it tilts with the sag of the curved wall: the plane alone leaked
+ *    514 kN axially into each half (1.2 % of a cap's load) and lost 9e-5 of the
+ *    radial force; the quadric fit (pressure.c) leaves 2.6 kN (6e-5 of a cap's
+ *    load) and 4.5e-9.  Tolerances 3e-4 of a cap's load and 1e-7, five and
+ *    twenty times the measured.
+ *  - The caps' inner faces: flat layers, normals exactly -+z; each pushes
+ *    p pi a^2 outwards along the axis, no radial force (1e-12). */
+START_TEST(capped_cylinder_loads_are_radial_and_axial)
+{
+    struct tlsph_model *m = build_example("pressurised-cylinder", 0.0);
+    const double p0 = 3.2e8, a = 0.206, L = 0.6, zc = 0.34;
+    for (size_t k = 0; k < 2; k++) {
+        struct tlsph_bc *bc = &m->scene.bcs[k];
+        ck_assert_str_eq(bc->kind->name, "pressure");
+        memset(m->p.f, 0, 3 * m->p.n * sizeof(double));
+        double power = 0.0, net[3] = {0, 0, 0}, radial = 0.0, up = 0.0, down = 0.0;
+        bc->kind->force(m, bc, &m->groups[k], &power);
+        for (size_t i = 0; i < m->p.n; i++) {
+            const double *f = m->p.f + 3 * i, *X = m->p.X + 3 * i;
+            const double r = hypot(X[0], X[1]);
+            for (int c = 0; c < 3; c++)
+                net[c] += f[c];
+            if (r > 0.0)
+                radial += (f[0] * X[0] + f[1] * X[1]) / r;
+            if (X[2] < zc)
+                down += f[2];
+            else
+                up += f[2];
+        }
+        const double scale = p0 * (k == 0 ? 2 * M_PI * a * L : 2 * M_PI * a * a);
+        fprintf(stderr,
+                "%s, %zu particles: net (%.3g, %.3g, %.3g) N, radial %.15g N, axial up %.15g "
+                "N, down %.15g N\n",
+                bc->name, m->groups[k].n, net[0], net[1], net[2], radial, up, down);
+        for (int c = 0; c < 3; c++)
+            ck_assert_msg(fabs(net[c]) < 1e-12 * scale, "%s: net force %d = %.3g N", bc->name, c,
+                          net[c]);
+        if (k == 0) {
+            const double cap = p0 * M_PI * a * a;
+            ck_assert_msg(fabs(radial / scale - 1) < 1e-7, "wall radial %.15g N, expected %.15g",
+                          radial, scale);
+            ck_assert_msg(fabs(up) < 3e-4 * cap && fabs(down) < 3e-4 * cap,
+                          "wall axial up %.6g N, down %.6g N: more than 3e-4 of %.6g N", up, down,
+                          cap);
+        } else {
+            ck_assert_msg(fabs(up / (0.5 * scale) - 1) < 1e-12 &&
+                              fabs(down / (0.5 * scale) + 1) < 1e-12 &&
+                              fabs(radial) < 1e-12 * scale,
+                          "caps: up %.15g N, down %.15g N, radial %.3g N, expected +-%.15g", up,
+                          down, radial, 0.5 * scale);
+        }
+    }
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("pressure", 300, flat_face_force_is_pressure_times_area, force_follows_nanson,
                  energy_balance_closes_under_pressure, internal_pressure_on_thick_ring_follows_lame,
-                 pressed_plate_is_in_uniaxial_stress)
+                 pressed_plate_is_in_uniaxial_stress, capped_cylinder_loads_are_radial_and_axial)
