@@ -11,7 +11,8 @@
  *
  * Machinery shared by the kinds: selectors (core/bc/selector.h), planes
  * (core/bc/plane.h), velocity constraints and their impulses
- * (core/bc/impulse.h), particle groups and reactions (core/bc/groups.c).
+ * (core/bc/impulse.h), particle groups and reactions (core/bc/groups.c),
+ * surface area vectors (core/bc/surface.h).
  *
  * Energy account.  The work of the conditions on the bodies is booked in
  * m->energy.external_work (J), so that kinetic + internal + dissipated -
