@@ -26,6 +26,8 @@ int tlsph_boundary_select(struct tlsph_model *m, struct tlsph_errors *err)
         g->n = bc->kind->select(m, bc, g->index);
         for (size_t a = 0; a < g->n; a++)
             g->mass += m->p.mass[g->index[a]];
+        if (bc->kind->prepare && bc->kind->prepare(m, bc, g, ptr, err) != 0)
+            return -1;
     }
     return 0;
 }

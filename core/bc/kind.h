@@ -1,6 +1,6 @@
 /* Boundary-condition kinds as a table of descriptors.
  *
- * A kind (fixed, velocity, wall, symmetry, body_force) lives whole in one file,
+ * A kind (fixed, velocity, wall, symmetry, body_force, pressure) lives whole in one file,
  * core/bc/<name>.c, which defines its descriptor; core/bc/registry.c lists the
  * descriptors, one row each.  The scene names a row by its "type"; the scene
  * parser (core/scene/parse_bcs.c), the step (core/bc/boundary.c), the module
@@ -11,7 +11,8 @@
  *
  * Machinery shared by the kinds: selectors (core/bc/selector.h), planes
  * (core/bc/plane.h), velocity constraints and their impulses
- * (core/bc/impulse.h), particle groups and reactions (core/bc/groups.c).
+ * (core/bc/impulse.h), particle groups and reactions (core/bc/groups.c),
+ * surface area vectors (core/bc/surface.h).
  *
  * Energy account.  The work of the conditions on the bodies is booked in
  * m->energy.external_work (J), so that kinetic + internal + dissipated -
@@ -95,6 +96,13 @@ struct tlsph_bc_kind {
     int (*check)(const struct tlsph_model *m, const struct tlsph_bc *bc, const char *pointer,
                  struct tlsph_errors *err);
 
+    /* Setup, after select (pairs and correction matrices built): the kind's
+     * per-particle data of group g (a pressure: each particle's reference area
+     * vector), allocated with tlsph_alloc into g's fields and freed with the
+     * model.  Reports at pointer and returns -1, or 0.  NULL: none. */
+    int (*prepare)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
+                   const char *pointer, struct tlsph_errors *err);
+
     /* The step's phases, in the order they come (core/run/integrate.c); NULL =
      * the kind does not act then.  Within a phase the conditions act in scene
      * order.  g is the condition's group; g->impulse (N s) collects the momentum
@@ -126,7 +134,10 @@ struct tlsph_bc_kind {
 
     /* During force evaluation, after the pair forces: adds the condition's
      * forces (N) to m->p.f and their power at the current (half-step)
-     * velocities to *power (W); the caller books dt * power as external work. */
+     * velocities to *power (W); the caller books dt * power as external work.
+     * (A kind whose force varies in time books instead, in its constrain hook,
+     * the work of each half kick at the mean of the velocities before and
+     * after it: a pressure.) */
     void (*force)(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group *g,
                   double *power);
 

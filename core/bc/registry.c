@@ -5,7 +5,7 @@
 
 /* Each defined in core/bc/<name>.c. */
 extern const struct tlsph_bc_kind tlsph_bc_fixed, tlsph_bc_velocity, tlsph_bc_wall,
-    tlsph_bc_symmetry, tlsph_bc_body_force;
+    tlsph_bc_symmetry, tlsph_bc_body_force, tlsph_bc_pressure;
 
 /* One row per kind; the order is that of the names in error messages. */
 static const struct tlsph_bc_kind *const kinds[] = {
@@ -14,6 +14,7 @@ static const struct tlsph_bc_kind *const kinds[] = {
     &tlsph_bc_wall,
     &tlsph_bc_symmetry,
     &tlsph_bc_body_force,
+    &tlsph_bc_pressure,
 };
 
 #define NKINDS (sizeof kinds / sizeof *kinds)

@@ -71,8 +71,11 @@ void tlsph_model_free(struct tlsph_model *m)
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
-        for (size_t k = 0; k < m->scene.nbcs; k++)
+        for (size_t k = 0; k < m->scene.nbcs; k++) {
             free(m->groups[k].index);
+            free(m->groups[k].area);
+            free(m->groups[k].load);
+        }
     free(m->groups);
     tlsph_contact_free(m);
     tlsph_rigid_free(m);

@@ -95,6 +95,10 @@ struct tlsph_group {
     double torque[3];
     double displacement[3];   /* mean displacement of the group, m */
     double mass;              /* kg */
+    /* Kinds that load a surface (pressure): each particle's reference area vector
+     * N dA (outward), m^2 (m per metre of thickness in 2-D) [3n]; NULL otherwise. */
+    double *area;
+    double *load;             /* and the force of the last evaluation, N [3n] */
 };
 
 struct tlsph_energy {

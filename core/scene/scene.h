@@ -161,6 +161,8 @@ struct tlsph_bc {
             double normal[3];       /* wall, symmetry: unit normal (into the solid for walls) */
         };
         double acceleration[3];     /* body_force, m/s^2 */
+        /* pressure: normal (outward, unit), params[6] 1 when it is given,
+         * params[7] the surface's area (m^2, 0 = none); p(t) in expr[0] */
         double params[12];
     };
 };

@@ -693,7 +693,7 @@ START_TEST(test_registries_find_their_rows)
     ck_assert_int_eq(each_listed_name_finds_its_row(tlsph_damage_names(), damage_name), 9);
     char bcs[256];
     tlsph_bc_names(bcs, sizeof bcs, 0, "", ", ");
-    ck_assert_int_eq(each_listed_name_finds_its_row(bcs, bc_name), 5);
+    ck_assert_int_eq(each_listed_name_finds_its_row(bcs, bc_name), 6);
     ck_assert_ptr_null(tlsph_eos_find("linearx"));
     ck_assert_ptr_null(tlsph_strength_find("johnson"));
     ck_assert_ptr_null(tlsph_damage_find(""));

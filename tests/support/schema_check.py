@@ -28,6 +28,7 @@ SEMANTIC_ONLY = {
     "expression_syntax",
     "expression_unknown_variable",
     "bad_selector_condition",
+    "pressure_bad_expression",
     # cross references and uniqueness
     "unknown_material",
     "selector_unknown_body",
@@ -43,6 +44,8 @@ SEMANTIC_ONLY = {
     "contradiction_fixed_velocity",
     "contradiction_two_velocities",
     "contradiction_wall_cuts_body",
+    "pressure_normal_into_body",   # a pressure's normal against its body's surface
+    "pressure_interior_particle",  # a pressure on a particle its neighbours surround
     "precision_far_from_origin",
     "precision_far_origin",
     # depend on "dimension"
