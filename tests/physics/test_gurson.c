@@ -72,6 +72,12 @@
  *     sinh(3/2 q2 sigma_m/sigma_M) b within 1e-8 of its terms (sigma_M =
  *     (A + B eps^n)(1 + C ln rate) recomputed from the result), the voids
  *     grown (f > f_n) and the tension partly relieved (p above the trial's).
+ * 12. First yield under Johnson-Cook's infinite slope at eps_M = 0 (n = 0.31)
+ *     and its rate kink (porous_return.c, pinned_return): a gtn_aravas point
+ *     of the same bar at f0 = 0.0025, x_tr 0.995, Phi_tr 0.0035, slight
+ *     compression; every other solver of the family fails there.  It
+ *     converges, with |Phi| <= 1e-8 and normality as in 11 and equal work
+ *     (1 - f) sigma_M dM = sigma_e b + sigma_m a within 1e-8 of its terms.
  *  7. Paper 000's gtn and this update solve the same backward-Euler system
  *     when q3 = q1^2 (growth exact, nucleation integrated exactly, shear term
  *     implicit with omega of the trial deviator): along the same loading path
@@ -608,6 +614,37 @@ START_TEST(spall_tension_grows_voids)
 }
 END_TEST
 
+START_TEST(first_yield_at_an_infinite_slope)
+{
+    const struct tlsph_material m = material(
+        "{\"density\":8960,\"youngs_modulus\":124e9,\"poisson_ratio\":0.34,"
+        "\"strength\":{\"type\":\"johnson_cook\",\"yield_stress\":90e6,\"hardening_coefficient\":292e6,"
+        "\"hardening_exponent\":0.31,\"rate_coefficient\":0.025,\"reference_strain_rate\":1.0},"
+        "\"damage\":{\"type\":\"gtn_aravas\"}}");
+    const double *g = m.damage.params;
+    const struct tlsph_porous_input in = {
+        .q_trial = 89527561.633614361, .J = 0.99980682659213094, .e = 3.4469007701519421,
+        .G = 46268656716.417908, .f = 0.0025, .dt = 2.4376861972596217e-08, .yield = 90e6};
+    struct tlsph_porous_result out;
+    ck_assert(tlsph_porous_return(&m, &in, &out));
+    const double rate = out.flow.dM / in.dt;
+    const double sM = (90e6 + 292e6 * pow(out.flow.dM, 0.31)) * (rate > 1.0 ? 1.0 + 0.025 * log(rate) : 1.0);
+    const double se = (in.q_trial - 3.0 * in.G * out.flow.dq) / in.J, sm = -out.p;
+    const double fs = fstar(g, out.flow.f), x = se / sM, y = 1.5 * g[POR_Q2] * sm / sM;
+    const double phi = x * x + 2.0 * g[POR_Q1] * fs * cosh(y) - 1.0 - g[POR_Q3] * fs * fs;
+    const double nv = 2.0 * x * out.flow.dv, nq = 3.0 * g[POR_Q1] * g[POR_Q2] * fs * sinh(y) * out.flow.dq;
+    const double work = se * out.flow.dq + sm * out.flow.dv, lhs = (1.0 - out.flow.f) * sM * out.flow.dM;
+    printf("first yield: dM %.3g (rate %.3g/s), f %.6g, %d evaluations, |Phi| %.1e, normality %.1e of %.1e, "
+           "work %.3g vs %.3g\n",
+           out.flow.dM, rate, out.flow.f, out.flow.iterations, fabs(phi), nv - nq, fabs(nv) + fabs(nq), lhs, work);
+    ck_assert(out.flow.converged);
+    ck_assert_msg(fabs(phi) <= 1e-8, "Phi = %g", phi);
+    ck_assert_msg(fabs(nv - nq) <= 1e-8 * (fabs(nv) + fabs(nq)), "normality %g", nv - nq);
+    ck_assert_msg(fabs(lhs - work) <= 1e-8 * (fabs(se * out.flow.dq) + fabs(sm * out.flow.dv)), "work %g vs %g",
+                  lhs, work);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  one_step_returns_satisfy_the_yield_condition,
                  void_growth_follows_the_closed_form_rate,
@@ -615,4 +652,5 @@ TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  m_gurson_switches_at_t1_and_t2, newton_jacobian_is_the_derivative_of_the_residuals,
                  paper_000_gtn_and_this_update_agree,
                  returns_under_high_pressure_with_voids_closing, a_collapsing_point_fractures,
-                 crushed_voids_close, spall_tension_grows_voids)
+                 crushed_voids_close, spall_tension_grows_voids,
+                 first_yield_at_an_infinite_slope)

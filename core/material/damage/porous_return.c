@@ -2,6 +2,7 @@
 
 #include <float.h>
 #include <math.h>
+#include <string.h>
 
 #include "material/damage/bracket.h"
 #include "material/damage/porous.h"
@@ -25,6 +26,7 @@ struct eval {
     double G0, dG0[2];     /* F1 - lambda F2 with the f* dependence taken out, for Newton */
     double size[2];        /* size of the terms of each residual */
     double floor[2];       /* what the resolution of the unknowns moves it by */
+    double r_work, r_size; /* with the matrix strain pinned: the work residual and its terms */
 };
 
 /* Void fraction nucleated while the matrix strain goes from e0 to e1: the
@@ -100,7 +102,7 @@ static int matrix_state(const struct tlsph_material *m, const struct tlsph_porou
 
 /* The iterate (a, b): returns 0 when it has no admissible internal state. */
 static int iterate(const struct tlsph_material *m, const struct tlsph_porous_input *in,
-                   double scale, double a, double b, int closing, struct eval *e)
+                   double scale, double a, double b, int closing, double pinned_dM, struct eval *e)
 {
     const double *g = m->damage.params;
     const double q1 = g[POR_Q1], q2 = g[POR_Q2], q3 = g[POR_Q3], J = in->J;
@@ -138,7 +140,22 @@ static int iterate(const struct tlsph_material *m, const struct tlsph_porous_inp
     struct matrix_slopes sl = {0};
     double dM_a = 0.0, dM_b = 0.0, f_k[2];
     const double sM_T = in->heating > 0.0 ? 1.0 : 0.0; /* switch for the heating chain */
-    if (e->W > 0.0) {
+    if (isfinite(pinned_dM)) {
+        /* the matrix strain given (pinned_return): sigma_M fixed but for the
+         * heating, and the work equation left as a residual */
+        const double one_k = 1.0 - e->kappa;
+        struct tlsph_flow fl;
+        m->strength->flow(m, in->eps_M + pinned_dM, in->dt > 0.0 ? pinned_dM / in->dt : 0.0, e->T, &fl);
+        e->dM = pinned_dM;
+        e->N = nucleated(g, in->eps_M, in->eps_M + pinned_dM);
+        e->f = (e->c0 + e->N) / one_k;
+        e->sM = fl.stress;
+        sl.sM_T = fl.d_temperature;
+        f_k[0] = (c0_a + e->f * kappa_a) / one_k;
+        f_k[1] = e->f * kappa_b / one_k;
+        e->r_work = ((1.0 - e->f) * e->sM * pinned_dM - e->W / J) / scale;
+        e->r_size = ((1.0 - e->f) * e->sM * pinned_dM + fabs(e->W) / J) / scale;
+    } else if (e->W > 0.0) {
         if (!matrix_state(m, in, e->W / J, e, &sl))
             return 0;
         const double one_k = 1.0 - e->kappa;
@@ -221,7 +238,7 @@ static void evaluate(const struct tlsph_material *m, const struct tlsph_porous_i
                      double scale, const double *u, void *state)
 {
     struct eval *e = state;
-    e->head.ok = iterate(m, in, scale, u[0], u[1], 0, e);
+    e->head.ok = iterate(m, in, scale, u[0], u[1], 0, NAN, e);
     e->head.done = e->head.ok && fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
                    fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
 }
@@ -230,7 +247,7 @@ int tlsph_porous_residual(const struct tlsph_material *m, const struct tlsph_por
                           double scale, double a, double b, double F[2], double dF[2][2])
 {
     struct eval e;
-    if (!iterate(m, in, scale, a, b, 0, &e))
+    if (!iterate(m, in, scale, a, b, 0, NAN, &e))
         return 0;
     for (int i = 0; i < 2; i++) {
         F[i] = e.F[i];
@@ -471,7 +488,7 @@ static double closed_at(const struct tlsph_material *m, const struct tlsph_porou
         u[0] = log1p(-in->f) - log1p(N);
         u[1] = b;
         ++*evals;
-        if (!iterate(m, in, scale, u[0], b, 1, e))
+        if (!iterate(m, in, scale, u[0], b, 1, NAN, e))
             return NAN;
         const int settled = fabs(e->N - N) <= 1e-15 * (in->f + e->N);
         N = e->N;
@@ -655,6 +672,111 @@ static int grown_solve(const struct tlsph_material *m, const struct tlsph_porous
     return solved && tlsph_bracket_closed(&br) && fabs(e->F[0]) <= 1e-8 * e->size[0] + e->floor[0];
 }
 
+/* The state at (a, b) with the matrix strain increment pinned at dM. */
+static void evaluate_pinned(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                            double dM, const double u[2], struct eval *e)
+{
+    e->head.ok = iterate(m, in, scale, u[0], u[1], 0, dM, e);
+    e->head.done = e->head.ok && fabs(e->F[0]) <= TOLERANCE * e->size[0] + e->floor[0] &&
+                   fabs(e->F[1]) <= TOLERANCE * e->size[1] + e->floor[1];
+}
+
+/* Normality and yield at a pinned dM, solved for (a, b) by Newton on
+ * (G0, F2) with backtracking, polished while the merit keeps falling by a
+ * quarter once converged (the bracket around it reads the work residual).
+ * SOLVED; TOO_MANY where the iterate ends at b = 0 inside the surface (this dM
+ * hardens the matrix past the trial state); LOST. */
+static int pinned_newton(const struct tlsph_material *m, const struct tlsph_porous_input *in, double scale,
+                         double dM, double u[2], struct eval *e, int *evals)
+{
+    keep_admissible(m, in, scale, u);
+    evaluate_pinned(m, in, scale, dM, u, e);
+    ++*evals;
+    if (!e->head.ok)
+        return LOST;
+    for (int it = 0; it < TLSPH_POROUS_MAX_ITERATIONS; it++) {
+        const int within = e->head.done;
+        double d[2];
+        int moved = 0;
+        if (direction(e, d)) {
+            for (double lambda = 1.0; lambda >= (within ? 1.0 : 1e-6) && !moved; lambda *= 0.5) {
+                double v[2] = {u[0] + lambda * d[0], u[1] + lambda * d[1]};
+                struct eval t;
+                keep_admissible(m, in, scale, v);
+                evaluate_pinned(m, in, scale, dM, v, &t);
+                ++*evals;
+                if (t.head.ok && isfinite(t.head.merit) &&
+                    t.head.merit <= (within ? 0.25 : 1.0 - 1e-4 * lambda) * e->head.merit) {
+                    u[0] = v[0], u[1] = v[1];
+                    *e = t;
+                    moved = 1;
+                }
+            }
+        }
+        if (!moved)
+            return within ? SOLVED : u[1] == 0.0 && e->F[1] < 0.0 ? TOO_MANY : LOST;
+    }
+    return e->head.done ? SOLVED : LOST;
+}
+
+/* First yield under a flow stress with an infinite slope at eps_M = 0 and a
+ * rate kink (Johnson-Cook, n < 1): a point of gtn_aravas (f0 = 0.0025) on a
+ * copper bar, x_tr 0.995, Phi_tr 0.0035, whose root has a matrix strain of
+ * a few rate_0 dt; the family's Newton, reduced and bracketed solves all
+ * fail there.  As gtn does (nested_return in gtn_return.c), the work
+ * equation is solved in dM alone by a bracket from dM = 1e-300, with
+ * normality and yield solved for (a, b) at each pinned dM, where sigma_M is
+ * fixed and the system smooth.  Returns 1 when converged (u, e). */
+static int pinned_return(const struct tlsph_material *m, const struct tlsph_porous_input *in, double yield,
+                         double p_tr, double K_tr, double u[2], struct eval *e, int *evals)
+{
+    const double scale = tlsph_porous_strain_scale(in, p_tr);
+    first_guess(m, in, yield, p_tr, K_tr, u);
+    double ul[2] = {u[0], u[1]}, uh[2] = {u[0], u[1]};
+    struct eval t;
+    struct tlsph_bracket br = {.lo = 1e-300, .hi = fmax(1e-12 * scale, 1e-300), .r_lo = NAN, .r_hi = NAN};
+    if (pinned_newton(m, in, scale, br.lo, ul, &t, evals) != SOLVED || !((br.r_lo = t.r_work) < 0.0))
+        return 0;
+    for (int grow = 0;; grow++) {
+        memcpy(uh, ul, sizeof uh);
+        const int k = pinned_newton(m, in, scale, br.hi, uh, &t, evals);
+        if (k == TOO_MANY)
+            break;
+        if (k == LOST || grow == 80)
+            return 0;
+        if (t.r_work > 0.0) {
+            br.r_hi = t.r_work;
+            break;
+        }
+        br.lo = br.hi, br.r_lo = t.r_work;
+        memcpy(ul, uh, sizeof ul);
+        br.hi *= 4.0;
+    }
+    int solved = 0;
+    for (int it = 0; it < 300 && !tlsph_bracket_closed(&br); it++) {
+        const double x = tlsph_bracket_next(&br, 1);
+        double v[2] = {ul[0], ul[1]};
+        const int k = pinned_newton(m, in, scale, x, v, &t, evals);
+        if (k == LOST)
+            return 0;
+        if (k == TOO_MANY) {
+            tlsph_bracket_side(&br, x, 1);
+            continue;
+        }
+        u[0] = v[0], u[1] = v[1], *e = t;
+        solved = 1;
+        if (fabs(t.r_work) <= TOLERANCE * t.r_size)
+            return 1;
+        if (t.r_work < 0.0) {
+            tlsph_bracket_lower(&br, x, t.r_work);
+            memcpy(ul, v, sizeof ul);
+        } else {
+            tlsph_bracket_upper(&br, x, t.r_work);
+        }
+    }
+    return solved && tlsph_bracket_closed(&br) && fabs(e->r_work) <= 1e-8 * e->r_size;
+}
+
 int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porous_input *in,
                         struct tlsph_porous_result *out)
 {
@@ -687,11 +809,17 @@ int tlsph_porous_return(const struct tlsph_material *m, const struct tlsph_porou
         struct eval d;
         const int solved = closed_solve(m, in, p_tr, c, &d, &evals);
         closed = solved && (shrinking || beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED));
-        if (!closed && !ok && !(ok = reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals)) &&
-            !(ok = grown_solve(m, in, p_tr, u, &e, &evals)))
-            /* no solver resolves the porous step, and it would end with fewer
-             * voids than 1e-6: closed rather than a stopped run */
-            closed = solved && beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED_UNRESOLVED);
+        if (!closed && !ok) {
+            ok = reduced_solve(m, in, yield, p_tr, K_tr, u, &e, &evals) || grown_solve(m, in, p_tr, u, &e, &evals) ||
+                 pinned_return(m, in, yield, p_tr, K_tr, u, &e, &evals);
+            if (ok)
+                /* the fallbacks' solutions obey the same closure rule */
+                closed = solved && e.f < TLSPH_VOIDS_CLOSED && u[0] < 0.0;
+            else
+                /* no solver resolves the porous step, and it would end with
+                 * fewer voids than 1e-6: closed rather than a stopped run */
+                closed = solved && beyond_closed_cap(g, d.p, d.sM, TLSPH_VOIDS_CLOSED_UNRESOLVED);
+        }
         if (closed) {
             ok = 1;
             u[0] = c[0];
