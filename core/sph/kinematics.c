@@ -85,19 +85,21 @@ static void (*const passes[TLSPH_APPROX_COUNT])(struct tlsph_model *, double) = 
     [TLSPH_APPROX_VIRTUAL_LINKS] = gather_virtual_links,
 };
 
-/* Orphaned worksharing loops (kinematics.h): no parallel region of their own
+/* The calling thread's share (kinematics.h): no parallel region of their own
  * and no barrier at the end. */
 static void for_intact(struct tlsph_model *m, size_t lo, size_t hi, double dt)
 {
-#pragma omp for schedule(static) nowait
-    for (size_t i = lo; i < hi; i++)
+    size_t a, b;
+    tlsph_static_share(lo, hi, &a, &b);
+    for (size_t i = a; i < b; i++)
         gather_particle(m, i, dt, TLSPH_APPROX_INTACT);
 }
 
 static void for_virtual_links(struct tlsph_model *m, size_t lo, size_t hi, double dt)
 {
-#pragma omp for schedule(static) nowait
-    for (size_t i = lo; i < hi; i++)
+    size_t a, b;
+    tlsph_static_share(lo, hi, &a, &b);
+    for (size_t i = a; i < b; i++)
         gather_particle(m, i, dt, TLSPH_APPROX_VIRTUAL_LINKS);
 }
 
