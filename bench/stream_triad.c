@@ -69,16 +69,16 @@ static double triad_rate(double *a, double *b, double *c, size_t n)
 
 #define LANES 32
 /* LANES chains x = x a + b, m passes; x local, so the chains stay in registers */
-#define CHAINS(out, a, b, m)                                                                      \
-    do {                                                                                          \
-        double x[LANES];                                                                          \
-        for (int l = 0; l < LANES; l++)                                                           \
-            x[l] = out[l];                                                                        \
-        for (long k = 0; k < m; k++)                                                              \
-            for (int l = 0; l < LANES; l++)                                                       \
-                x[l] = x[l] * a + b;                                                              \
-        for (int l = 0; l < LANES; l++)                                                           \
-            out[l] = x[l];                                                                        \
+#define CHAINS(out, a, b, m)                \
+    do {                                    \
+        double x[LANES];                    \
+        for (int l = 0; l < LANES; l++)     \
+            x[l] = out[l];                  \
+        for (long k = 0; k < m; k++)        \
+            for (int l = 0; l < LANES; l++) \
+                x[l] = x[l] * a + b;        \
+        for (int l = 0; l < LANES; l++)     \
+            out[l] = x[l];                  \
     } while (0)
 
 static __attribute__((noinline)) void fma_chains(double *restrict out, double a, double b, long m)

@@ -53,9 +53,11 @@ END_TEST
 START_TEST(eigen_batch)
 {
     enum { N = 11 };
+    /* clang-format off: one matrix a group */
     double M[9 * N] = {1, 0, 0, 0, 1, 0, 0, 0, 1,  4, 1, -2, 1, 2, 0.5, -2, 0.5, 3,
                        2, 0, 0, 0, 2, 0, 0, 0, 5,  1, 1e-9, 0, 1e-9, 1, 1e-9, 0, 1e-9, 1,
                        3, 0, 1, 0, 2, 0, 1, 0, 1};
+    /* clang-format on */
     srand(11);
     for (int t = 5; t < N; t++)
         for (int r = 0; r < 3; r++)
