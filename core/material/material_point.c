@@ -176,6 +176,16 @@ void tlsph_point_assemble(const struct tlsph_point_kinematics *k, const double t
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r)
 {
+    double C[9], lam[3], Q[9];
+    mat3_mul_at(F, F, C);
+    sym3_eigen(C, lam, Q);
+    tlsph_point_update_eigen(mat, F, lam, Q, e, dt, s, r);
+}
+
+void tlsph_point_update_eigen(const struct tlsph_material *mat, const double F[9],
+                              const double lam[3], const double Q[9], double e, double dt,
+                              struct tlsph_point_state *s, struct tlsph_point_result *r)
+{
     const int damaging = s && mat->damage.model;
     r->plastic_work = 0.0;
     r->damage_work = 0.0;
@@ -187,9 +197,6 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
         tlsph_point_no_stress(r, 1.0, 1.0, 0.0);
         return;
     }
-    double C[9], lam[3], Q[9];
-    mat3_mul_at(F, F, C);
-    sym3_eigen(C, lam, Q);
     double lns[3], smin = INFINITY;
     for (int a = 0; a < 3; a++) {
         const double st = sqrt(lam[a]);
@@ -202,9 +209,9 @@ void tlsph_point_update(const struct tlsph_material *mat, const double F[9], dou
     if (damaging && mat->damage.model->point_update) {
         /* a porous model: its own yield surface and damage */
         struct tlsph_point_kinematics k = {.F = F, .J = J, .min_stretch = smin};
-        memcpy(k.lam, lam, sizeof lam);
+        memcpy(k.lam, lam, sizeof k.lam);
         memcpy(k.lns, lns, sizeof lns);
-        memcpy(k.Q, Q, sizeof Q);
+        memcpy(k.Q, Q, sizeof k.Q);
         mat->damage.model->point_update(mat, &k, e, dt, s, r);
         return;
     }

@@ -89,6 +89,13 @@ struct tlsph_point_result {
  * mapping).  Requires det F > 0 for meaningful output (the caller checks). */
 void tlsph_point_update(const struct tlsph_material *mat, const double F[9], double e, double dt,
                         struct tlsph_point_state *s, struct tlsph_point_result *r);
+/* The same with C = F^T F already decomposed: lam [3] and Q [9] as
+ * sym3_eigen (util/mat3.h) gives them for mat3_mul_at(F, F), so the results
+ * are tlsph_point_update's bit for bit.  The constitutive phase decomposes a
+ * few particles' C at once (sym3_eigen_batch) and calls this. */
+void tlsph_point_update_eigen(const struct tlsph_material *mat, const double F[9],
+                              const double lam[3], const double Q[9], double e, double dt,
+                              struct tlsph_point_state *s, struct tlsph_point_result *r);
 
 /* Shared pieces for the point updates of damage models (damage.h: point_update). */
 

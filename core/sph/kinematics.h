@@ -27,14 +27,12 @@ void tlsph_kinematics(struct tlsph_model *m, double dt);
  * when the bodies' ranges do not cover the particles. */
 int tlsph_kinematics_fusable(const struct tlsph_model *m);
 
-/* The gather of particles [lo, hi) as an orphaned `omp for schedule(static)
- * nowait`: called by every thread of a parallel region, each thread does the
- * particles that a static loop over [lo, hi) in that region gives it and goes
- * on without waiting; outside a parallel region it does them all.  A static
- * loop that follows over the same range in the same region gives each thread
- * the same particles (OpenMP's rule for static schedules), so it may read
- * what this wrote for its own particles without a barrier.  Only when
- * tlsph_kinematics_fusable(m). */
+/* The gather of particles [lo, hi), called by every thread of a parallel
+ * region: each thread does its share (tlsph_static_share, util/parallel.h) and
+ * goes on without waiting; outside a parallel region it does them all.  A loop
+ * that follows over the shares of the same range in the same region gives
+ * each thread the same particles, so it may read what this wrote for its own
+ * particles without a barrier.  Only when tlsph_kinematics_fusable(m). */
 void tlsph_kinematics_for(struct tlsph_model *m, size_t lo, size_t hi, double dt);
 
 /* The start of particle i's gather, shared by every treatment: what each of

@@ -93,6 +93,83 @@ static inline void mat3_to_sym6(const double *A, double *s)
     s[5] = A[8];
 }
 
+/* The most matrices sym3_eigen_batch decomposes at once. */
+#define SYM3_EIGEN_LANES 4
+
+/* sym3_eigen (below) of n <= SYM3_EIGEN_LANES matrices at once: A holds n row-major
+ * matrices [9n], lam [3n] and Q [9n] receive theirs.  Each matrix gets exactly
+ * the rotations, operations and sweeps it gets alone (a converged one is left
+ * alone while the others go on), so the results are the same bit for bit.
+ * Why: a rotation is a chain of two divisions and two square roots, each
+ * waiting for the last, and the processor's dividers idle for most of it; the
+ * chains of independent matrices interleaved overlap (measured: 1.5-2x fewer
+ * nanoseconds per matrix with 4 at once, docs/performance.md). */
+static inline void sym3_eigen_batch(int n, const double *A, double *lam, double *Q)
+{
+    double a[SYM3_EIGEN_LANES][3][3], v[SYM3_EIGEN_LANES][3][3];
+    int active[SYM3_EIGEN_LANES];
+    for (int l = 0; l < n; l++) {
+        const double *M = A + 9 * l;
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++) {
+                /* the upper triangle, mirrored */
+                a[l][r][c] = r <= c ? M[3 * r + c] : M[3 * c + r];
+                v[l][r][c] = r == c;
+            }
+        active[l] = 1;
+    }
+    for (int sweep = 0; sweep < 32; sweep++) {
+        int any = 0;
+        for (int l = 0; l < n; l++) {
+            if (!active[l])
+                continue;
+            double(*m)[3] = a[l];
+            const double off = m[0][1] * m[0][1] + m[0][2] * m[0][2] + m[1][2] * m[1][2];
+            const double diag = m[0][0] * m[0][0] + m[1][1] * m[1][1] + m[2][2] * m[2][2];
+            if (off <= 1e-32 * diag || off == 0.0)
+                active[l] = 0;
+            else
+                any = 1;
+        }
+        if (!any)
+            break;
+        for (int p = 0; p < 2; p++)
+            for (int q = p + 1; q < 3; q++)
+                for (int l = 0; l < n; l++) {
+                    double(*m)[3] = a[l], (*w)[3] = v[l];
+                    const double apq = m[p][q];
+                    if (!active[l] || apq == 0.0)
+                        continue;
+                    const double theta = (m[q][q] - m[p][p]) / (2.0 * apq);
+                    const double t =
+                        (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
+                    const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
+                    for (int k = 0; k < 3; k++) {
+                        const double akp = m[k][p], akq = m[k][q];
+                        m[k][p] = c * akp - s * akq;
+                        m[k][q] = s * akp + c * akq;
+                    }
+                    for (int k = 0; k < 3; k++) {
+                        const double apk = m[p][k], aqk = m[q][k];
+                        m[p][k] = c * apk - s * aqk;
+                        m[q][k] = s * apk + c * aqk;
+                    }
+                    for (int k = 0; k < 3; k++) {
+                        const double vkp = w[k][p], vkq = w[k][q];
+                        w[k][p] = c * vkp - s * vkq;
+                        w[k][q] = s * vkp + c * vkq;
+                    }
+                }
+    }
+    for (int l = 0; l < n; l++) {
+        for (int k = 0; k < 3; k++)
+            lam[3 * l + k] = a[l][k][k];
+        for (int r = 0; r < 3; r++)
+            for (int c = 0; c < 3; c++)
+                Q[9 * l + 3 * r + c] = v[l][r][c];
+    }
+}
+
 /* Eigen-decomposition of a symmetric matrix by cyclic Jacobi rotations.
  * A (row-major, symmetric) -> eigenvalues lam[3], eigenvectors as the columns
  * of Q (row-major), A = Q diag(lam) Q^T.  Jacobi is used rather than the
@@ -100,43 +177,7 @@ static inline void mat3_to_sym6(const double *A, double *s)
  * which is the common case here (an undeformed particle has C = I). */
 static inline void sym3_eigen(const double *A, double lam[3], double *Q)
 {
-    double a[3][3] = {{A[0], A[1], A[2]}, {A[1], A[4], A[5]}, {A[2], A[5], A[8]}};
-    double v[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
-    for (int sweep = 0; sweep < 32; sweep++) {
-        const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
-        const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
-        if (off <= 1e-32 * diag || off == 0.0)
-            break;
-        for (int p = 0; p < 2; p++)
-            for (int q = p + 1; q < 3; q++) {
-                const double apq = a[p][q];
-                if (apq == 0.0)
-                    continue;
-                const double theta = (a[q][q] - a[p][p]) / (2.0 * apq);
-                const double t = (theta >= 0 ? 1.0 : -1.0) / (fabs(theta) + sqrt(theta * theta + 1.0));
-                const double c = 1.0 / sqrt(t * t + 1.0), s = t * c;
-                for (int k = 0; k < 3; k++) {
-                    const double akp = a[k][p], akq = a[k][q];
-                    a[k][p] = c * akp - s * akq;
-                    a[k][q] = s * akp + c * akq;
-                }
-                for (int k = 0; k < 3; k++) {
-                    const double apk = a[p][k], aqk = a[q][k];
-                    a[p][k] = c * apk - s * aqk;
-                    a[q][k] = s * apk + c * aqk;
-                }
-                for (int k = 0; k < 3; k++) {
-                    const double vkp = v[k][p], vkq = v[k][q];
-                    v[k][p] = c * vkp - s * vkq;
-                    v[k][q] = s * vkp + c * vkq;
-                }
-            }
-    }
-    for (int k = 0; k < 3; k++)
-        lam[k] = a[k][k];
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++)
-            Q[3 * r + c] = v[r][c];
+    sym3_eigen_batch(1, A, lam, Q);
 }
 
 /* S = Q diag(d) Q^T as sym6. */

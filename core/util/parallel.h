@@ -1,6 +1,8 @@
 #ifndef TLSPH_PARALLEL_H
 #define TLSPH_PARALLEL_H
 
+#include <stddef.h>
+
 /* Below this many loop items (particles) a step's loops run on one thread.
  * Every parallel loop ends in a join barrier. On free cores that costs a few
  * microseconds; on shared cores (two jobs, or the test suite run with make -j)
@@ -25,6 +27,30 @@ static inline int tlsph_threads(void)
 #else
     return 1;
 #endif
+}
+
+/* The part [*a, *b) of [lo, hi) that the calling thread of a parallel region
+ * works on: contiguous shares in thread order, the first (hi - lo) % threads
+ * of them one item longer (libgomp's split for schedule(static), so a loop
+ * over the share visits what `omp for schedule(static)` would give the thread).
+ * Two loops over the same range in one region that both take their share
+ * here give every thread the same items, so the second may read what the
+ * first wrote for them without a barrier.  Outside a parallel region (or
+ * without OpenMP) the whole range. */
+static inline void tlsph_static_share(size_t lo, size_t hi, size_t *a, size_t *b)
+{
+#ifdef _OPENMP
+    const size_t threads = (size_t)omp_get_num_threads(), t = (size_t)omp_get_thread_num();
+#else
+    const size_t threads = 1, t = 0;
+#endif
+    size_t q = (hi - lo) / threads, r = (hi - lo) % threads;
+    if (t < r) {
+        q++;
+        r = 0;
+    }
+    *a = lo + q * t + r;
+    *b = *a + q;
 }
 
 #endif
