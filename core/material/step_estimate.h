@@ -32,6 +32,12 @@
 
 #define TLSPH_VISCOUS_XI 0.3
 
+/* The leapfrog limit's factor for damping ratio xi >= 0: sqrt(1 + xi^2) - xi. */
+static inline double tlsph_damped_step_factor(double xi)
+{
+    return sqrt(1.0 + xi * xi) - xi;
+}
+
 /* phi_i above. beta1, beta2: the viscosity's coefficients (1); h: smoothing length (m);
  * Fdot: rate of F (1/s, [9]); s_min: smallest principal stretch; c: P-wave speed (m/s). */
 static inline double tlsph_viscous_step_factor(double beta1, double beta2, double h,
@@ -41,8 +47,7 @@ static inline double tlsph_viscous_step_factor(double beta1, double beta2, doubl
     for (int k = 0; k < 9; k++)
         f2 += Fdot[k] * Fdot[k];
     const double mu = h * sqrt(f2) / s_min;
-    const double xi = TLSPH_VISCOUS_XI * (beta1 + beta2 * mu / c);
-    return sqrt(1.0 + xi * xi) - xi;
+    return tlsph_damped_step_factor(TLSPH_VISCOUS_XI * (beta1 + beta2 * mu / c));
 }
 
 #endif
