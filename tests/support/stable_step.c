@@ -91,6 +91,19 @@ static void apply(struct tlsph_model *m, const struct saved_state *s, double *li
     restore(m, s);
 }
 
+double stable_step_estimate(struct tlsph_model *m, int estimate)
+{
+    struct saved_state s;
+    if (save(m, &s) != 0)
+        return NAN;
+    m->scene.step_estimate = estimate;
+    tlsph_evaluate(m, m->dt);
+    const double dt_cfl = m->dt_cfl;
+    restore(m, &s);
+    free_saved(&s);
+    return dt_cfl;
+}
+
 /* Power iteration on y -> apply(y): the largest eigenvalue (Rayleigh quotient in
  * the mass norm) after iters products, u left as the top vector.  scale: the
  * perturbation's largest entry. */

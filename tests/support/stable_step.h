@@ -45,4 +45,11 @@ struct stable_step_measure {
  * scene has parts this does not handle or memory runs out. */
 int stable_step_measure(struct tlsph_model *m, int iters, struct stable_step_measure *out);
 
+/* The estimate dt_cfl (s, before the CFL factor) the given /time/step_estimate
+ * (1 tangent, 0 elastic) makes of the model's current state: one force
+ * evaluation, the model left exactly as it was; NAN when memory runs out.  The
+ * re-evaluation starts from the history the step left, so no point flows in it:
+ * the "elastic" estimate is the run's, the "tangent" one that of points at rest. */
+double stable_step_estimate(struct tlsph_model *m, int estimate);
+
 #endif
