@@ -33,6 +33,15 @@ int main(int argc, char **argv)
         return 1;
     }
     tlsph_errors_free(&err);
+    /* STRETCH="a b c": before anything, the body deformed homogeneously to
+     * x = diag(a, b, c) X and evaluated (an elastic state of given stretches) */
+    const char *st = getenv("STRETCH");
+    double ab[3];
+    if (st && sscanf(st, "%lf %lf %lf", &ab[0], &ab[1], &ab[2]) == 3) {
+        for (size_t k = 0; k < 3 * m->p.n; k++)
+            m->p.x[k] = ab[k % 3] * m->p.X[k];
+        tlsph_evaluate(m, 0.0);
+    }
     int rc = 0;
     for (int a = 2; a < argc && rc == 0; a++) {
         const double t = atof(argv[a]);
