@@ -82,10 +82,10 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
  * in uniaxial flow along a (N_aa^2 = 2/3) the bulk modulus alone, across it the
  * elastic one.  H (the hardening slope, <= 1 % of 3G for metals) is left out,
  * which errs by under 1 % of the step in the unsafe direction; the CFL factor
- * covers it.  Elastic unloading within a step of flow would see M_el: measured
- * against the linearised step operator (tests/physics/test_stable_step.c, and
- * docs/performance.md), the flowing foot of a Taylor bar is stable at 1.3x this
- * estimate.  The floor M_el/3 is the bulk-only modulus at Poisson's ratio 0, and
+ * covers it.  Elastic unloading in the next step would see M_el: measured
+ * against the linearised step operator (tests/physics/test_stable_step.c,
+ * docs/performance.md "The stable step"), the limit of a flowing Taylor foot is
+ * 1.2-1.4x this estimate, and 1.24-1.59x with the elastic tangent alone.  The floor M_el/3 is the bulk-only modulus at Poisson's ratio 0, and
  * keeps an EOS in tension (K_t <= 0) from giving an unbounded step.  tau:
  * Kirchhoff stress in the eigenbasis of C (its diagonal is along the principal
  * directions); lam: eigenvalues of C. */

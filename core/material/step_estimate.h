@@ -23,8 +23,11 @@
  *   xi_i = TLSPH_VISCOUS_XI * (beta1 + beta2 mu_i / c_i),   mu_i = h_i |Fdot_i| / s_min,i
  *
  * mu_i bounding the pair's mu = h v_ij.x_ij / r^2 through the rate of F (v_ij =
- * Fdot X_ij, |x_ij| >= s_min |X_ij|).  TLSPH_VISCOUS_XI is the damping ratio per
- * unit beta1 measured on the top mode (docs/performance.md). */
+ * Fdot X_ij, |x_ij| >= s_min |X_ij|).  TLSPH_VISCOUS_XI: on a crushed block the
+ * top mode's measured damping ratio is 0.38-0.41 per unit beta1 (relative to
+ * omega_max, which c / (spacing s) puts up to 1.4x low); 0.3 keeps the measured
+ * damped limit 1.1-1.3x above the estimate at beta1 = 10 and 1.4-1.8x at
+ * beta1 = 1 (docs/performance.md, "The stable step"). */
 #ifndef TLSPH_STEP_ESTIMATE_H
 #define TLSPH_STEP_ESTIMATE_H
 

@@ -7,8 +7,8 @@
  * reference state (the EOS's tangent bulk modulus at J = 1 plus 4G/3, over
  * rho0) and |v| its fastest initial speed (check_values.c); with viscosity and
  * the "tangent" estimate the step has the damping factor of its linear term
- * (material/step_estimate.h; the quadratic term needs a rate of F, zero here).  The run needs about
- * end / dt steps; validation refuses a scene that needs more than
+ * (material/step_estimate.h; the quadratic term needs a rate of F, zero here).
+ * The run needs about end / dt steps; validation refuses a scene that needs more than
  * TLSPH_MAX_STEPS (scene/limits.h) and has no time.max_steps to end it sooner.
  * With contact the engine also keeps the step below sqrt(m* / k) of every
  * pair in contact (core/contact/forces.c); the estimate includes the stiffest
