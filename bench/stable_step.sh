@@ -34,5 +34,6 @@ for est in elastic tangent; do
   OMP_NUM_THREADS=1 "$run" "$out/$est.json" -o "$out/r_$est" --quiet
   echo "$est: $("$py" "$here/taylor_metrics.py" "$out/r_$est" --json)"
 done
-"$py" "$here/stable_step_plot.py" "$svg" "$out/r_elastic" "$out/r_tangent" "$out/crit.jsonl"
+"$py" "$here/stable_step_plot.py" "$svg" "Time step over the FE Taylor bar ($spacing m)" \
+  "$out/r_elastic" "$out/r_tangent" "$out/crit.jsonl"
 echo "wrote $svg"

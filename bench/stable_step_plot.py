@@ -5,8 +5,9 @@ time_step series, and the leapfrog limit dt_crit = 2 / omega_max measured by
 bench/stable_step on states of the run (points), with the estimates of those
 states before the CFL factor.  Log scale in dt, linear in time.
 
-usage: stable_step_plot.py OUT.svg ELASTIC_RESULT_DIR TANGENT_RESULT_DIR CRIT.jsonl
-(CRIT.jsonl: bench/stable_step's output on the tangent run's scene.)
+usage: stable_step_plot.py OUT.svg TITLE ELASTIC_RESULT_DIR TANGENT_RESULT_DIR CRIT.jsonl [LAMMPS_LOG]
+(CRIT.jsonl: bench/stable_step's output on the tangent run's scene; LAMMPS_LOG: a
+log.lammps of bench/peer_lammps.py's input, its thermo columns step, dt, time.)
 Needs h5py (/usr/bin/python3)."""
 import json
 import math
@@ -24,10 +25,26 @@ def series(path):
     return [(a * 1e6, b) for a, b in zip(t, dt) if b > 0]
 
 
+def lammps(log):
+    """(t in us, dt) from the thermo table of a log.lammps (step dt time ke)."""
+    pts, on = [], False
+    for line in open(log):
+        w = line.split()
+        if w[:2] == ["Step", "Dt"]:
+            on = True
+        elif on and len(w) >= 3 and w[0].isdigit():
+            pts.append((float(w[2]) * 1e6, float(w[1])))
+        else:
+            on = False
+    return pts
+
+
 def main():
-    out, old, new, crit = sys.argv[1:5]
+    out, title, old, new, crit = sys.argv[1:6]
     runs = [("elastic estimate, cfl 0.3 (run)", series(old), "#888888"),
             ("tangent estimate, cfl 0.3 (run)", series(new), "#1f5fbf")]
+    if len(sys.argv) > 6:
+        runs.append(("LAMMPS MACHDYN, smd/adjust_dt 0.1", lammps(sys.argv[6]), "#2e8b57"))
     pts = [json.loads(line) for line in open(crit) if line.startswith("{")]
     marks = [("measured limit dt_crit = 2/omega_max", "dt_crit", "#c0392b", "o"),
              ("tangent estimate (before cfl)", "dt_cfl", "#1f5fbf", "s"),
@@ -39,8 +56,7 @@ def main():
     s = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W:.0f}" height="{H:.0f}" '
          f'font-family="sans-serif" font-size="12">',
          f'<rect width="{W:.0f}" height="{H:.0f}" fill="white"/>',
-         f'<text x="{W / 2:.0f}" y="20" text-anchor="middle" font-size="14">'
-         'Time step over the FE Taylor bar (0.8 mm, 2 080 particles)</text>']
+         f'<text x="{W / 2:.0f}" y="20" text-anchor="middle" font-size="14">{title}</text>']
     for e in range(-9, -5):
         for k in range(1, 10):
             d = k * 10.0 ** e
@@ -72,7 +88,7 @@ def main():
                  f'stroke="{colour}" stroke-width="1.5"/>')
         s.append(f'<text x="{W - 260}" y="{ly + 16 * k + 4}">{name}</text>')
     for k, (name, _, colour, shape) in enumerate(marks):
-        yy = ly + 16 * (k + 2)
+        yy = ly + 16 * (k + len(runs))
         if shape == "o":
             s.append(f'<circle cx="{W - 277}" cy="{yy}" r="4" fill="{colour}"/>')
         else:
