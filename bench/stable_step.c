@@ -26,7 +26,8 @@ int main(int argc, char **argv)
     tlsph_errors_init(&err);
     struct tlsph_scene scene;
     struct tlsph_model *m = NULL;
-    if (tlsph_scene_load_file(argv[1], &scene, &err) != 0 || tlsph_model_create(&scene, &m, &err) != 0) {
+    if (tlsph_scene_load_file(argv[1], &scene, &err) != 0 ||
+        tlsph_model_create(&scene, &m, &err) != 0) {
         for (size_t k = 0; k < err.count; k++)
             fprintf(stderr, "error: %s: %s\n", err.items[k].pointer, err.items[k].message);
         tlsph_errors_free(&err);
@@ -95,9 +96,10 @@ int main(int argc, char **argv)
                "\"xi\":%.4g,\"dt_crit_damped\":%.6g,\"dt_cfl_elastic\":%.6g,"
                "\"crit_over_cfl\":%.4f,\"crit_over_dt\":%.4f,\"spread\":%.2g,\"where\":%zu,"
                "\"stretch\":%.4f,\"eps_p\":%.4g,\"hg_scale\":%.4g,\"J\":%.4f}\n",
-               m->t, m->step, m->dt, m->dt_cfl, s.dt_crit, s.xi, s.dt_crit_damped, dt_elastic, s.dt_crit / m->dt_cfl,
-               s.dt_crit / m->dt, s.spread, i, stretch, m->p.eps_p ? m->p.eps_p[i] : 0.0,
-               m->p.hg_scale ? m->p.hg_scale[i] : 1.0, mat3_det(m->p.F + 9 * i));
+               m->t, m->step, m->dt, m->dt_cfl, s.dt_crit, s.xi, s.dt_crit_damped, dt_elastic,
+               s.dt_crit / m->dt_cfl, s.dt_crit / m->dt, s.spread, i, stretch,
+               m->p.eps_p ? m->p.eps_p[i] : 0.0, m->p.hg_scale ? m->p.hg_scale[i] : 1.0,
+               mat3_det(m->p.F + 9 * i));
         fflush(stdout);
     }
     tlsph_model_free(m);

@@ -131,7 +131,8 @@ START_TEST(plastic_foot)
     const double dt_elastic = m->dt_cfl;
     printf("foot: tangent %.4g s, elastic %.4g s: %.3f\n", dt_tangent, dt_elastic,
            dt_tangent / dt_elastic);
-    ck_assert_msg(dt_tangent >= 1.15 * dt_elastic, "tangent %g, elastic %g", dt_tangent, dt_elastic);
+    ck_assert_msg(dt_tangent >= 1.15 * dt_elastic, "tangent %g, elastic %g", dt_tangent,
+                  dt_elastic);
     tlsph_model_free(m);
 }
 END_TEST

@@ -50,12 +50,29 @@ static int save(struct tlsph_model *m, struct saved_state *s)
         double *live;
         size_t width;
     } arrays[] = {
-        {p->x, 3},          {p->v, 3},           {p->f, 3},           {p->F, 9},           {p->Fdot, 9},
-        {p->P_tilde, 9},    {p->sigma, 6},       {p->e, 1},           {p->f_hourglass, 3},
-        {p->f_viscous, 3},  {p->eps_p, 1},       {p->plastic_strain, 6}, {p->eps_p_rate, 1},
-        {p->yield_stress, 1}, {p->hg_scale, 1},  {p->T, 1},           {p->damage, 1},
-        {p->damage_init, 1}, {p->void_fraction, 1}, {p->void_fstar, 1}, {p->void_nucleated, 1},
-        {p->void_shear, 1}, {p->crack_gradient, 9},
+        {p->x, 3},
+        {p->v, 3},
+        {p->f, 3},
+        {p->F, 9},
+        {p->Fdot, 9},
+        {p->P_tilde, 9},
+        {p->sigma, 6},
+        {p->e, 1},
+        {p->f_hourglass, 3},
+        {p->f_viscous, 3},
+        {p->eps_p, 1},
+        {p->plastic_strain, 6},
+        {p->eps_p_rate, 1},
+        {p->yield_stress, 1},
+        {p->hg_scale, 1},
+        {p->T, 1},
+        {p->damage, 1},
+        {p->damage_init, 1},
+        {p->void_fraction, 1},
+        {p->void_fstar, 1},
+        {p->void_nucleated, 1},
+        {p->void_shear, 1},
+        {p->crack_gradient, 9},
     };
     for (size_t k = 0; k < sizeof arrays / sizeof arrays[0]; k++)
         if (save_array(s, arrays[k].live, arrays[k].width, n) != 0) {
@@ -74,8 +91,9 @@ static void restore(struct tlsph_model *m, const struct saved_state *s)
 
 /* out = -(f(y + eps u) - f(y - eps u)) / (2 eps) / m, per component, y the
  * positions (live = p.x, y0 their saved copy) or the velocities (p.v) */
-static void apply(struct tlsph_model *m, const struct saved_state *s, double *live, const double *y0,
-                  const double *u, double eps, double dt, double *fplus, double *out)
+static void apply(struct tlsph_model *m, const struct saved_state *s, double *live,
+                  const double *y0, const double *u, double eps, double dt, double *fplus,
+                  double *out)
 {
     const size_t n3 = 3 * m->p.n;
     for (size_t k = 0; k < n3; k++)
@@ -170,19 +188,20 @@ int stable_step_measure(struct tlsph_model *m, int iters, struct stable_step_mea
     const double *x0 = s.a[0].copy, *v0 = s.a[1].copy;
     double spread_c = 0.0;
     /* damping: the velocity perturbation's largest entry 1e-7 of the largest speed */
-    const double c_max = m->scene.viscosity
-                             ? power(m, &s, m->p.v, v0, 1e-7 * fmax(vmax, 10.0), dt, iters, u, w,
-                                     fplus, &spread_c)
-                             : 0.0;
+    const double c_max = m->scene.viscosity ? power(m, &s, m->p.v, v0, 1e-7 * fmax(vmax, 10.0), dt,
+                                                    iters, u, w, fplus, &spread_c)
+                                            : 0.0;
     /* stiffness, last so that u is its top vector: displacements 1e-7 of h */
-    const double lambda = power(m, &s, m->p.x, x0, 1e-7 * hmin, dt, iters, u, w, fplus, &out->spread);
+    const double lambda =
+        power(m, &s, m->p.x, x0, 1e-7 * hmin, dt, iters, u, w, fplus, &out->spread);
     if (!isfinite(lambda) || !isfinite(c_max))
         goto done;
     out->spread = fmax(out->spread, spread_c);
     size_t where = 0;
     double amax = -1.0;
     for (size_t i = 0; i < n; i++) {
-        const double a = u[3 * i] * u[3 * i] + u[3 * i + 1] * u[3 * i + 1] + u[3 * i + 2] * u[3 * i + 2];
+        const double a =
+            u[3 * i] * u[3 * i] + u[3 * i + 1] * u[3 * i + 1] + u[3 * i + 2] * u[3 * i + 2];
         if (a > amax) {
             amax = a;
             where = i;

@@ -26,8 +26,8 @@
 #include "run/model.h"
 
 struct stable_step_measure {
-    double omega_max;   /* largest eigenfrequency of M^-1 K, rad/s */
-    double dt_crit;     /* 2 / omega_max, s */
+    double omega_max; /* largest eigenfrequency of M^-1 K, rad/s */
+    double dt_crit;   /* 2 / omega_max, s */
     /* the velocity dependence (artificial viscosity): c_max the largest eigenvalue
      * of M^-1 C (1/s), C = -df/dv by the same power iteration, positions fixed;
      * xi = c_max / (2 omega_max) the damping ratio it gives the top mode at worst,
@@ -36,9 +36,9 @@ struct stable_step_measure {
      * to dt_crit without viscosity */
     double c_max;
     double xi;
-    double dt_crit_damped;  /* s */
-    double spread;      /* relative change of omega_max over the last 10 iterations */
-    size_t where;       /* particle index of the eigenvector's largest amplitude */
+    double dt_crit_damped; /* s */
+    double spread;         /* relative change of omega_max over the last 10 iterations */
+    size_t where;          /* particle index of the eigenvector's largest amplitude */
 };
 
 /* Power iteration with iters force-evaluation pairs (>= 20); 0, or -1 when the
