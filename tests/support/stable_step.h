@@ -37,7 +37,7 @@ struct stable_step_measure {
     double c_max;
     double xi;
     double dt_crit_damped; /* s */
-    double spread;         /* relative change of omega_max over the last 10 iterations */
+    double spread;         /* relative spread of omega_max^2 (and c_max) over the last 10 iterations */
     size_t where;          /* particle index of the eigenvector's largest amplitude */
 };
 
