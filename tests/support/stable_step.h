@@ -37,8 +37,8 @@ struct stable_step_measure {
     double c_max;
     double xi;
     double dt_crit_damped; /* s */
-    double spread;         /* relative spread of omega_max^2 (and c_max) over the last 10 iterations */
-    size_t where;          /* particle index of the eigenvector's largest amplitude */
+    double spread; /* relative spread of omega_max^2 (and c_max) over the last 10 iterations */
+    size_t where;  /* particle index of the eigenvector's largest amplitude */
 };
 
 /* Power iteration with iters force-evaluation pairs (>= 20); 0, or -1 when the
