@@ -6,6 +6,7 @@
 #include "material/damage/damage.h"
 #include "util/mat3.h"
 #include "material/material_point.h"
+#include "material/step_estimate.h"
 #include "material/strength/strength.h"
 #include "sph/kinematics.h"
 #include "util/parallel.h"
@@ -132,6 +133,12 @@ static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinemat
         const int plastic = arrays.plastic, damaging = arrays.damaging;
         const double G43 = 4.0 / 3.0 * mat->shear_modulus, rho0 = mat->density;
         const double spacing = body->spacing;
+        /* the step estimate (material/step_estimate.h): "tangent" (the default)
+         * takes the tangent's wave speed along each principal direction and the
+         * viscous damping; "elastic" the elastic P-wave speed alone */
+        const int tangent_step = m->scene.step_estimate;
+        const int viscous_step = tangent_step && m->scene.viscosity;
+        const double beta1 = m->scene.viscosity_linear, beta2 = m->scene.viscosity_quadratic;
 
         const size_t lo = m->body_begin[b], hi = m->body_end[b];
         /* one region per body: the optional gather, then the update; the
@@ -207,16 +214,19 @@ static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinemat
             mat3_mul_bt(r.P, p->Linv + 9 * i, p->P_tilde + 9 * i);
 
             /* P-wave speed in the current state; the step shrinks with the
-             * particle's smallest principal stretch.  A negative tangent bulk
-             * modulus (Mie-Grueneisen far in tension) is a material instability,
-             * not a wave speed: the estimate falls back to the shear part only
-             * and the stability checks report what follows.  Plastic flow only
-             * softens the response, so the elastic speed bounds the step. */
+             * particle's principal stretch (material/step_estimate.h).  A
+             * negative tangent bulk modulus (Mie-Grueneisen far in tension) is a
+             * material instability, not a wave speed: the estimate falls back to
+             * the shear part only and the stability checks report what follows. */
             const double c = sqrt(fmax(r.K_t + G43, G43) * J / rho0);
             const double *v = p->v + 3 * i;
             const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
             cmax = fmax(cmax, c);
-            dt_min = fmin(dt_min, spacing * r.min_stretch / (c + speed));
+            double dt_i = spacing * (tangent_step ? r.wave_stretch : r.min_stretch) / (c + speed);
+            if (viscous_step)
+                dt_i *= tlsph_viscous_step_factor(beta1, beta2, p->h[i], p->Fdot + 9 * i,
+                                                  r.min_stretch, c);
+            dt_min = fmin(dt_min, dt_i);
         }
         } /* clang-format on; the end of the region: the pair's one barrier */
     }

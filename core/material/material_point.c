@@ -74,6 +74,39 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
     return intact * out.dgamma * (in.q_trial - 3.0 * G * out.dgamma);
 }
 
+/* The step's stretch of a point that flowed this step (material_point.h:
+ * wave_stretch).  A J2 point in plastic flow has the continuum tangent
+ *   C_ep = K 1(x)1 + 2G I_dev - 2G (3G / (3G + H)) N (x) N,   N = dev tau / |dev tau|,
+ * so a longitudinal wave along the principal direction a meets the modulus
+ *   M_a = K_t + 4/3 G - 2G N_aa^2 3G / (3G + H)  >=  K_t + 4/3 G - 2G N_aa^2 (H = 0):
+ * in uniaxial flow along a (N_aa^2 = 2/3) the bulk modulus alone, across it the
+ * elastic one.  H (the hardening slope, <= 1 % of 3G for metals) is left out,
+ * which errs by under 1 % of the step in the unsafe direction; the CFL factor
+ * covers it.  Elastic unloading in the next step would see M_el: measured
+ * against the linearised step operator (tests/physics/test_stable_step.c,
+ * docs/performance.md "The stable step"), the limit of a flowing Taylor foot is
+ * 1.2-1.4x this estimate, and 1.24-1.59x with the elastic tangent alone.  The floor M_el/3 is the bulk-only modulus at Poisson's ratio 0, and
+ * keeps an EOS in tension (K_t <= 0) from giving an unbounded step.  tau:
+ * Kirchhoff stress in the eigenbasis of C (its diagonal is along the principal
+ * directions); lam: eigenvalues of C. */
+static double flowing_wave_stretch(const double tau[9], const double lam[3], double K_t, double G)
+{
+    const double mean = (tau[0] + tau[4] + tau[8]) / 3.0;
+    double d2 = 0.0;
+    for (int k = 0; k < 9; k++) {
+        const double d = tau[k] - (k % 4 == 0 ? mean : 0.0);
+        d2 += d * d;
+    }
+    const double M_el = fmax(K_t + 4.0 / 3.0 * G, 4.0 / 3.0 * G);
+    double s = INFINITY;
+    for (int a = 0; a < 3; a++) {
+        const double n = d2 > 0.0 ? (tau[4 * a] - mean) : 0.0;
+        const double M_a = fmax(M_el - 2.0 * G * (d2 > 0.0 ? n * n / d2 : 0.0), M_el / 3.0);
+        s = fmin(s, sqrt(lam[a] * M_el / M_a));
+    }
+    return s;
+}
+
 /* Largest eigenvalue of the symmetric 3x3 matrix A (row-major). */
 static double largest_eigenvalue(const double A[9])
 {
@@ -127,6 +160,7 @@ void tlsph_point_no_stress(struct tlsph_point_result *r, double J, double min_st
         r->sigma[k] = 0.0;
     r->J = J;
     r->min_stretch = min_stretch;
+    r->wave_stretch = min_stretch;
     r->K_t = K_t;
 }
 
@@ -164,6 +198,7 @@ static void assemble(const double F[9], const double tau[9], const double lam[3]
     r->sigma[5] = sig[8] * rJ;
     r->J = J;
     r->min_stretch = smin;
+    r->wave_stretch = smin;
     r->K_t = K_t;
 }
 
@@ -267,4 +302,6 @@ void tlsph_point_update_eigen(const struct tlsph_material *mat, const double F[9
     for (int a = 0; a < 3; a++)
         tau[4 * a] -= J * p_carried;
     assemble(F, tau, lam, lns, Q, s != NULL, J, smin, K_t, r);
+    if (dgamma > 0.0)
+        r->wave_stretch = flowing_wave_stretch(tau, lam, K_t, mat->shear_modulus);
 }

@@ -75,6 +75,11 @@ struct tlsph_point_result {
     double J;            /* det F, 1 */
     double min_stretch;  /* smallest principal stretch, 1 */
     double K_t;          /* tangent bulk modulus of the EOS, Pa */
+    /* The step's stretch: min over the principal directions a of lambda_a sqrt(M_el / M_a),
+     * M_a the P-wave modulus of the tangent the return has along a (the elastic
+     * M_el = K_t + 4/3 G where the point does not flow this step: then exactly
+     * min_stretch), 1.  See core/material/constitutive.c, the step estimate. */
+    double wave_stretch;
     double plastic_work; /* plastic work of this step per unit reference volume, J/m^3 */
     double damage_work;  /* energy released by damage growth this step, J/m^3 (reference) */
     double triaxiality;  /* sigma_m / sigma_eq of the effective stress (NaN when sigma_eq = 0,

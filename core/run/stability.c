@@ -216,7 +216,10 @@ int tlsph_model_check(struct tlsph_model *m, struct tlsph_diagnostic *d)
 }
 
 /* The stable step of particle i in its current state, before the CFL factor:
- * the estimate of core/material/constitutive.c, recomputed from F and e. */
+ * the "elastic" estimate of core/material/constitutive.c, recomputed from F and
+ * e, to rank the particles that limit the step.  (The "tangent" estimate also
+ * needs whether the point flowed in the step, and the viscous factor, the same
+ * for neighbours at the same rate: ranking by this one names the same region.) */
 static double particle_step(const struct tlsph_model *m, size_t i)
 {
     const struct tlsph_particles *p = &m->p;

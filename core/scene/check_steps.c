@@ -5,8 +5,10 @@
  * particle is unstrained (s_min = 1, J = 1, e = 0), so the first step is known
  * from the scene alone: c_b is the P-wave speed of body b's material at its
  * reference state (the EOS's tangent bulk modulus at J = 1 plus 4G/3, over
- * rho0) and |v| its fastest initial speed (check_values.c).  The run needs about
- * end / dt steps; validation refuses a scene that needs more than
+ * rho0) and |v| its fastest initial speed (check_values.c); with viscosity and
+ * the "tangent" estimate the step has the damping factor of its linear term
+ * (material/step_estimate.h; the quadratic term needs a rate of F, zero here).
+ * The run needs about end / dt steps; validation refuses a scene that needs more than
  * TLSPH_MAX_STEPS (scene/limits.h) and has no time.max_steps to end it sooner.
  * With contact the engine also keeps the step below sqrt(m* / k) of every
  * pair in contact (core/contact/forces.c); the estimate includes the stiffest
@@ -27,6 +29,7 @@
 
 #include "contact/contact.h"
 #include "material/eos/eos.h"
+#include "material/step_estimate.h"
 #include "scene/parse_internal.h"
 
 double tlsph_reference_wave_speed(const struct tlsph_material *m)
@@ -82,7 +85,9 @@ int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *f
     double dt_cfl = INFINITY, c_limiting = 0.0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const double c = tlsph_reference_wave_speed(&s->materials[s->bodies[b].material]);
-        const double dt_b = s->bodies[b].spacing / (c + fastest[b].speed);
+        double dt_b = s->bodies[b].spacing / (c + fastest[b].speed);
+        if (s->step_estimate && s->viscosity)
+            dt_b *= tlsph_damped_step_factor(TLSPH_VISCOUS_XI * s->viscosity_linear);
         if (dt_b < dt_cfl) {
             dt_cfl = dt_b;
             limiting = b;

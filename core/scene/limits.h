@@ -53,6 +53,7 @@
 /* "dimension" is required; validation goes on in 3-D when it is missing or invalid. */
 #define TLSPH_DEFAULT_DIMENSION             3
 #define TLSPH_DEFAULT_CFL                   0.3
+#define TLSPH_DEFAULT_STEP_ESTIMATE         1
 #define TLSPH_DEFAULT_SUPPORT_FACTOR        2.01
 #define TLSPH_DEFAULT_HOURGLASS             1 /* enabled */
 #define TLSPH_DEFAULT_HOURGLASS_COEFFICIENT 1.0

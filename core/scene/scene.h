@@ -210,6 +210,10 @@ struct tlsph_scene {
     double end_time;              /* s */
     double cfl;                   /* safety factor on the CFL step, [TLSPH_MIN_CFL, 10] */
     double fixed_dt;              /* s; 0 = use the CFL step */
+    int step_estimate;            /* 1 ("tangent", the default): the wave speed of the
+                                     tangent the return has in flowing points and the
+                                     viscous damping in the step; 0 ("elastic"): the
+                                     elastic P-wave speed alone (before 2026-11-26) */
     long max_steps;               /* 0 = unlimited */
     /* derived at validation (core/scene/check_steps.c) */
     double estimated_dt;          /* the first time step, s */

@@ -30,6 +30,8 @@ _Static_assert(sizeof(enum tlsph_placement) == sizeof(int), "placement stored as
 
 /* ------------------------------------------------------------------ time */
 
+static const struct tlsph_key_choice step_estimates[] = {{"elastic", 0}, {"tangent", 1}, {0}};
+
 static const struct tlsph_key time_keys[] = {
     {.name = "end", .kind = NUMBER, .flags = REQUIRED, .range = {0.0, 0.0, JC_OPEN, JC_NONE},
      .unit = "s", .offset = AT(end_time), .description = "end time"},
@@ -40,6 +42,12 @@ static const struct tlsph_key time_keys[] = {
     {.name = "step", .kind = NUMBER, .range = {TLSPH_MIN_FIXED_STEP, 0.0, JC_CLOSED, JC_NONE},
      .unit = "s",
      .offset = AT(fixed_dt), .description = "fixed time step; absent = the CFL step"},
+    {.name = "step_estimate", .kind = CHOICE, .flags = DEFAULT,
+     .def = TLSPH_DEFAULT_STEP_ESTIMATE, .size = 16, .choices = step_estimates,
+     .noun = "step estimate", .offset = AT(step_estimate),
+     .description = "stable-step estimate: tangent (the wave speed of the elasto-plastic "
+                    "tangent in flowing points, the viscous damping included) or elastic "
+                    "(the elastic P-wave speed alone, the estimate before 2026-11-26)"},
     {.name = "max_steps", .kind = INTEGER, .flags = DEFAULT,
      .range = {0.0, (double)TLSPH_MAX_STEPS, JC_CLOSED, JC_CLOSED}, .unit = "1", .def = 0.0,
      .offset = AT(max_steps), .description = "step limit, 0 = unlimited"},
