@@ -30,6 +30,7 @@ Fig. 19-20 turns towards the load point).  Measured at the last frame:
 
 usage: deep_beam_path.py RESULT_DIR [RUN_LOG] --notch X_MM [--depth A_MM] [--row]
 Needs h5py and numpy (/usr/bin/python3)."""
+import argparse
 import math
 import os
 import sys
@@ -38,7 +39,7 @@ import h5py
 import numpy as np
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from kalthoff_angle import crack, fit_angle  # noqa: E402
+from kalthoff_angle import balance, crack, fit_angle  # noqa: E402
 from run_log import steps_and_wall  # noqa: E402
 
 DEPTH, LOAD_X = 0.076, 0.154
@@ -81,30 +82,21 @@ def measure(path, notch_x, notch_depth=0.019, threshold=0.2):
            "height": (R[:, 1].max() / (DEPTH - notch_depth)) if len(R) else 0.0,
            "top_offset": end, "through_time": through,
            "first_frame": first, "start_from_tip": start, "start_time": t0,
-           "damaged": int((D >= threshold).sum())}
-    obs = f["observables"]
-    eb = np.abs(obs["energy_balance/value"][:])
-    scale = max(np.abs(obs["external_work/value"][:]).max(), 1e-300)
-    out["balance"] = eb.max() / scale
+           "damaged": int((D >= threshold).sum()), "balance": balance(f)}
     return out
 
 
 def main(argv):
-    args = argv[1:]
-    notch, depth, row, pos = None, 0.019, False, []
-    i = 0
-    while i < len(args):
-        if args[i] == "--notch":
-            notch, i = float(args[i + 1]) * 1e-3, i + 2
-        elif args[i] == "--depth":
-            depth, i = float(args[i + 1]) * 1e-3, i + 2
-        elif args[i] == "--row":
-            row, i = True, i + 1
-        else:
-            pos.append(args[i])
-            i += 1
-    m = measure(pos[0], notch, depth)
-    steps, wall = steps_and_wall(pos[1] if len(pos) > 1 else None)
+    ap = argparse.ArgumentParser(description="crack path of a deep-beam run")
+    ap.add_argument("result_dir")
+    ap.add_argument("run_log", nargs="?")
+    ap.add_argument("--notch", type=float, required=True, help="notch centre x, mm")
+    ap.add_argument("--depth", type=float, default=19.0, help="notch depth, mm")
+    ap.add_argument("--row", action="store_true", help="one markdown row")
+    a = ap.parse_args(argv[1:])
+    m = measure(a.result_dir, a.notch * 1e-3, a.depth * 1e-3)
+    row = a.row
+    steps, wall = steps_and_wall(a.run_log)
     if row:
         print("| %.3g mm | %.1f° | %.1f° | %+.1f° | %+.1f mm | %.1f mm | %+.1f mm | %.0f %% "
               "| %.1f mm, %.0f µs | %.0f µs | %d | %d | %s | %s s | %.1e |" %
@@ -114,8 +106,7 @@ def main(argv):
                m["through_time"] * 1e6, m["crack_particles"], m["n"], steps, wall,
                m["balance"]))
     else:
-        for k, v in m.items():
-            print("%s: %s" % (k, v))
+        print("\n".join("%s: %s" % kv for kv in m.items()))
     return 0
 
 
