@@ -96,11 +96,16 @@ def measure(path, tip, threshold):
            "length": r.max() if len(r) else 0.0,
            "damaged": int((D >= threshold).sum()),
            "damaged_below": int(((D >= threshold) & (X[:, 1] < tip[1] - h)).sum())}
+    out["balance"] = balance(f)
+    return out
+
+
+def balance(f):
+    """The largest |energy balance| over the run / the largest |external work|, of an
+    open result.h5."""
     obs = f["observables"]
     eb = np.abs(obs["energy_balance/value"][:])
-    scale = max(np.abs(obs["external_work/value"][:]).max(), 1e-300)
-    out["balance"] = eb.max() / scale
-    return out
+    return eb.max() / max(np.abs(obs["external_work/value"][:]).max(), 1e-300)
 
 
 def main(argv):

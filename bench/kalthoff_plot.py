@@ -21,6 +21,32 @@ SIZE, PAD, TOP = 300.0, 20.0, 40.0
 TIP = np.array([0.05, 0.025])
 
 
+def damage_cells(X, D, h, px, c, lowest=0.15):
+    """SVG rectangles of the cells of the particles with D >= lowest, in 8 grey
+    levels (light to black at 1); a run of equal cells along a row is one
+    rectangle.  px maps reference (x, y) to the picture, c is a cell's size there;
+    the lattice points lie at (i + 1/2) h (a body box from the origin), cell i
+    spans [i h, (i + 1) h]."""
+    out = []
+    sel = D >= lowest
+    col = np.round(X[sel, 0] / h - 0.5).astype(int)
+    row = np.round(X[sel, 1] / h - 0.5).astype(int)
+    grey = (255 * (1.0 - np.round(D[sel] * 7) / 7)).astype(int)
+    order = np.lexsort((col, row))
+    k = 0
+    while k < len(order):
+        i = order[k]
+        n = 1
+        while (k + n < len(order) and row[order[k + n]] == row[i]
+               and col[order[k + n]] == col[i] + n and grey[order[k + n]] == grey[i]):
+            n += 1
+        a, b = px(col[i] * h, (row[i] + 1) * h)
+        out.append('<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="rgb(%d,%d,%d)"/>'
+                   % (a, b, c * n, c, grey[i], grey[i], grey[i]))
+        k += n
+    return out
+
+
 def panel(k, title, path):
     f = h5py.File(path + "/result.h5", "r")
     p = f["particles/solid"]
@@ -37,24 +63,7 @@ def panel(k, title, path):
 
     out = ['<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="#eef" stroke="#888"/>'
            % (ox, TOP, SIZE, SIZE)]
-    # cells in 8 grey levels, runs of equal cells along a row drawn as one rectangle
-    c = max(h * s, 0.6)
-    sel = D >= 0.15
-    col = np.round(X[sel, 0] / h - 0.5).astype(int)
-    row = np.round(X[sel, 1] / h - 0.5).astype(int)
-    grey = (255 * (1.0 - np.round(D[sel] * 7) / 7)).astype(int)
-    order = np.lexsort((col, row))
-    k = 0
-    while k < len(order):
-        i = order[k]
-        n = 1
-        while (k + n < len(order) and row[order[k + n]] == row[i]
-               and col[order[k + n]] == col[i] + n and grey[order[k + n]] == grey[i]):
-            n += 1
-        a, b = px(col[i] * h, (row[i] + 1) * h)
-        out.append('<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="rgb(%d,%d,%d)"/>'
-                   % (a, b, c * n, c, grey[i], grey[i], grey[i]))
-        k += n
+    out += damage_cells(X, D, h, px, max(h * s, 0.6))
     a, b = px(0.0, 0.025 + 0.0006)
     out.append('<rect x="%.1f" y="%.1f" width="%.1f" height="%.1f" fill="#fff" stroke="#444"/>'
                % (a, b, 0.05 * s, 0.0012 * s))

@@ -56,7 +56,7 @@ int tlsph_parse_links(const json_t *root, struct tlsph_scene *s, struct tlsph_er
                         tlsph_link_criterion_names());
         return -1;
     }
-    const struct tlsph_key_target to = {.base = s->links.params};
+    const struct tlsph_key_target to = {.base = &s->links};
     bad |= tlsph_keys_read(obj, c->keys, LINKS, &to, err) != 0;
     if (c->needs_plasticity) {
         int plastic = 0;

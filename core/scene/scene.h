@@ -37,6 +37,8 @@ struct tlsph_link_criterion; /* core/sph/link_criterion.h */
 struct tlsph_link_settings {
     const struct tlsph_link_criterion *criterion; /* NULL: no links */
     double params[4];             /* the criterion's parameters, meaning fixed by it */
+    double reach; /* immediate neighbours: |X_ij| < reach x the mean local spacing, in
+                     spacings (sph/virtual_links.h; key "reach", default 1.85) */
 };
 
 /* What a failed particle (D = 1: no stress, no interaction) does next. */

@@ -17,11 +17,31 @@
 #define TLSPH_LINK_CRITERION_H
 
 #include <math.h>
+#include <stddef.h>
 
 #include "scene/keys.h"
 #include "scene/scene.h"
 
 struct tlsph_model;
+
+/* A criterion's parameter i, as a key offset: the keys of /discretization/damage/links
+ * are read into struct tlsph_link_settings (parse_links.c). */
+#define TLSPH_LINK_PARAM(i) (offsetof(struct tlsph_link_settings, params) + TLSPH_PARAM(i))
+
+/* The key every criterion's table lists: the reach of the immediate-neighbour
+ * support (sph/virtual_links.h), in mean local spacings.  Above 1 (the nearest
+ * lattice shell lies at 1 spacing); up to 3 (the kernel's support, support_factor
+ * spacings, cuts it anyway).  1.85 keeps the unit cell around a particle: 8 links
+ * on the 2-D square lattice, 26 on the 3-D cubic one; 1.2 keeps the nearest shell
+ * only: 4 and 6. */
+#define TLSPH_LINK_KEY_REACH                                                                   \
+    {.name = "reach", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,                    \
+     .range = {1.0, 3.0, JC_OPEN, JC_CLOSED}, .unit = "1", .def = 1.85,                        \
+     .offset = offsetof(struct tlsph_link_settings, reach),                                     \
+     .description = "immediate neighbours: the particles closer than reach x the mean local "   \
+                    "spacing of the two, in spacings; 1.85 keeps the unit cell (8 links in "    \
+                    "2-D, 26 in 3-D), 1.2 the nearest shell (4, 6); the kernel's support "      \
+                    "(support_factor spacings) cuts it too"}
 
 struct tlsph_link_criterion {
     const char *name;   /* as written in the scene */

@@ -12,11 +12,12 @@ enum { THRESHOLD, SOFTENING };
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
+    TLSPH_LINK_KEY_REACH,
     {.name = "threshold", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_PARAM(THRESHOLD),
+     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_LINK_PARAM(THRESHOLD),
      .description = "link plastic strain (eqs. 37-38) at which the link starts to soften"},
     {.name = "softening", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_PARAM(SOFTENING),
+     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_LINK_PARAM(SOFTENING),
      .description = "further link plastic strain from the threshold to the broken link "
                     "(D_ij grows linearly over it)"},
 };

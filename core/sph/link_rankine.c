@@ -11,8 +11,9 @@ enum { STRETCH };
 /* clang-format off */
 static const struct tlsph_key keys[] = {
     TLSPH_KEY_MODEL_TYPE,
+    TLSPH_LINK_KEY_REACH,
     {.name = "stretch", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_REQUIRED,
-     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_PARAM(STRETCH),
+     .range = {0.0, 10.0, JC_OPEN, JC_CLOSED}, .unit = "1", .offset = TLSPH_LINK_PARAM(STRETCH),
      .description = "link stretch (r - r0) / r0 at which the link breaks, eps_max of eq. 40"},
 };
 static const struct tlsph_key_table table =

@@ -33,7 +33,7 @@ static void restrict_support(struct tlsph_model *m)
             double r2 = 0.0;
             for (int a = 0; a < 3; a++)
                 r2 += (X[3 * j + a] - X[3 * i + a]) * (X[3 * j + a] - X[3 * i + a]);
-            const double reach = TLSPH_LINK_REACH * 0.5 * (si + local_spacing(m, j));
+            const double reach = m->scene.links.reach * 0.5 * (si + local_spacing(m, j));
             if (r2 < reach * reach)
                 nbr[out++] = (int32_t)j;
         }

@@ -3,10 +3,11 @@
  *
  * Support.  A particle interacts only with its immediate neighbours (paper 001
  * Fig. 1): the reference pairs (same body, inside the kernel's support) with
- *   |X_j - X_i| < TLSPH_LINK_REACH (s_i + s_j) / 2,   s_i = V_i^(1/d)
+ *   |X_j - X_i| < reach (s_i + s_j) / 2,   s_i = V_i^(1/d)
  * the local spacing (V_i the reference volume; 2-D: the area of the unit-thick
- * slab).  TLSPH_LINK_REACH = 1.85 sits between the lattice shells it must keep
- * and the first it must drop: on the 2-D square lattice it keeps the 8 at
+ * slab); reach is the scene's /discretization/damage/links/reach in spacings
+ * (m->scene.links.reach, link_criterion.h).  Its default 1.85 sits between the
+ * lattice shells it must keep and the first it must drop: on the 2-D square lattice it keeps the 8 at
  * distances 1 and sqrt 2 (the particles whose cells touch i's: the paper's
  * Fig. 1 draws, its text does not count them), on the 3-D cubic lattice the 26
  * at 1, sqrt 2 and sqrt 3 (the same rule: every point of the unit cell around
@@ -51,9 +52,6 @@
 #include "sph/crack_treatment.h"
 #include "sph/link_criterion.h"
 #include "util/parallel.h"
-
-/* Immediate neighbours: |X_ij| < TLSPH_LINK_REACH x the mean local spacing. */
-#define TLSPH_LINK_REACH 1.85
 
 /* The links of a run (m->links), allocated only with this treatment. */
 struct tlsph_links {

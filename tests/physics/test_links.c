@@ -8,6 +8,9 @@
  *     and Fdot = B at every particle, boundary included (the corrected gradient
  *     of eqs. 26-27 reproduces linear fields on any support with an invertible
  *     L): 1e-10 relative, as tests/engine/test_patch.c on the full support.
+ *     The scene's links/reach chooses the shells: 1.2 spacings give 4 (2-D) and 6
+ *     (3-D) links per interior particle, 2.5 give 20 (2-D); exact counts, and the
+ *     patch test again.
  *  1b. The pair loop against a brute-force eq. 29 (O(n^2) search of the
  *     immediate neighbours, kernel evaluated directly) on a deformed 3-D block
  *     with random link damages: 1e-12 of the largest force.
@@ -154,6 +157,39 @@ START_TEST(patch_cubic_lattice_3d)
     ck_assert_uint_eq(m->deficient_supports, 0);
     check_affine(m);
     tlsph_model_free(m);
+}
+END_TEST
+
+/* The scene's reach (links/reach, in spacings) picks the shells: 1.2 keeps the
+ * nearest (4 links in 2-D, 6 in 3-D), 2.5 adds the shells at 2 and sqrt 5 (20 in
+ * 2-D, inside the kernel's 2.6 spacings); the patch test holds on each. */
+START_TEST(reach_chooses_the_shells)
+{
+    static const struct {
+        int dim;
+        const char *reach, *box;
+        long interior, corner;
+    } cases[] = {
+        {2, "1.2", "[0.009,0.007,0]", 4, 2},
+        {3, "1.2", "[0.006,0.005,0.005]", 6, 3},
+        {2, "2.5", "[0.009,0.007,0]", 20, 7},
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof *cases; c++) {
+        char links[128], body[160];
+        snprintf(links, sizeof links, "{\"type\":\"rankine\",\"stretch\":10,\"reach\":%s}",
+                 cases[c].reach);
+        snprintf(body, sizeof body,
+                 "\"spacing\":0.001,\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":%s}}",
+                 cases[c].box);
+        struct tlsph_model *m = build_model(links_scene(cases[c].dim, "elastic", links, body, ""));
+        long lo, hi;
+        links_per_particle(m, &lo, &hi);
+        ck_assert_int_eq(hi, cases[c].interior);
+        ck_assert_int_eq(lo, cases[c].corner);
+        ck_assert_uint_eq(m->deficient_supports, 0);
+        check_affine(m);
+        tlsph_model_free(m);
+    }
 }
 END_TEST
 
@@ -598,7 +634,7 @@ START_TEST(only_link_scenes_pay_for_links)
 END_TEST
 
 TLSPH_CHECK_MAIN("links", 600, patch_square_lattice_2d, patch_cubic_lattice_3d,
-                 patch_irregular_conforming, forces_match_brute_force,
+                 reach_chooses_the_shells, patch_irregular_conforming, forces_match_brute_force,
                  one_broken_link_changes_two_forces,
                  eq37_projection_by_hand, eq40_fires_exactly_at_threshold,
                  bar_separates_at_the_rankine_stretch, tear_rankine_momentum_and_energy,
