@@ -201,7 +201,9 @@ static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinemat
             const double *v = p->v + 3 * i;
             const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
             cmax = fmax(cmax, c);
-            dt_min = fmin(dt_min, spacing * r.min_stretch / (c + speed));
+            /* the particle's own spacing when the body is graded */
+            const double h_i = p->spacing ? p->spacing[i] : spacing;
+            dt_min = fmin(dt_min, h_i * r.min_stretch / (c + speed));
         }
         } /* clang-format on; the end of the region: the pair's one barrier */
     }
