@@ -223,6 +223,69 @@ START_TEST(graded_sphere_volume)
 }
 END_TEST
 
+/* The 2-D plane-strain strip of tests/physics/test_strip.c (40 x 10 mm steel,
+ * ends pulled at +-vmax (1 - exp(-t/tau))) with its middle refined from 1 mm
+ * to 0.25 mm: in the gauge section the state is still uniaxial stress in plane
+ * strain, sigma_xx = E/(1-nu^2) eps_xx, across the transitions.  Measured: the
+ * volume-weighted mean sigma_xx between x = L/4 and 3L/4 against the strain of
+ * two particle bands there.  Reference: E/(1-nu^2).  Tolerance: 1 %, as the
+ * uniform strip's test. */
+static const char *graded_strip =
+    "{\"dimension\":2,\"time\":{\"end\":4e-4,\"cfl\":0.3},"
+    "\"parameters\":{\"vmax\":0.1,\"tau\":1e-4},"
+    "\"discretization\":{\"viscosity\":{\"enabled\":true,\"linear\":1.0,\"quadratic\":0.0}},"
+    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,\"poisson_ratio\":0.3}},"
+    "\"bodies\":[{\"name\":\"strip\",\"material\":\"steel\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.04,0.01,0]}},"
+    "\"refine\":[{\"region\":{\"box\":{\"min\":[0.018,0.004,0],\"max\":[0.022,0.006,0]}},"
+    "\"spacing\":0.00025,\"grading\":2}]}],"
+    "\"boundary_conditions\":["
+    "{\"type\":\"velocity\",\"name\":\"left\",\"select\":{\"box\":{\"min\":[-1,-1,-1],\"max\":[0.001,1,1]}},"
+    "\"velocity\":[\"-vmax*(1-exp(-t/tau))\",null,null]},"
+    "{\"type\":\"velocity\",\"name\":\"right\",\"select\":{\"box\":{\"min\":[0.039,-1,-1],\"max\":[1,1,1]}},"
+    "\"velocity\":[\"vmax*(1-exp(-t/tau))\",null,null]}]}";
+
+static double band_x(const struct tlsph_model *m, double X0)
+{
+    double s = 0;
+    int n = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        if (fabs(m->p.X[3 * i] - X0) < 0.0004) {
+            s += m->p.x[3 * i];
+            n++;
+        }
+    return s / n;
+}
+
+START_TEST(graded_strip_modulus)
+{
+    struct tlsph_model *m = build_model(graded_strip);
+    double vol;
+    ck_assert_int_ge(check_particles(m, &vol), 3);
+    const double E = 2.1e11, nu = 0.3, ref = E / (1 - nu * nu);
+    const double Xa = 0.0105, Xb = 0.0295; /* base lattice columns near L/4 and 3L/4 */
+    const double L0 = band_x(m, Xb) - band_x(m, Xa);
+    run_until(m, 4e-4);
+    const double eps = (band_x(m, Xb) - band_x(m, Xa)) / L0 - 1.0;
+    double sxx = 0, syy = 0, V = 0;
+    for (size_t i = 0; i < m->p.n; i++)
+        if (m->p.X[3 * i] > Xa && m->p.X[3 * i] < Xb) {
+            sxx += m->p.sigma[6 * i] * m->p.vol0[i];
+            syy += m->p.sigma[6 * i + 3] * m->p.vol0[i];
+            V += m->p.vol0[i];
+        }
+    sxx /= V;
+    syy /= V;
+    const double slope = sxx / eps;
+    fprintf(stderr, "graded strip: %zu particles, eps %.4g, sigma_xx %.4g Pa, sigma_yy %.3g Pa, "
+                    "slope %.5g vs E/(1-nu^2) %.5g (%.3f %%)\n",
+            m->p.n, eps, sxx, syy, slope, ref, 100 * (slope - ref) / ref);
+    ck_assert(eps > 5e-4);
+    ck_assert_msg(fabs(slope - ref) < 0.01 * ref, "slope %.5g vs %.5g", slope, ref);
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("graded", 120, graded_placement_3d, graded_placement_2d, graded_patch_3d,
                  graded_patch_2d, graded_forces_brute_force, graded_momentum,
-                 graded_sphere_volume)
+                 graded_sphere_volume, graded_strip_modulus)
