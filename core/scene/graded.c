@@ -96,15 +96,18 @@ static double target_min(const struct tlsph_body *body, const double centre[3], 
     return t;
 }
 
-double tlsph_graded_target(const struct tlsph_body *body, const double X[3], int dimension)
+double tlsph_graded_finest(const struct tlsph_body *body)
 {
-    double t = body->spacing;
+    double c = body->spacing;
     for (size_t r = 0; r < body->nrefine; r++) {
-        const struct tlsph_refine *rf = &body->refine[r];
-        t = fmin(t, rf->spacing +
-                        (rf->grading - 1.0) * point_distance(&rf->region, X, dimension));
+        double cr = body->spacing;
+        /* the cells split while larger than the target (walk_cell) */
+        for (int k = 0; k < TLSPH_MAX_REFINE_LEVELS && cr > body->refine[r].spacing * (1.0 + 1e-9);
+             k++)
+            cr *= 0.5;
+        c = fmin(c, cr);
     }
-    return t;
+    return c;
 }
 
 struct graded_walk {

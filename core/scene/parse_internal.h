@@ -101,8 +101,8 @@ void tlsph_refine_free(struct tlsph_body *b);
 #define TLSPH_GRADED_TOO_MANY (-2)
 int tlsph_graded_visit(const struct tlsph_scene *s, size_t b, size_t budget,
                        int (*visit)(const double X[3], double size, void *ctx), void *ctx);
-/* The target spacing of body at X, m: min(spacing, s_r + (g_r - 1) d_r(X)). */
-double tlsph_graded_target(const struct tlsph_body *body, const double X[3], int dimension);
+/* The finest particle spacing of body (its spacing / 2^k), m. */
+double tlsph_graded_finest(const struct tlsph_body *body);
 
 /* conforming.c: the shells of a body with placement conforming.  The sphere
  * or cylinder they follow: g itself or the first object of a difference; NULL
