@@ -225,7 +225,7 @@ END_TEST
 
 /* The 2-D plane-strain strip of tests/physics/test_strip.c (40 x 10 mm steel,
  * ends pulled at +-vmax (1 - exp(-t/tau))) with its middle refined from 1 mm
- * to 0.25 mm: in the gauge section the state is still uniaxial stress in plane
+ * to 0.5 mm (one level: the test stays cheap enough for the sanitizer run): in the gauge section the state is still uniaxial stress in plane
  * strain, sigma_xx = E/(1-nu^2) eps_xx, across the transitions.  Measured: the
  * volume-weighted mean sigma_xx between x = L/4 and 3L/4 against the strain of
  * two particle bands there.  Reference: E/(1-nu^2).  Tolerance: 1 %, as the
@@ -238,7 +238,7 @@ static const char *graded_strip =
     "\"bodies\":[{\"name\":\"strip\",\"material\":\"steel\",\"spacing\":0.001,"
     "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.04,0.01,0]}},"
     "\"refine\":[{\"region\":{\"box\":{\"min\":[0.018,0.004,0],\"max\":[0.022,0.006,0]}},"
-    "\"spacing\":0.00025,\"grading\":2}]}],"
+    "\"spacing\":0.0005,\"grading\":2}]}],"
     "\"boundary_conditions\":["
     "{\"type\":\"velocity\",\"name\":\"left\",\"select\":{\"box\":{\"min\":[-1,-1,-1],\"max\":[0.001,1,1]}},"
     "\"velocity\":[\"-vmax*(1-exp(-t/tau))\",null,null]},"
@@ -261,7 +261,7 @@ START_TEST(graded_strip_modulus)
 {
     struct tlsph_model *m = build_model(graded_strip);
     double vol;
-    ck_assert_int_ge(check_particles(m, &vol), 3);
+    ck_assert_int_ge(check_particles(m, &vol), 2);
     const double E = 2.1e11, nu = 0.3, ref = E / (1 - nu * nu);
     const double Xa = 0.0105, Xb = 0.0295; /* base lattice columns near L/4 and 3L/4 */
     const double L0 = band_x(m, Xb) - band_x(m, Xa);
