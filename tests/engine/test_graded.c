@@ -23,6 +23,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "contact/state.h"
 #include "support/scene_builder.h"
 #include "support/check_main.h"
 
@@ -223,6 +224,37 @@ START_TEST(graded_strip_modulus)
 }
 END_TEST
 
+/* Contact within a damaged graded body (on by default with a damage model): every
+ * particle's reach factor is its spacing / the body's (core/contact/touch.c), so two
+ * fine particles touch at their own spacing; and a stretched graded bar finds no
+ * contact pair before anything fails.  Reference: the spacing ratios; no pair. */
+static const char *damaged =
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":60},"
+    "\"materials\":{\"s\":{\"density\":7750,\"youngs_modulus\":2.11e11,\"poisson_ratio\":0.33,"
+    "\"strength\":{\"type\":\"johnson_cook\",\"yield_stress\":8.59e8,"
+    "\"hardening_coefficient\":3.29e8,\"hardening_exponent\":0.579},"
+    "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.361,\"d2\":4.768,\"d3\":-5.107}}},"
+    "\"bodies\":[{\"name\":\"b\",\"material\":\"s\",\"spacing\":0.002,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.008,0.008,0.012]}},"
+    "\"refine\":[{\"region\":{\"box\":{\"min\":[0,0,0.005],\"max\":[0.008,0.008,0.007]}},"
+    "\"spacing\":0.0005,\"grading\":2}],"
+    "\"initial_velocity\":[0,0,\"20*(z/0.012-0.5)\"]}]}";
+
+START_TEST(graded_contact_reach)
+{
+    struct tlsph_model *m = build_model(damaged);
+    ck_assert_ptr_nonnull(m->contact);
+    const double h = m->scene.bodies[0].spacing;
+    for (size_t i = 0; i < m->p.n; i++)
+        ck_assert(m->contact->reach[i] <= m->p.spacing[i] / h);
+    for (int s = 0; s < 60; s++)
+        tlsph_model_step(m);
+    ck_assert(m->energy.internal > 0.0);
+    ck_assert_uint_eq(tlsph_contact_active(m), 0); /* nothing failed: no pair touches */
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("graded", 120, graded_placement_3d, graded_placement_2d, graded_patch_3d,
                  graded_patch_2d, graded_forces_brute_force, graded_momentum,
-                 graded_sphere_volume, graded_strip_modulus)
+                 graded_sphere_volume, graded_strip_modulus, graded_contact_reach)
