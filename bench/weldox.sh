@@ -46,16 +46,12 @@ one() { # ALLOY:GEOMETRY:MODEL[:TREATMENT] -> OUTDIR/<name>/
   parse_case "$1"
   "$py" "$here/weldox_scene.py" "$alloy" "$geo" "$model" --treatment "$treatment" \
     >"$out/$name.json"
-  rm -rf "${out:?}/$name"
-  local rc=0
-  OMP_NUM_THREADS=1 "$run" "$out/$name.json" -o "$out/$name" --threads 1 --quiet \
-    >"$out/$name.log" 2>&1 || rc=$?
-  echo "$name exit $rc" >&2
+  run_scene "$out" "$name"
 }
 export -f parse_case one
 export here out run py
 # shellcheck disable=SC2086
-printf '%s\n' $CASES | xargs -P "$jobs" -I{} bash -c 'one {}'
+run_parallel one "$jobs" $CASES
 
 "$py" "$here/weldox_metrics.py" --header
 for c in $CASES; do

@@ -11,6 +11,9 @@ usage: weldox_scene.py ALLOY GEOMETRY MODEL [--treatment T] [--spacing H]
   V, TAU, END  end velocity (m/s), ramp time (s), end time (s) instead of the
             bench's (for the loading-rate check in docs/damage.md)
   --viscosity  Monaghan artificial viscosity on (beta1 = 1)
+  --refine S   graded spacing (docs/scene.md#graded-spacing): the notch section
+            (notched bars: the slab |z - notch| <= R of the root's radius + 0.3 mm)
+            at spacing S, grading back to H at --grading G (default 1.3)
 
 Prints the scene JSON.  Geometry (the paper gives it only in a figure; see
 docs/damage.md#specimens):
@@ -83,8 +86,18 @@ def damage(alloy, model):
             "failure_void_fraction": ff, "shear_coefficient": kw}
 
 
+def refine_notch(g, fine, grading):
+    """The notch section of a notched bar at spacing fine: a box over the root's
+    cross-section (radius 3 mm + 0.3 mm), as thick as the notch's round root."""
+    nb = g["geometry"]["notched_bar"]
+    r = nb["notch_root_radius"] + 0.0003
+    z0, R = nb["notch_position"], nb["notch_radius"]
+    return [{"region": {"box": {"min": [-r, -r, z0 - R], "max": [r, r, z0 + R]}},
+             "spacing": fine, "grading": grading}]
+
+
 def scene(alloy, geometry, model, treatment, spacing, vmax=0.0, tau=0.0, end=0.0,
-          viscosity=False):
+          viscosity=False, refine=0.0, grading=1.3):
     a, g = ALLOYS[alloy], dict(GEOMETRIES[geometry])
     if model in g:
         g.update(g[model])
@@ -93,6 +106,10 @@ def scene(alloy, geometry, model, treatment, spacing, vmax=0.0, tau=0.0, end=0.0
         (g["end_gtn"] if model == "gtn" else g["end"])
     L = g["length"]
     frames = 12
+    body = {"name": "bar", "material": f"weldox_{alloy}", "spacing": h,
+            "geometry": g["geometry"]}
+    if refine:
+        body["refine"] = refine_notch(g, refine, grading)
     return {
         "name": f"weldox-{alloy}-{geometry}-{model}" +
                 ("-pseudo-spring" if treatment == "pseudo_spring" else ""),
@@ -119,8 +136,7 @@ def scene(alloy, geometry, model, treatment, spacing, vmax=0.0, tau=0.0, end=0.0
             "strength": {"type": "johnson_cook", "yield_stress": a["A"],
                          "hardening_coefficient": a["B"], "hardening_exponent": a["n"]},
             "damage": damage(alloy, model)}},
-        "bodies": [{"name": "bar", "material": f"weldox_{alloy}", "spacing": h,
-                    "geometry": g["geometry"]}],
+        "bodies": [body],
         "boundary_conditions": [
             {"type": "velocity", "name": "bottom",
              "select": {"box": {"min": [-1, -1, -1], "max": [1, 1, h]}},
@@ -144,9 +160,13 @@ def main():
     p.add_argument("--tau", type=float, default=0.0)
     p.add_argument("--end", type=float, default=0.0)
     p.add_argument("--viscosity", action="store_true")
+    p.add_argument("--refine", type=float, default=0.0)
+    p.add_argument("--grading", type=float, default=1.3)
     o = p.parse_args()
+    if o.refine and o.geometry == "smooth":
+        p.error("--refine refines a notch: r2 or r04")
     print(json.dumps(scene(o.alloy, o.geometry, o.model, o.treatment, o.spacing, o.vmax, o.tau,
-                           o.end, o.viscosity), indent=1))
+                           o.end, o.viscosity, o.refine, o.grading), indent=1))
 
 
 if __name__ == "__main__":

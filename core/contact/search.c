@@ -87,6 +87,10 @@ static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, c
     if (!in_grid(c, i))
         return 0;
     const double ri = c->bodies[body[i]].radius + c->skin;
+    /* a graded body's pairs reach only min(reach_i, reach_j) x (R_i + R_j)
+     * (touch.c): searched that far, not the coarse radius's (which made the
+     * contact search 68 % of a graded notched bar's run) */
+    const double *reach_f = m->p.spacing ? c->reach : NULL;
     const int64_t home = c->key[i];
     const int zr = g->dim == 3 ? 1 : 0;
     size_t n = 0;
@@ -100,7 +104,9 @@ static size_t scan(const struct tlsph_model *m, const struct tlsph_contact *c, c
                         continue;
                     const double d0 = x[3 * j] - x[3 * i], d1 = x[3 * j + 1] - x[3 * i + 1],
                                  d2 = x[3 * j + 2] - x[3 * i + 2];
-                    const double reach = ri + c->bodies[body[j]].radius;
+                    double reach = ri + c->bodies[body[j]].radius;
+                    if (reach_f && body[j] == body[i])
+                        reach = (reach - c->skin) * fmin(reach_f[i], reach_f[j]) + c->skin;
                     if (d0 * d0 + d1 * d1 + d2 * d2 >= reach * reach)
                         continue;
                     if (out)

@@ -41,7 +41,10 @@ void tlsph_contact_touch_setup(struct tlsph_model *m, struct tlsph_contact *c)
     c->touching = 0;
     for (size_t i = 0; i < m->p.n; i++) {
         c->touching += c->touch[i] != 0;
-        c->reach[i] = 1.0;
+        /* a graded body's particle reaches as far as its own spacing allows
+         * (the law's radius is the body's, at its coarsest spacing): two fine
+         * particles of one body touch at their spacing, not at the body's */
+        c->reach[i] = m->p.spacing ? m->p.spacing[i] / s->bodies[m->p.body[i]].spacing : 1.0;
     }
 }
 

@@ -222,7 +222,9 @@ static void constitutive_pass(struct tlsph_model *m, double dt, int with_kinemat
             const double *v = p->v + 3 * i;
             const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
             cmax = fmax(cmax, c);
-            double dt_i = spacing * (tangent_step ? r.wave_stretch : r.min_stretch) / (c + speed);
+            /* the particle's own spacing when the body is graded */
+            const double h_i = p->spacing ? p->spacing[i] : spacing;
+            double dt_i = h_i * (tangent_step ? r.wave_stretch : r.min_stretch) / (c + speed);
             if (viscous_step)
                 dt_i *= tlsph_viscous_step_factor(beta1, beta2, p->h[i], p->Fdot + 9 * i,
                                                   r.min_stretch, c);

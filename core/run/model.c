@@ -65,7 +65,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->P_tilde); free(p->sigma); free(p->e);
     free(p->f_hourglass); free(p->f_viscous);
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
-    free(p->T); free(p->hg_scale);
+    free(p->T); free(p->hg_scale); free(p->spacing);
     free(p->damage); free(p->damage_init); free(p->crack_gradient); free(p->void_fraction);
     free(p->void_fstar); free(p->void_nucleated); free(p->void_shear);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
@@ -241,21 +241,25 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
     struct tlsph_scene *s = &m->scene;
     double **pts = calloc(s->nbodies, sizeof *pts);
     double **vols = calloc(s->nbodies, sizeof *vols);
+    double **sps = calloc(s->nbodies, sizeof *sps); /* refined bodies' spacings */
     size_t *counts = calloc(s->nbodies, sizeof *counts);
     m->body_begin = tlsph_alloc(m, s->nbodies, sizeof(size_t));
     m->body_end = tlsph_alloc(m, s->nbodies, sizeof(size_t));
     int rc = -1;
     size_t *order = NULL;
-    double *Xall = NULL, *Vall = NULL;
+    double *Xall = NULL, *Vall = NULL, *Sall = NULL;
     int32_t *ball = NULL;
-    if (!pts || !vols || !counts || !m->body_begin || !m->body_end) {
+    int graded = 0;
+    if (!pts || !vols || !sps || !counts || !m->body_begin || !m->body_end) {
         tlsph_errors_add(err, "", "out of memory");
         goto done;
     }
     size_t total = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         long left = s->max_particles - (long)total;
-        if (tlsph_body_particles(s, b, left, &pts[b], &vols[b], &counts[b], err) != 0)
+        graded |= s->bodies[b].nrefine > 0;
+        if (tlsph_body_fill(s, b, left, &pts[b], &vols[b], s->bodies[b].nrefine ? &sps[b] : NULL,
+                            &counts[b], err) != 0)
             goto done;
         if (counts[b] == 0) {
             char ptr[64];
@@ -275,7 +279,11 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
     Xall = malloc(3 * total * sizeof *Xall);
     ball = malloc(total * sizeof *ball);
     Vall = malloc(total * sizeof *Vall);
-    if (!order || !Xall || !ball || !Vall || allocate_particles(m, total) != 0) {
+    if (graded)
+        Sall = malloc(total * sizeof *Sall);
+    if (!order || !Xall || !ball || !Vall || (graded && !Sall) ||
+        allocate_particles(m, total) != 0 ||
+        (graded && !(m->p.spacing = tlsph_alloc(m, total, sizeof(double))))) {
         tlsph_errors_add(err, "", "out of memory for %zu particles", total);
         goto done;
     }
@@ -283,8 +291,11 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
     for (size_t b = 0; b < s->nbodies; b++) {
         memcpy(Xall + 3 * m->body_begin[b], pts[b], 3 * counts[b] * sizeof(double));
         memcpy(Vall + m->body_begin[b], vols[b], counts[b] * sizeof(double));
-        for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++)
+        for (size_t i = m->body_begin[b]; i < m->body_end[b]; i++) {
             ball[i] = (int32_t)b;
+            if (graded)
+                Sall[i] = sps[b] ? sps[b][i - m->body_begin[b]] : s->bodies[b].spacing;
+        }
         cell = fmax(cell, s->support_factor * s->bodies[b].spacing);
     }
     if (tlsph_cell_order(Xall, ball, total, cell, order) != 0) {
@@ -302,7 +313,10 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
             p->X[3 * k + c] = p->x[3 * k + c] = Xall[3 * o + c];
         p->vol0[k] = Vall[o]; /* spacing^d on the lattice, per shell when conforming */
         p->mass[k] = mat->density * p->vol0[k];
-        p->h[k] = 0.5 * s->support_factor * body->spacing;
+        /* the particle's own spacing when graded (volume, mass and h follow it) */
+        p->h[k] = 0.5 * s->support_factor * (graded ? Sall[o] : body->spacing);
+        if (graded)
+            p->spacing[k] = Sall[o];
         for (int c = 0; c < 3; c++) {
             struct tlsph_expr *ex = &body->initial_velocity[c];
             p->v[3 * k + c] = ex->evaluator ? tlsph_expr_eval(ex, p->X + 3 * k) : 0.0;
@@ -318,9 +332,13 @@ done:
             free(pts[b]);
         if (vols)
             free(vols[b]);
+        if (sps)
+            free(sps[b]);
     }
     free(pts);
     free(vols);
+    free(sps);
+    free(Sall);
     free(Vall);
     free(counts);
     free(order);

@@ -54,6 +54,10 @@ struct tlsph_particles {
     /* Temperature, K; allocated only when some material has thermal coupling.
      * NaN for particles whose material has no temperature. */
     double *T;
+    /* Each particle's own lattice spacing, m; allocated only when some body
+     * refines its spacing ("refine", core/scene/graded.c; NULL otherwise: the
+     * body's spacing).  h = support_factor / 2 x this. */
+    double *spacing;
 
     /* Damage (core/material/damage/damage.h); allocated only when some material of the
      * scene has a damage model (NULL otherwise), zero for the others. */

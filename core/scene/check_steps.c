@@ -85,7 +85,8 @@ int tlsph_check_steps(struct tlsph_scene *s, const struct tlsph_initial_speed *f
     double dt_cfl = INFINITY, c_limiting = 0.0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const double c = tlsph_reference_wave_speed(&s->materials[s->bodies[b].material]);
-        double dt_b = s->bodies[b].spacing / (c + fastest[b].speed);
+        /* a graded body's step is set by its finest particles */
+        double dt_b = tlsph_graded_finest(&s->bodies[b]) / (c + fastest[b].speed);
         if (s->step_estimate && s->viscosity)
             dt_b *= tlsph_damped_step_factor(TLSPH_VISCOUS_XI * s->viscosity_linear);
         if (dt_b < dt_cfl) {

@@ -14,6 +14,7 @@
  * tlsph_geometry_contains says so.  A union of 1000 small spheres, which tested
  * 1000 spheres per lattice point, tests the few a row meets. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -175,12 +176,36 @@ static int conforming_visit(const struct tlsph_scene *s, size_t b,
     return r;
 }
 
+/* A graded body's walk visits at most this many cells: bounded like the
+ * uniform lattice's candidates (10 x the particle limit). */
+static size_t graded_budget(const struct tlsph_scene *s)
+{
+    return 10 * (size_t)(s->max_particles > 0 ? s->max_particles : 1);
+}
+
+struct drop_size {
+    int (*visit)(const double X[3], void *ctx);
+    void *ctx;
+};
+
+static int drop_size_visit(const double X[3], double size, void *ctx)
+{
+    (void)size;
+    const struct drop_size *d = ctx;
+    return d->visit(X, d->ctx);
+}
+
 int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
                         int (*visit)(const double X[3], void *ctx), void *ctx)
 {
     const struct tlsph_body *body = &s->bodies[b];
     if (body->placement == TLSPH_PLACEMENT_CONFORMING)
         return conforming_visit(s, b, visit, ctx);
+    if (body->nrefine) { /* too many cells: as out of memory (counted first, graded_count) */
+        const int r = tlsph_graded_visit(s, b, graded_budget(s), drop_size_visit,
+                                         &(struct drop_size){visit, ctx});
+        return r == TLSPH_GRADED_TOO_MANY ? -1 : r;
+    }
     const double h = body->spacing;
     struct walker w;
     if (walker_init(&w, &body->geometry, s->dimension) != 0)
@@ -231,10 +256,43 @@ static int lattice_walk(const struct tlsph_scene *s, size_t b, const long lo[3],
     return 0;
 }
 
+/* The graded leaves of body b: counted (out NULL) or stored with their volumes
+ * and spacings (up to cap). */
+struct graded_store {
+    double *X, *vol, *spacing; /* NULL: count only */
+    size_t cap, n;
+    int dimension;
+};
+
+static int graded_point(const double X[3], double size, void *ctx)
+{
+    struct graded_store *st = ctx;
+    if (st->X && st->n < st->cap) {
+        memcpy(st->X + 3 * st->n, X, 3 * sizeof *X);
+        st->vol[st->n] = st->dimension == 2 ? size * size : size * size * size;
+        st->spacing[st->n] = size;
+    }
+    st->n++;
+    return 0;
+}
+
+/* *count = the graded body's particles, SIZE_MAX when its walk visits more
+ * cells than graded_budget allows. */
+static void graded_count(const struct tlsph_scene *s, size_t b, size_t *count)
+{
+    struct graded_store st = {.dimension = s->dimension};
+    const int r = tlsph_graded_visit(s, b, graded_budget(s), graded_point, &st);
+    *count = r == TLSPH_GRADED_TOO_MANY ? SIZE_MAX : st.n;
+}
+
 int tlsph_lattice_count(const struct tlsph_scene *s, size_t b, size_t *count)
 {
     if (s->bodies[b].placement == TLSPH_PLACEMENT_CONFORMING) {
         *count = tlsph_conforming_count(s, b);
+        return 0;
+    }
+    if (s->bodies[b].nrefine) {
+        graded_count(s, b, count);
         return 0;
     }
     long lo[3], hi[3];
@@ -327,34 +385,109 @@ static int conforming_points(const struct tlsph_scene *s, size_t b, long max_poi
     return 0;
 }
 
-int tlsph_body_particles(const struct tlsph_scene *s, size_t b, long max_points, double **out,
-                         double **vol, size_t *n, struct tlsph_errors *err)
+/* A graded body's leaves with volumes and spacings, counted first against
+ * max_points (reported at its "refine"). */
+static int graded_points(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                         double **vol, double **spacing, size_t *n, struct tlsph_errors *err)
+{
+    char P[TLSPH_POINTER_MAX], p[TLSPH_POINTER_MAX];
+    tlsph_pointer_index(P, sizeof P, "/bodies", b);
+    tlsph_pointer_join(p, sizeof p, P, "refine");
+    size_t count;
+    graded_count(s, b, &count);
+    if (count == SIZE_MAX) {
+        tlsph_errors_add(err, p,
+                         "body '%s': its refinement visits more than 10 x the limit of %ld "
+                         "particles in cells",
+                         s->bodies[b].name, s->max_particles);
+        return -1;
+    }
+    if (over_limit(s, b, count, max_points, p, err))
+        return -1;
+    if (count == 0)
+        return 0;
+    struct graded_store st = {.cap = count, .dimension = s->dimension};
+    st.X = malloc(3 * count * sizeof *st.X);
+    st.vol = malloc(count * sizeof *st.vol);
+    st.spacing = malloc(count * sizeof *st.spacing);
+    if (!st.X || !st.vol || !st.spacing ||
+        tlsph_graded_visit(s, b, graded_budget(s), graded_point, &st) != 0 || st.n != count) {
+        free(st.X);
+        free(st.vol);
+        free(st.spacing);
+        tlsph_errors_add(err, P, "out of memory for %zu particles of body '%s'", count,
+                         s->bodies[b].name);
+        return -1;
+    }
+    *out = st.X;
+    *n = count;
+    if (vol)
+        *vol = st.vol;
+    else
+        free(st.vol);
+    if (spacing)
+        *spacing = st.spacing;
+    else
+        free(st.spacing);
+    return 0;
+}
+
+/* n copies of value in a new array (*a; NULL when n = 0), or -1. */
+static int fill_array(double **a, size_t n, double value)
+{
+    *a = NULL;
+    if (n == 0)
+        return 0;
+    double *v = malloc(n * sizeof *v);
+    if (!v)
+        return -1;
+    for (size_t i = 0; i < n; i++)
+        v[i] = value;
+    *a = v;
+    return 0;
+}
+
+int tlsph_body_fill(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                    double **vol, double **spacing, size_t *n, struct tlsph_errors *err)
 {
     *out = NULL;
     *n = 0;
     if (vol)
         *vol = NULL;
+    if (spacing)
+        *spacing = NULL;
     const struct tlsph_body *body = &s->bodies[b];
+    if (body->placement == TLSPH_PLACEMENT_LATTICE && body->nrefine)
+        return graded_points(s, b, max_points, out, vol, spacing, n, err);
+    int r;
     if (body->placement == TLSPH_PLACEMENT_CONFORMING)
-        return conforming_points(s, b, max_points, out, vol, n, err);
-    if (lattice_points(s, b, max_points, out, n, err) != 0)
+        r = conforming_points(s, b, max_points, out, vol, n, err);
+    else
+        r = lattice_points(s, b, max_points, out, n, err);
+    if (r != 0)
         return -1;
-    if (!vol || *n == 0)
-        return 0;
-    double *v = malloc(*n * sizeof *v);
-    if (!v) {
+    const double h = body->spacing;
+    const int bad = (body->placement != TLSPH_PLACEMENT_CONFORMING && vol &&
+                     fill_array(vol, *n, s->dimension == 2 ? h * h : h * h * h) != 0) ||
+                    (spacing && fill_array(spacing, *n, h) != 0);
+    if (bad) {
         free(*out);
         *out = NULL;
+        if (vol) {
+            free(*vol);
+            *vol = NULL;
+        }
         *n = 0;
         tlsph_errors_add(err, "", "out of memory for the volumes of body '%s'", body->name);
         return -1;
     }
-    const double h = body->spacing;
-    const double each = s->dimension == 2 ? h * h : h * h * h;
-    for (size_t i = 0; i < *n; i++)
-        v[i] = each;
-    *vol = v;
     return 0;
+}
+
+int tlsph_body_particles(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                         double **vol, size_t *n, struct tlsph_errors *err)
+{
+    return tlsph_body_fill(s, b, max_points, out, vol, NULL, n, err);
 }
 
 int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, double **out,

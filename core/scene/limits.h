@@ -19,6 +19,10 @@
 /* Objects (primitives, unions, differences) in one body's geometry: bounds the
  * lattice walk at (lattice points in the bounding box) x (objects) box tests */
 #define TLSPH_GEOMETRY_MAX_OBJECTS 1000
+/* Refinement regions of one body ("refine"), and the finest refined spacing as
+ * body spacing / 2^TLSPH_MAX_REFINE_LEVELS (each level halves the cells). */
+#define TLSPH_MAX_REFINE 16
+#define TLSPH_MAX_REFINE_LEVELS 10
 /* Smallest spacing / (largest |coordinate| of the body's geometry and origin):
  * positions are doubles (53 bits, ~16 digits), so at this ratio a position is
  * exact to ~1e-9 spacing and a step's displacement (~1e-3 spacing) to ~1e-6 of

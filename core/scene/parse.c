@@ -424,6 +424,7 @@ void tlsph_scene_free(struct tlsph_scene *s)
         return;
     for (size_t b = 0; b < s->nbodies; b++) {
         tlsph_geometry_free(&s->bodies[b].geometry);
+        tlsph_refine_free(&s->bodies[b]);
         for (int k = 0; k < 3; k++)
             tlsph_expr_free(&s->bodies[b].initial_velocity[k]);
     }

@@ -2,6 +2,7 @@
  * geometry, initial_velocity}, ...] -> s->bodies, and the particle-count checks that
  * keep a scene from asking for an absurd number of particles. */
 #include <math.h>
+#include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -108,10 +109,12 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
         geometry_ok = 1;
     }
     /* Absent: a plain sphere follows its surface (measured closer to Hertz, see
-     * docs/contact.md), unless the scene pins its lattice with an origin. */
+     * docs/contact.md), unless the scene pins its lattice with an origin or
+     * refines it. */
     if (b->placement == TLSPH_PLACEMENT_AUTO)
         b->placement =
-            geometry_ok && b->geometry.type == TLSPH_GEOM_SPHERE && !json_object_get(obj, "origin")
+            geometry_ok && b->geometry.type == TLSPH_GEOM_SPHERE && !json_object_get(obj, "origin") &&
+                    !json_object_get(obj, "refine")
                 ? TLSPH_PLACEMENT_CONFORMING
                 : TLSPH_PLACEMENT_LATTICE;
     if (geometry_ok && b->placement == TLSPH_PLACEMENT_CONFORMING &&
@@ -136,6 +139,8 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     if (geometry_ok && r >= 0)
         bad |= tlsph_check_body_precision(b, s->dimension, P, err) != 0;
     bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
+    if (geometry_ok)
+        bad |= tlsph_parse_refine(obj, s->dimension, b, P, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -219,6 +224,21 @@ int tlsph_check_particle_counts(struct tlsph_scene *s, struct tlsph_errors *err)
                              "body '%s': the geometry contains no lattice point at spacing %g m "
                              "(it is smaller than the spacing, or the origin misses it)",
                              b->name, b->spacing);
+            bad = 1;
+            continue;
+        }
+        if (count > (size_t)max && b->nrefine) {
+            tlsph_pointer_join(p, sizeof p, P, "refine");
+            if (count == SIZE_MAX)
+                tlsph_errors_add(err, p,
+                                 "body '%s': its refinement visits more than 10 x the limit of "
+                                 "%ld particles (/limits/max_particles) in cells",
+                                 b->name, max);
+            else
+                tlsph_errors_add(err, p,
+                                 "body '%s': its refinement gives %zu particles, above the limit "
+                                 "of %ld (/limits/max_particles)",
+                                 b->name, count, max);
             bad = 1;
             continue;
         }

@@ -14,6 +14,7 @@
  * tlsph_scene_keys, keys.h). */
 extern const struct tlsph_key_table tlsph_material_keys; /* "/materials/<name>" */
 extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
+extern const struct tlsph_key_table tlsph_refine_keys;   /* "/bodies/<i>/refine/<k>" (refine.c) */
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
 extern const struct tlsph_key_table tlsph_contact_keys;  /* "/contact" */
@@ -86,6 +87,22 @@ size_t tlsph_geometry_count(const struct tlsph_geometry *g);
  * positive values); -1 when out of memory. */
 int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3], const long hi[3],
                         int (*visit)(const double X[3], void *ctx), void *ctx);
+
+/* refine.c: body b's "refine" array (its geometry and spacing parsed) into
+ * b->refine; 0, or -1 with errors under pointer ("/bodies/<i>"). */
+int tlsph_parse_refine(const json_t *obj, int dimension, struct tlsph_body *b, const char *pointer,
+                       struct tlsph_errors *err);
+void tlsph_refine_free(struct tlsph_body *b);
+
+/* graded.c: a body with refine regions.  Calls visit at each leaf cell's
+ * centre X (m) inside the geometry with the leaf's size (its particle's
+ * spacing, m); stops at the first non-zero return and returns it, or
+ * TLSPH_GRADED_TOO_MANY once more than budget cells were visited. */
+#define TLSPH_GRADED_TOO_MANY (-2)
+int tlsph_graded_visit(const struct tlsph_scene *s, size_t b, size_t budget,
+                       int (*visit)(const double X[3], double size, void *ctx), void *ctx);
+/* The finest particle spacing of body (its spacing / 2^k), m. */
+double tlsph_graded_finest(const struct tlsph_body *body);
 
 /* conforming.c: the shells of a body with placement conforming.  The sphere
  * or cylinder they follow: g itself or the first object of a difference; NULL

@@ -122,6 +122,16 @@ enum tlsph_placement {
                                   volume per shell */
 };
 
+/* A region of a body filled at a finer spacing (core/scene/refine.c, graded.c):
+ * the target spacing at X is spacing + (grading - 1) d(X) for d the distance of
+ * X from the region, so the spacing grows by the factor `grading` per spacing
+ * of distance away from it, up to the body's spacing. */
+struct tlsph_refine {
+    struct tlsph_geometry region; /* a box, cylinder or sphere (owned) */
+    double spacing;               /* finest spacing in the region, m (< the body's) */
+    double grading;               /* growth of the spacing per spacing of distance, 1 (> 1) */
+};
+
 struct tlsph_body {
     char name[TLSPH_NAME_MAX];
     int material;       /* index into scene->materials */
@@ -130,6 +140,8 @@ struct tlsph_body {
     double origin[3];   /* lattice origin (a lattice point sits at origin + (i+1/2)*spacing), m */
     struct tlsph_geometry geometry;
     struct tlsph_expr initial_velocity[3]; /* expressions of x, y, z (m) -> m/s; evaluator NULL = 0 */
+    struct tlsph_refine *refine; /* owned array of nrefine; none = the uniform lattice */
+    size_t nrefine;
 };
 
 /* Which particles a boundary condition applies to.  A particle is selected when it
@@ -284,5 +296,10 @@ int tlsph_body_lattice(const struct tlsph_scene *s, size_t b, long max_points, d
  * max_points like tlsph_body_lattice. */
 int tlsph_body_particles(const struct tlsph_scene *s, size_t b, long max_points, double **out,
                          double **vol, size_t *n, struct tlsph_errors *err);
+/* tlsph_body_particles with, when spacing is non-NULL, each particle's own
+ * spacing (m; the body's spacing unless the body refines, see struct
+ * tlsph_refine) in *spacing, owned by the caller. */
+int tlsph_body_fill(const struct tlsph_scene *s, size_t b, long max_points, double **out,
+                    double **vol, double **spacing, size_t *n, struct tlsph_errors *err);
 
 #endif

@@ -291,6 +291,9 @@ static const struct tlsph_key body_keys[] = {
      .table = &tlsph_geometry_keys, .description = "the region the particles fill"},
     {.name = "initial_velocity", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .unit = "m/s",
      .description = "3 items, each a number or an expression of x, y, z; absent = 0"},
+    {.name = "refine", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_refine_keys,
+     .description = "regions filled at a finer spacing, graded back to the body's spacing "
+                    "(lattice placement only); absent = uniform"},
 };
 const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL, body_keys);
 

@@ -10,7 +10,6 @@
 
 struct body_constants {
     double hg_coeff;  /* alpha/2 E */
-    double h;         /* smoothing length for mu_ij, m */
     double c, rho0;   /* wave speed m/s, density kg/m^3 */
     double beta1, beta2;
 };
@@ -58,6 +57,7 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     double *restrict f = m->p.f;
     double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
     const double *restrict hs = m->p.hg_scale;
+    const double *restrict hsm = m->p.h;
     const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
@@ -100,8 +100,10 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
             }
             if (with_visc) {
                 const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+                /* the pair's symmetric smoothing length (the body's on a uniform lattice) */
+                const double hij = 0.5 * (hsm[i] + hsm[j]);
                 const double c =
-                    pair * viscosity_pair(mass[j], bc->h, bc->c, bc->rho0, bc->beta1,
+                    pair * viscosity_pair(mass[j], hij, bc->c, bc->rho0, bc->beta1,
                                           bc->beta2, dw[k], R, x0, x1, x2, v[3 * j] - vi0,
                                           v[3 * j + 1] - vi1, v[3 * j + 2] - vi2);
                 q0 += c * x0;
@@ -177,7 +179,6 @@ struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
         const struct tlsph_material *mat = &s->materials[body->material];
         const struct body_constants bc = {
             .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
-            .h = 0.5 * s->support_factor * body->spacing,
             .c = mat->wave_speed,
             .rho0 = mat->density,
             .beta1 = s->viscosity_linear,

@@ -25,26 +25,14 @@ static const char *strip =
     "{\"type\":\"velocity\",\"name\":\"right\",\"select\":{\"box\":{\"min\":[0.039,-1,-1],\"max\":[1,1,1]}},"
     "\"velocity\":[\"vmax*(1-exp(-t/tau))\",null,null]}]}";
 
-static double band_x(const struct tlsph_model *m, double X0)
-{
-    double s = 0;
-    int n = 0;
-    for (size_t i = 0; i < m->p.n; i++)
-        if (fabs(m->p.X[3 * i] - X0) < 0.0004) {
-            s += m->p.x[3 * i];
-            n++;
-        }
-    return s / n;
-}
-
 START_TEST(plane_strain_modulus)
 {
     struct tlsph_model *m = build_model(strip);
     const double E = 2.1e11, nu = 0.3, ref = E / (1 - nu * nu);
     const double Xa = 0.0105, Xb = 0.0295; /* lattice columns near L/4 and 3L/4 */
-    const double L0 = band_x(m, Xb) - band_x(m, Xa);
+    const double L0 = band_mean_x(m, Xb) - band_mean_x(m, Xa);
     run_until(m, 4e-4);
-    const double eps = (band_x(m, Xb) - band_x(m, Xa)) / L0 - 1.0;
+    const double eps = (band_mean_x(m, Xb) - band_mean_x(m, Xa)) / L0 - 1.0;
     double sxx = 0, syy = 0;
     int n = 0;
     for (size_t i = 0; i < m->p.n; i++)

@@ -40,5 +40,23 @@ void brute_force_stress_force(const struct tlsph_model *m, size_t i, pair_weight
  * unless every particle's force is brute_force_stress_force's within 1e-12 of
  * the largest. */
 void check_forces_match_brute_force(struct tlsph_model *m, pair_weight_fn weight, void *ctx);
+/* The patch test: moves m to x = A X + b with velocity v = B X (A, B row-major
+ * 3x3), evaluates the kinematics and fails the test unless F = A within 1e-10
+ * and Fdot = B within 1e-8 (|B| ~ 100/s) at every particle. */
+void check_affine_patch(struct tlsph_model *m, const double A[9], const double B[9]);
+/* check_affine_patch with the standard A and B of m's dimension (a general
+ * stretch-shear, plane in 2-D). */
+void check_patch(struct tlsph_model *m);
+/* Every pair inside the kernel's support (r < h_i + h_j), at full weight. */
+double pair_in_support(const struct tlsph_model *m, size_t i, size_t j, double r, void *ctx);
+/* check_forces_match_brute_force on the model of json with hourglass and
+ * viscosity off, after srand(seed); frees the model. */
+void check_stress_forces(const char *json, unsigned seed);
+/* Mean current x (m) of the particles whose reference x is within 0.4 mm of X0. */
+double band_mean_x(const struct tlsph_model *m, double X0);
+/* Runs steps steps of a free body and fails the test unless every momentum
+ * component stays within 1e-12 of momentum_scale and the body deformed
+ * (internal energy above 1e-6 of the kinetic). */
+void check_momentum_kept(struct tlsph_model *m, int steps);
 
 #endif

@@ -24,6 +24,13 @@ SEMANTIC_ONLY = {
     "absurd_particle_count",  # estimate > 10 x max_particles
     "bodies_candidates_in_all",  # the bodies' estimates together > 10 x max_particles
     "too_many_particles",     # actual count > max_particles
+    # graded spacing (core/scene/refine.c): relative to the body's spacing and
+    # geometry, or the count of the refined lattice
+    "refine_finer_than_allowed",
+    "refine_not_finer",
+    "refine_region_outside",
+    "refine_too_many_particles",
+    "refine_conforming",
     # expression language (only the character set is in the schema)
     "expression_syntax",
     "expression_unknown_variable",
