@@ -25,6 +25,7 @@
 #include "bc/surface.h"
 #include "run/model.h"
 #include "scene/parse_internal.h"
+#include "util/mat3.h"
 
 /* Where the numbers live in struct tlsph_bc (scene.h): the normal in
  * bc->normal, these two in bc->params. */
@@ -97,15 +98,13 @@ static void force(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsph_group
         const size_t i = (size_t)g->index[a];
         const double *F = m->p.F + 9 * i, *N = g->area + 3 * a;
         double *load = g->load + 3 * a, *f = m->p.f + 3 * i;
-        /* cof(F) = J F^-T, row by row: the current area vector without 1 / J */
-        load[0] = -p * ((F[4] * F[8] - F[5] * F[7]) * N[0] + (F[5] * F[6] - F[3] * F[8]) * N[1] +
-                        (F[3] * F[7] - F[4] * F[6]) * N[2]);
-        load[1] = -p * ((F[2] * F[7] - F[1] * F[8]) * N[0] + (F[0] * F[8] - F[2] * F[6]) * N[1] +
-                        (F[1] * F[6] - F[0] * F[7]) * N[2]);
-        load[2] = -p * ((F[1] * F[5] - F[2] * F[4]) * N[0] + (F[2] * F[3] - F[0] * F[5]) * N[1] +
-                        (F[0] * F[4] - F[1] * F[3]) * N[2]);
-        for (int c = 0; c < 3; c++)
+        /* cof(F) = J F^-T = adj(F)^T */
+        double adj[9];
+        mat3_adjugate(F, adj);
+        for (int c = 0; c < 3; c++) {
+            load[c] = -p * (adj[c] * N[0] + adj[3 + c] * N[1] + adj[6 + c] * N[2]);
             f[c] += load[c];
+        }
     }
 }
 

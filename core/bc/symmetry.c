@@ -24,7 +24,7 @@ static size_t select_on_plane(const struct tlsph_model *m, struct tlsph_bc *bc, 
     size_t count = 0;
     for (size_t i = 0; i < m->p.n; i++) {
         const double d = tlsph_plane_distance(bc, m->p.X + 3 * i);
-        const double h = m->p.spacing ? m->p.spacing[i] : m->scene.bodies[m->p.body[i]].spacing;
+        const double h = tlsph_particle_spacing(m, i);
         if (fabs(d) <= 0.5 * h * (1.0 + 1e-9)) {
             if (index)
                 index[count] = (int32_t)i;

@@ -34,12 +34,6 @@
 /* (x - point) x normal, m: the torque about the wall's point of a unit push
  * along the normal at x.  The reaction's torque is the sum of these weighted
  * by each particle's impulse (the wall pushes along its normal only). */
-/* Particle i's spacing, m: its own when its body is graded. */
-static double wall_spacing(const struct tlsph_model *m, size_t i)
-{
-    return m->p.spacing ? m->p.spacing[i] : m->scene.bodies[m->p.body[i]].spacing;
-}
-
 static inline void lever(const struct tlsph_bc *bc, const double *x, double arm[3])
 {
     const double r0 = x[0] - bc->point[0], r1 = x[1] - bc->point[1], r2 = x[2] - bc->point[2];
@@ -69,7 +63,7 @@ static void hold_on_wall(struct tlsph_model *m, struct tlsph_bc *bc, struct tlsp
 #pragma omp parallel for schedule(static) \
     reduction(+ : lost, imp0, imp1, imp2, ang0, ang1, ang2) if (m->p.n >= TLSPH_PARALLEL_MIN_ITEMS)
     for (size_t i = 0; i < m->p.n; i++) {
-        const double tol = WALL_CONTACT * wall_spacing(m, i);
+        const double tol = WALL_CONTACT * tlsph_particle_spacing(m, i);
         if (tlsph_plane_distance(bc, m->p.x + 3 * i) > tol)
             continue;
         double *v = m->p.v + 3 * i;
@@ -154,7 +148,7 @@ static int check_sides(const struct tlsph_model *m, const struct tlsph_bc *bc, c
     size_t behind = 0, deepest = 0;
     double depth = 0.0;
     for (size_t i = 0; i < m->p.n; i++) {
-        const double tol = WALL_CONTACT * wall_spacing(m, i);
+        const double tol = WALL_CONTACT * tlsph_particle_spacing(m, i);
         const double d = tlsph_plane_distance(bc, m->p.X + 3 * i);
         if (d >= -tol)
             continue;

@@ -85,8 +85,9 @@ static double plastic_correction(const struct tlsph_material *mat, const double 
  * covers it.  Elastic unloading in the next step would see M_el: measured
  * against the linearised step operator (tests/physics/test_stable_step.c,
  * docs/performance.md "The stable step"), the limit of a flowing Taylor foot is
- * 1.2-1.4x this estimate, and 1.24-1.59x with the elastic tangent alone.  The floor M_el/3 is the bulk-only modulus at Poisson's ratio 0, and
- * keeps an EOS in tension (K_t <= 0) from giving an unbounded step.  tau:
+ * 1.2-1.4x this estimate, and 1.24-1.59x with the elastic tangent alone.  The
+ * floor M_el/3 is the bulk-only modulus at Poisson's ratio 0, and keeps an EOS
+ * in tension (K_t <= 0) from giving an unbounded step.  tau:
  * Kirchhoff stress in the eigenbasis of C (its diagonal is along the principal
  * directions); lam: eigenvalues of C. */
 static double flowing_wave_stretch(const double tau[9], const double lam[3], double K_t, double G)
@@ -100,8 +101,8 @@ static double flowing_wave_stretch(const double tau[9], const double lam[3], dou
     const double M_el = fmax(K_t + 4.0 / 3.0 * G, 4.0 / 3.0 * G);
     double s = INFINITY;
     for (int a = 0; a < 3; a++) {
-        const double n = d2 > 0.0 ? (tau[4 * a] - mean) : 0.0;
-        const double M_a = fmax(M_el - 2.0 * G * (d2 > 0.0 ? n * n / d2 : 0.0), M_el / 3.0);
+        const double n = tau[4 * a] - mean, N2 = d2 > 0.0 ? n * n / d2 : 0.0;
+        const double M_a = fmax(M_el - 2.0 * G * N2, M_el / 3.0);
         s = fmin(s, sqrt(lam[a] * M_el / M_a));
     }
     return s;

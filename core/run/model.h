@@ -185,6 +185,13 @@ struct tlsph_model {
     size_t bytes_allocated;       /* engine arrays, bytes */
 };
 
+/* Particle i's lattice spacing, m: its own when its body is graded, else its
+ * body's. */
+static inline double tlsph_particle_spacing(const struct tlsph_model *m, size_t i)
+{
+    return m->p.spacing ? m->p.spacing[i] : m->scene.bodies[m->p.body[i]].spacing;
+}
+
 /* Takes ownership of *scene (leaves it empty).  Generates particles, builds pairs
  * and the correction matrices, selects groups and modules. Returns 0 or -1 with err. */
 int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,

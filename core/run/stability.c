@@ -237,8 +237,8 @@ static double particle_step(const struct tlsph_model *m, size_t i)
     const double G43 = 4.0 / 3.0 * mat->shear_modulus;
     const double c = sqrt(fmax(K_t + G43, G43) * J / mat->density);
     const double *v = p->v + 3 * i;
-    const double h = p->spacing ? p->spacing[i] : body->spacing; /* own spacing when graded */
-    return h * smin / (c + sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    const double speed = sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    return tlsph_particle_spacing(m, i) * smin / (c + speed);
 }
 
 int tlsph_time_check(struct tlsph_model *m, struct tlsph_diagnostic *d)

@@ -13,25 +13,31 @@ static inline double mat3_det(const double *A)
            A[2] * (A[3] * A[7] - A[4] * A[6]);
 }
 
+/* adj(A) = det(A) A^-1 (the transposed cofactor matrix), defined for any A. */
+static inline void mat3_adjugate(const double *A, double *adj)
+{
+    adj[0] = A[4] * A[8] - A[5] * A[7];
+    adj[1] = A[2] * A[7] - A[1] * A[8];
+    adj[2] = A[1] * A[5] - A[2] * A[4];
+    adj[3] = A[5] * A[6] - A[3] * A[8];
+    adj[4] = A[0] * A[8] - A[2] * A[6];
+    adj[5] = A[2] * A[3] - A[0] * A[5];
+    adj[6] = A[3] * A[7] - A[4] * A[6];
+    adj[7] = A[1] * A[6] - A[0] * A[7];
+    adj[8] = A[0] * A[4] - A[1] * A[3];
+}
+
 /* Adjugate-based inverse; returns the determinant (inverse not written when 0). */
 static inline double mat3_inverse(const double *A, double *Ai)
 {
-    const double c00 = A[4] * A[8] - A[5] * A[7];
-    const double c01 = A[5] * A[6] - A[3] * A[8];
-    const double c02 = A[3] * A[7] - A[4] * A[6];
-    const double det = A[0] * c00 + A[1] * c01 + A[2] * c02;
+    double adj[9];
+    mat3_adjugate(A, adj);
+    const double det = A[0] * adj[0] + A[1] * adj[3] + A[2] * adj[6];
     if (det == 0.0)
         return 0.0;
     const double r = 1.0 / det;
-    Ai[0] = c00 * r;
-    Ai[1] = (A[2] * A[7] - A[1] * A[8]) * r;
-    Ai[2] = (A[1] * A[5] - A[2] * A[4]) * r;
-    Ai[3] = c01 * r;
-    Ai[4] = (A[0] * A[8] - A[2] * A[6]) * r;
-    Ai[5] = (A[2] * A[3] - A[0] * A[5]) * r;
-    Ai[6] = c02 * r;
-    Ai[7] = (A[1] * A[6] - A[0] * A[7]) * r;
-    Ai[8] = (A[0] * A[4] - A[1] * A[3]) * r;
+    for (int k = 0; k < 9; k++)
+        Ai[k] = adj[k] * r;
     return det;
 }
 
