@@ -9,6 +9,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "crack/precrack.h"
 #include "rigid/rigid.h"
 #include "material/constitutive.h"
 #include "material/damage/damage.h"
@@ -81,6 +82,7 @@ void tlsph_model_free(struct tlsph_model *m)
     tlsph_rigid_free(m);
     if (m->crack && m->crack->release)
         m->crack->release(m);
+    tlsph_precrack_release(m);
     tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
@@ -102,6 +104,8 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, s->kernel == TLSPH_KERNEL_CUBIC_SPLINE ? "kernel:cubic_spline"
                                                          : "kernel:wendland_c2");
     add_module(m, "kinematics:corrected_gradient");
+    if (m->crack_surface)
+        add_module(m, "crack:precrack");
     int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0, evolution = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
@@ -371,6 +375,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     }
     m->pairs.npairs = (size_t)m->pairs.start[m->p.n];
     m->bytes_allocated += (m->p.n + 1) * sizeof(int64_t) + m->pairs.npairs * sizeof(int32_t);
+    if (m->scene.ncracks && tlsph_precrack_setup(m, err) != 0) /* cuts the pairs */
+        goto fail;
     if (m->crack->setup && m->crack->setup(m, err) != 0) /* may narrow the pairs */
         goto fail;
     m->pairs.dw = tlsph_alloc(m, m->pairs.npairs, sizeof(double));

@@ -22,6 +22,7 @@ struct tlsph_crack_model; /* sph/crack_treatment.h */
 struct tlsph_contact;     /* contact/state.h: the contact phase's state */
 struct tlsph_rigid;       /* rigid/state.h: the rigid bodies' state */
 struct tlsph_links;       /* sph/virtual_links.h: the virtual links' state */
+struct tlsph_crack_surface; /* crack/crack_surface.h: crack facets */
 
 struct tlsph_particles {
     size_t n;
@@ -149,6 +150,10 @@ struct tlsph_model {
                                        "rigid_bodies": nothing allocated or run */
     struct tlsph_links *links;      /* link damage (sph/virtual_links.h); NULL unless the
                                        treatment is virtual_links */
+    struct tlsph_crack_surface *crack_surface; /* the scene's "cracks" as facets
+                                       (crack/precrack.h), owned; NULL without cracks:
+                                       nothing allocated or run.  A growing crack adds
+                                       its facets here. */
 
     /* run state */
     long step;
@@ -175,6 +180,7 @@ struct tlsph_model {
     size_t deficient_supports;    /* particles whose L_i needed the safe inverse */
     double max_L_condition;       /* largest condition number of L_i accepted */
     size_t isolated;              /* particles with no neighbour at all */
+    size_t cut_pairs;             /* reference pairs the scene's cracks removed (0 without) */
 
     /* modules (effects) active in this run, for the metadata */
     const char *modules[TLSPH_MAX_MODULES];

@@ -15,6 +15,8 @@
 #define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
 #define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
 #define TLSPH_MAX_RIGID_BODIES   32        /* items of "rigid_bodies" */
+#define TLSPH_MAX_CRACKS         32        /* items of "cracks" */
+#define TLSPH_MAX_CRACK_CORNERS  64        /* corners of one crack polygon */
 #define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
 /* Objects (primitives, unions, differences) in one body's geometry: bounds the
  * lattice walk at (lattice points in the bounding box) x (objects) box tests */

@@ -336,6 +336,7 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     if (!bodies_bad)
         bad |= tlsph_parse_contact(root, s, err) != 0;
     bad |= tlsph_parse_rigid_bodies(root, s, err) != 0;
+    bad |= tlsph_parse_cracks(root, s, err) != 0;
     const int bcs_bad = tlsph_parse_bcs(root, s, err) != 0;
     bad |= bcs_bad;
     if (!bcs_bad)
@@ -436,6 +437,7 @@ void tlsph_scene_free(struct tlsph_scene *s)
     free(s->bodies);
     free(s->bcs);
     tlsph_rigid_specs_free(s->rigid, s->nrigid);
+    free(s->cracks);
     free(s->materials);
     free(s->params);
     free(s->json_text);

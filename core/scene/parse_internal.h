@@ -67,6 +67,10 @@ int tlsph_parse_links(const json_t *root, struct tlsph_scene *s, struct tlsph_er
 /* parse_rigid.c: fills s->rigid ("rigid_bodies"). */
 int tlsph_parse_rigid_bodies(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
+/* parse_cracks.c: fills s->cracks ("cracks"; the dimension already read). */
+extern const struct tlsph_key_table tlsph_crack_keys; /* "/cracks/<i>" */
+int tlsph_parse_cracks(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 

@@ -203,6 +203,15 @@ struct tlsph_section {
     double thickness;             /* m */
 };
 
+/* An initial crack ("cracks", core/scene/parse_cracks.c): in 3-D a planar
+ * convex polygon of ncorners >= 3 corners, in 2-D a segment (ncorners = 2,
+ * z = 0) that the engine extrudes through the plane (core/crack/precrack.h).
+ * Reference pairs whose sight line crosses it are not created. */
+struct tlsph_crack_spec {
+    int ncorners;
+    double corner[TLSPH_MAX_CRACK_CORNERS][3]; /* m */
+};
+
 /* Contact between bodies and between the separated parts of a body
  * ("contact" block, core/contact/): on when law != NULL.  On by default
  * (without the block) in a scene of more than one body or with a damage
@@ -266,6 +275,7 @@ struct tlsph_scene {
     struct tlsph_bc *bcs;         size_t nbcs;
     struct tlsph_contact_settings contact;
     struct tlsph_rigid_spec *rigid; size_t nrigid; /* "rigid_bodies" (core/rigid/) */
+    struct tlsph_crack_spec *cracks; size_t ncracks; /* "cracks": initial cracks */
 
     char *json_text;              /* the scene as submitted, compact JSON, for the output file */
 };

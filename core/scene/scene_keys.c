@@ -352,6 +352,9 @@ static const struct tlsph_key scene_keys[] = {
     {.name = "rigid_bodies", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
      .table = &tlsph_rigid_body_keys,
      .description = "rigid bodies (plane, box, sphere, cylinder, cone), prescribed or free"},
+    {.name = "cracks", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_crack_keys,
+     .description = "initial cracks: reference pairs whose sight line crosses one are not "
+                    "created"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 

@@ -1,0 +1,243 @@
+/* The scene's "cracks" array: initial cracks as surfaces (paper 003 §5.3's
+ * through pre-crack; core/crack/precrack.h cuts the reference pairs across
+ * them).  Each item holds exactly one of
+ *   "polygon": [[x, y, z], ...]  3-D: 3 to TLSPH_MAX_CRACK_CORNERS corners of a
+ *                                planar convex polygon, in order around it (m);
+ *   "segment": [[x, y, z], [x, y, z]]  2-D: the crack's trace in the x-y plane
+ *                                (m; z ignored, as for the rigid shapes).
+ * Refused, with the pointer of the item or the corner: the other dimension's
+ * form, a point that is not 3 finite numbers, too few or too many corners, a
+ * zero-length edge or segment, a polygon of zero area, one that is not planar
+ * (a corner off the mean plane by more than 1e-6 of its diameter) or not convex
+ * (a corner turning against the others; collinear corners are accepted).
+ * A crack may reach beyond its body (a crack mouth written past the free edge
+ * is the natural way to say "open at the edge"); one that cuts no pair at all
+ * is refused when the particles exist (core/crack/precrack.c). */
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "scene/parse_internal.h"
+
+/* clang-format off */
+static const struct tlsph_key crack_keys[] = {
+    {.name = "polygon", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "m",
+     .description = "3-D: the corners of a planar convex polygon, in order, each [x, y, z]"},
+    {.name = "segment", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER, .unit = "m",
+     .description = "2-D: the two ends of the crack's trace, each [x, y, z], z ignored"},
+};
+/* clang-format on */
+const struct tlsph_key_table tlsph_crack_keys = TLSPH_KEY_TABLE("/cracks/*", NULL, crack_keys);
+
+/* Planarity and convexity tolerances, relative to the polygon's diameter: the
+ * corners are typed by people, to a few digits. */
+#define PLANAR_TOL 1e-6
+#define AREA_TOL 1e-12
+
+static void sub3(const double a[3], const double b[3], double out[3])
+{
+    for (int k = 0; k < 3; k++)
+        out[k] = a[k] - b[k];
+}
+
+static void cross3(const double a[3], const double b[3], double out[3])
+{
+    out[0] = a[1] * b[2] - a[2] * b[1];
+    out[1] = a[2] * b[0] - a[0] * b[2];
+    out[2] = a[0] * b[1] - a[1] * b[0];
+}
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* Reads the array of points at c[key] into spec; 0 or -1 after reporting. */
+static int read_points(const json_t *arr, int min, int max, const char *p,
+                       struct tlsph_crack_spec *spec, struct tlsph_errors *err)
+{
+    if (!json_is_array(arr)) {
+        tlsph_errors_add(err, p, "must be an array of points [x, y, z] (m), got %s",
+                         jc_type_name(arr));
+        return -1;
+    }
+    const size_t n = json_array_size(arr);
+    if (n < (size_t)min || n > (size_t)max) {
+        if (min == max)
+            tlsph_errors_add(err, p, "must hold exactly %d points, got %zu", min, n);
+        else
+            tlsph_errors_add(err, p, "must hold %d to %d corners, got %zu", min, max, n);
+        return -1;
+    }
+    int bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        char q[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(q, sizeof q, p, k);
+        const json_t *pt = json_array_get(arr, k);
+        int ok = json_is_array(pt) && json_array_size(pt) == 3;
+        for (size_t c = 0; ok && c < 3; c++) {
+            const json_t *v = json_array_get(pt, c);
+            ok = json_is_number(v) && isfinite(json_number_value(v));
+            if (ok)
+                spec->corner[k][c] = json_number_value(v);
+        }
+        if (!ok) {
+            tlsph_errors_add(err, q, "a point must be 3 finite numbers [x, y, z] (m)");
+            bad = 1;
+        }
+    }
+    spec->ncorners = (int)n;
+    return bad ? -1 : 0;
+}
+
+/* A 2-D crack's segment: two distinct points in the x-y plane. */
+static int check_segment(struct tlsph_crack_spec *c, const char *p, struct tlsph_errors *err)
+{
+    c->corner[0][2] = c->corner[1][2] = 0.0;
+    const double dx = c->corner[1][0] - c->corner[0][0], dy = c->corner[1][1] - c->corner[0][1];
+    const double scale = fmax(fmax(fabs(c->corner[0][0]), fabs(c->corner[0][1])),
+                              fmax(fabs(c->corner[1][0]), fabs(c->corner[1][1])));
+    if (!(hypot(dx, dy) > AREA_TOL * scale) || !(hypot(dx, dy) > 0.0)) {
+        tlsph_errors_add(err, p, "the segment's two ends coincide (in x-y): a crack needs a length");
+        return -1;
+    }
+    return 0;
+}
+
+/* A 3-D crack's polygon: no repeated corner, non-zero area, planar, convex. */
+static int check_polygon(const struct tlsph_crack_spec *c, const char *p,
+                         struct tlsph_errors *err)
+{
+    const int n = c->ncorners;
+    double diameter = 0.0;
+    for (int a = 0; a < n; a++)
+        for (int b = a + 1; b < n; b++) {
+            double d[3];
+            sub3(c->corner[b], c->corner[a], d);
+            diameter = fmax(diameter, sqrt(dot3(d, d)));
+        }
+    for (int a = 0; a < n; a++) {
+        double e[3];
+        sub3(c->corner[(a + 1) % n], c->corner[a], e);
+        if (!(sqrt(dot3(e, e)) > AREA_TOL * diameter)) {
+            tlsph_errors_add(err, p, "corners %d and %d coincide: a zero-length edge", a,
+                             (a + 1) % n);
+            return -1;
+        }
+    }
+    /* Newell's normal: twice the area vector of the polygon */
+    double N[3] = {0, 0, 0}, centre[3] = {0, 0, 0};
+    for (int a = 0; a < n; a++) {
+        double x[3];
+        cross3(c->corner[a], c->corner[(a + 1) % n], x);
+        for (int k = 0; k < 3; k++) {
+            N[k] += x[k];
+            centre[k] += c->corner[a][k] / n;
+        }
+    }
+    const double twice_area = sqrt(dot3(N, N));
+    if (!(twice_area > AREA_TOL * diameter * diameter)) {
+        tlsph_errors_add(err, p,
+                         "the polygon has zero area (its corners are on one line): a crack "
+                         "surface needs an area");
+        return -1;
+    }
+    for (int a = 0; a < n; a++) {
+        double d[3];
+        sub3(c->corner[a], centre, d);
+        const double off = dot3(d, N) / twice_area;
+        if (fabs(off) > PLANAR_TOL * diameter) {
+            tlsph_errors_add(err, p,
+                             "the polygon is not planar: corner %d is %g m off the plane of the "
+                             "others (at most %g of its diameter %g m)",
+                             a, off, PLANAR_TOL, diameter);
+            return -1;
+        }
+    }
+    for (int a = 0; a < n; a++) {
+        double e1[3], e2[3], t[3];
+        sub3(c->corner[(a + 1) % n], c->corner[a], e1);
+        sub3(c->corner[(a + 2) % n], c->corner[(a + 1) % n], e2);
+        cross3(e1, e2, t);
+        if (dot3(t, N) < -AREA_TOL * diameter * diameter * twice_area) {
+            tlsph_errors_add(err, p,
+                             "the polygon is not convex at corner %d (or its corners are not in "
+                             "order around it): split it into convex pieces, one crack each",
+                             (a + 1) % n);
+            return -1;
+        }
+    }
+    return 0;
+}
+
+static int parse_crack(const json_t *e, int dim, struct tlsph_crack_spec *c, const char *P,
+                       struct tlsph_errors *err)
+{
+    if (!json_is_object(e)) {
+        tlsph_errors_add(err, P, "a crack must be an object {\"%s\": [...]}, got %s",
+                         dim == 3 ? "polygon" : "segment", jc_type_name(e));
+        return -1;
+    }
+    if (tlsph_keys_read(e, &tlsph_crack_keys, P, &(struct tlsph_key_target){.base = c}, err) !=
+        0)
+        return -1;
+    const json_t *poly = json_object_get(e, "polygon"), *seg = json_object_get(e, "segment");
+    char p[TLSPH_POINTER_MAX];
+    if (dim == 2 && poly) {
+        tlsph_pointer_join(p, sizeof p, P, "polygon");
+        tlsph_errors_add(err, p,
+                         "a crack of a 2-D scene is a \"segment\" (its trace in the x-y plane, "
+                         "2 points), not a polygon");
+        return -1;
+    }
+    if (dim == 3 && seg) {
+        tlsph_pointer_join(p, sizeof p, P, "segment");
+        tlsph_errors_add(err, p,
+                         "a crack of a 3-D scene is a \"polygon\" (a surface, >= 3 corners), not "
+                         "a segment");
+        return -1;
+    }
+    if (!(dim == 3 ? poly : seg)) {
+        tlsph_errors_add(err, P, "a crack needs its \"%s\"", dim == 3 ? "polygon" : "segment");
+        return -1;
+    }
+    tlsph_pointer_join(p, sizeof p, P, dim == 3 ? "polygon" : "segment");
+    if (dim == 2)
+        return read_points(seg, 2, 2, p, c, err) == 0 ? check_segment(c, p, err) : -1;
+    return read_points(poly, 3, TLSPH_MAX_CRACK_CORNERS, p, c, err) == 0
+               ? check_polygon(c, p, err)
+               : -1;
+}
+
+int tlsph_parse_cracks(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    const json_t *arr = json_object_get(root, "cracks");
+    if (!arr)
+        return 0;
+    if (!json_is_array(arr)) {
+        tlsph_errors_add(err, "/cracks", "'cracks' must be an array of objects, got %s",
+                         jc_type_name(arr));
+        return -1;
+    }
+    const size_t n = json_array_size(arr);
+    if (n == 0)
+        return 0;
+    if (n > TLSPH_MAX_CRACKS) {
+        tlsph_errors_add(err, "/cracks", "at most %d cracks are allowed, got %zu",
+                         TLSPH_MAX_CRACKS, n);
+        return -1;
+    }
+    s->cracks = calloc(n, sizeof *s->cracks);
+    if (!s->cracks) {
+        tlsph_errors_add(err, "/cracks", "out of memory");
+        return -1;
+    }
+    s->ncracks = n;
+    int bad = 0;
+    for (size_t k = 0; k < n; k++) {
+        char P[TLSPH_POINTER_MAX];
+        tlsph_pointer_index(P, sizeof P, "/cracks", k);
+        bad |= parse_crack(json_array_get(arr, k), s->dimension, &s->cracks[k], P, err) != 0;
+    }
+    return bad ? -1 : 0;
+}
