@@ -27,7 +27,9 @@ static const struct tlsph_key crack_keys[] = {
      .description = "2-D: the two ends of the crack's trace, each [x, y, z], z ignored"},
 };
 /* clang-format on */
-const struct tlsph_key_table tlsph_crack_keys = TLSPH_KEY_TABLE("/cracks/*", NULL, crack_keys);
+const struct tlsph_key_table tlsph_crack_keys = {
+    .path = "/cracks/*", .keys = crack_keys, .nkeys = sizeof crack_keys / sizeof *crack_keys,
+    .one_of = 1};
 
 /* Planarity and convexity tolerances, relative to the polygon's diameter: the
  * corners are typed by people, to a few digits. */

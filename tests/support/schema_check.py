@@ -15,6 +15,14 @@ import sys
 
 # Bad scenes rejected only by the C validator (core/scene/parse*.c):
 SEMANTIC_ONLY = {
+    # crack geometry (core/scene/parse_cracks.c) and the particles it must cut
+    "crack_polygon_in_2d",    # the form follows the scene's dimension
+    "crack_segment_in_3d",
+    "crack_not_convex",
+    "crack_not_planar",
+    "crack_zero_area",
+    "crack_segment_zero_length",
+    "crack_misses_body",      # needs the particles
     # JSON-level: Python's json module accepts these, jansson does not
     "duplicate_key",          # JSON_REJECT_DUPLICATES
     "huge_number",            # 1e400 overflows a double
