@@ -1,0 +1,146 @@
+/* Fibres and the crack-tip search (fibre.h). */
+#include "crack/fibre.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct item {
+    long c[2];    /* in-plane cell */
+    double along; /* coordinate along the axis, m */
+    size_t index;
+};
+
+static int cmp_item(const void *a, const void *b)
+{
+    const struct item *x = a, *y = b;
+    for (int k = 1; k >= 0; k--)
+        if (x->c[k] != y->c[k])
+            return x->c[k] < y->c[k] ? -1 : 1;
+    if (x->along != y->along)
+        return x->along < y->along ? -1 : 1;
+    return x->index < y->index ? -1 : (x->index > y->index);
+}
+
+/* The two in-plane axes of a thickness direction. */
+static void plane_axes(int axis, int out[2])
+{
+    out[0] = axis == 0 ? 1 : 0;
+    out[1] = axis == 2 ? 1 : 2;
+}
+
+enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double *X,
+                                           const size_t *index, size_t count, double spacing,
+                                           int axis, size_t *bad)
+{
+    memset(f, 0, sizeof *f);
+    f->axis = axis;
+    if (axis < 0 || axis > 2 || !(spacing > 0.0) || !isfinite(spacing) || count == 0)
+        return TLSPH_FIBRE_BAD_INPUT;
+    int pa[2];
+    plane_axes(axis, pa);
+    double lo[2] = {INFINITY, INFINITY};
+    for (size_t k = 0; k < count; k++)
+        for (int a = 0; a < 2; a++)
+            lo[a] = fmin(lo[a], X[3 * index[k] + pa[a]]);
+    struct item *it = malloc(count * sizeof *it);
+    if (!it)
+        return TLSPH_FIBRE_NO_MEMORY;
+    for (size_t k = 0; k < count; k++) {
+        const double *x = X + 3 * index[k];
+        for (int a = 0; a < 2; a++) {
+            const double u = (x[pa[a]] - lo[a]) / spacing;
+            const double c = nearbyint(u);
+            if (!(fabs(u - c) <= TLSPH_FIBRE_OFFSET_TOL) || !(c < 1e15)) {
+                if (bad)
+                    *bad = index[k];
+                free(it);
+                return TLSPH_FIBRE_NOT_LATTICE;
+            }
+            it[k].c[a] = (long)c;
+        }
+        it[k].along = x[axis];
+        it[k].index = index[k];
+    }
+    qsort(it, count, sizeof *it, cmp_item);
+    size_t nf = 0;
+    for (size_t k = 0; k < count; k++)
+        nf += k == 0 || it[k].c[0] != it[k - 1].c[0] || it[k].c[1] != it[k - 1].c[1];
+    f->start = malloc((nf + 1) * sizeof *f->start);
+    f->particle = malloc(count * sizeof *f->particle);
+    f->centre = calloc(nf, sizeof *f->centre);
+    if (!f->start || !f->particle || !f->centre) {
+        free(it);
+        tlsph_fibres_release(f);
+        return TLSPH_FIBRE_NO_MEMORY;
+    }
+    size_t fk = 0;
+    for (size_t k = 0; k < count; k++) {
+        if (k == 0 || it[k].c[0] != it[k - 1].c[0] || it[k].c[1] != it[k - 1].c[1])
+            f->start[fk++] = k;
+        f->particle[k] = it[k].index;
+    }
+    f->start[nf] = count;
+    f->n = nf;
+    for (size_t j = 0; j < nf; j++) {
+        const double m = (double)(f->start[j + 1] - f->start[j]);
+        for (size_t k = f->start[j]; k < f->start[j + 1]; k++)
+            for (int a = 0; a < 3; a++)
+                f->centre[j][a] += X[3 * f->particle[k] + a] / m;
+    }
+    free(it);
+    return TLSPH_FIBRE_OK;
+}
+
+double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *D)
+{
+    double sum = 0.0;
+    for (size_t p = f->start[k]; p < f->start[k + 1]; p++)
+        sum += D[f->particle[p]];
+    return sum;
+}
+
+long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
+                          const struct tlsph_tip_search *q)
+{
+    int pa[2];
+    plane_axes(f->axis, pa);
+    const double v1[2] = {q->direction[pa[0]], q->direction[pa[1]]};
+    const double n1 = hypot(v1[0], v1[1]);
+    if (!(n1 > 0.0) || !(q->radius > 0.0))
+        return -1;
+    /* |theta| <= theta_c / 2  <=>  cos theta >= cos(theta_c / 2) (theta in [0, pi]) */
+    const double cos_half = cos(0.5 * fmin(q->theta_c, 2.0 * M_PI));
+    /* the tip's own fibre (distance 0 up to round-off) is not a candidate */
+    const double r_min = 1e-9 * q->radius;
+    long best = -1;
+    double best_D = 0.0, best_r = 0.0;
+    for (size_t j = 0; j < f->n; j++) {
+        const double v2[2] = {f->centre[j][pa[0]] - q->tip[pa[0]],
+                              f->centre[j][pa[1]] - q->tip[pa[1]]};
+        const double r = hypot(v2[0], v2[1]);
+        if (!(r > r_min) || r > q->radius)
+            continue;
+        const double c = (v1[0] * v2[0] + v1[1] * v2[1]) / (n1 * r);
+        /* round-off may put a fibre exactly on the fan's edge a hair outside */
+        if (c < cos_half - 1e-12)
+            continue;
+        const double Dj = tlsph_fibre_damage(f, j, D);
+        if (!(Dj >= q->D_c))
+            continue;
+        if (best < 0 || Dj > best_D || (Dj == best_D && r < best_r)) {
+            best = (long)j;
+            best_D = Dj;
+            best_r = r;
+        }
+    }
+    return best;
+}
+
+void tlsph_fibres_release(struct tlsph_fibres *f)
+{
+    free(f->start);
+    free(f->particle);
+    free(f->centre);
+    memset(f, 0, sizeof *f);
+}

@@ -1,0 +1,99 @@
+/* Fibres and the crack-tip search of paper 003 §3.1 (eq. 20).
+ *
+ * A thin body (a plate or a shell discretised with a few particle layers
+ * through its thickness) is read as fibres: the particles stacked along the
+ * thickness direction at one in-plane position (Fig. 1(b); the paper uses
+ * three layers).  A through-thickness crack's tip is always a fibre, and it
+ * moves from fibre to fibre.
+ *
+ * The lattice rule.  Particles belong to the fibre of their in-plane lattice
+ * cell: the two in-plane coordinates (the axes other than `axis`) divided by
+ * the body's spacing, measured from the body's lowest particle, rounded.  A
+ * particle more than TLSPH_FIBRE_OFFSET_TOL spacings from its cell's point
+ * (a graded body's finer particles, conforming shells, a jittered set) is
+ * refused: such sets have no unambiguous stacks, and a guess would attach
+ * particles to the wrong fibre.  Fibres may hold different numbers of
+ * particles (a notch or a chamfer through part of the thickness); their
+ * particles are listed in increasing coordinate along `axis`.
+ *
+ * The fibre's damage.  D_J = sum over its particles of D_i, as the paper
+ * defines it ("adding the damage value of each particle along the fiber",
+ * D_j = sum_{i=1}^{M} D_ji with M = 3).  The sum, not the mean or the
+ * maximum: it is the paper's choice, and D_c = 0.1 of §5.3 is calibrated on
+ * it; it grows with the damaged share of the thickness, so one damaged
+ * surface particle does not move the tip before the section is weakened
+ * (the maximum would), while a fibre whose particles are all half-damaged
+ * passes (the mean would need D_c / M).  The price: D_c depends on the number
+ * of layers; a scene that changes M must scale D_c with it.
+ *
+ * The tip search (eq. 20).  From the current tip T (a point, m) with the crack
+ * direction V1 (from the previous tip to T), a fibre J is a candidate when
+ *   0 < |C_J - T| <= R                (inside the circle of radius R, not T),
+ *   -theta_c/2 <= theta <= theta_c/2  (theta: the angle between V1 and
+ *                                      V2 = C_J - T, in the plane),
+ *   D_J >= D_c,
+ * all measured in the body's plane (the `axis` components dropped), with C_J
+ * the fibre's reference centre (the mean of its particles' X).  Of several
+ * candidates the paper does not say which wins; here the most damaged (the
+ * largest D_J), then the nearest, then the lowest index: deterministic, and
+ * the fibre the damage criterion ranks first.  Fibres behind the tip
+ * (|theta| > theta_c/2) are never chosen, which rules out the crack turning
+ * back, as the paper intends.  The search scans the fibres (O(fibres)); it
+ * runs once per tip advance, not per step.
+ *
+ * Units: m, rad; damage dimensionless.  Ownership: the fibre set owns its
+ * arrays; release frees them. */
+#ifndef TLSPH_CRACK_FIBRE_H
+#define TLSPH_CRACK_FIBRE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#define TLSPH_FIBRE_OFFSET_TOL 1e-6 /* spacings: a lattice point's distance to its cell's */
+
+struct tlsph_fibres {
+    int axis;             /* thickness direction: 0 = x, 1 = y, 2 = z */
+    size_t n;             /* fibres */
+    size_t *start;        /* [n + 1]: fibre k's particles are particle[start[k] .. start[k+1]-1] */
+    size_t *particle;     /* particle indices, each fibre ordered along axis */
+    double (*centre)[3];  /* each fibre's reference centre, m */
+};
+
+enum tlsph_fibre_status {
+    TLSPH_FIBRE_OK = 0,
+    TLSPH_FIBRE_NO_MEMORY = -1,
+    TLSPH_FIBRE_BAD_INPUT = -2,  /* axis not 0..2, spacing <= 0 or not finite, no particle */
+    TLSPH_FIBRE_NOT_LATTICE = -3 /* a particle off its in-plane lattice point */
+};
+
+/* Builds the fibres of the particles index[0..count-1] (positions X, 3 per
+ * particle, m) with in-plane lattice spacing `spacing` (m) and thickness
+ * direction `axis`.  Fibres are numbered by their in-plane cell (the second
+ * in-plane axis slowest).  *bad (when not NULL) gets the first particle
+ * refused by the lattice rule.  On error f is left empty. */
+enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double *X,
+                                           const size_t *index, size_t count, double spacing,
+                                           int axis, size_t *bad);
+
+/* D_J: the sum of D over fibre k's particles (D indexed by particle). */
+double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *D);
+
+/* Eq. 20's question.  tip: the current tip (m); direction: V1, any non-zero
+ * length (its `axis` component ignored); radius R (m) > 0; theta_c (rad) in
+ * (0, 2 pi]; D_c the critical fibre damage. */
+struct tlsph_tip_search {
+    double tip[3];
+    double direction[3];
+    double radius;
+    double theta_c;
+    double D_c;
+};
+
+/* The next tip fibre by eq. 20 (the rule above), or -1 when no fibre
+ * qualifies (or V1 has no in-plane part). */
+long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
+                          const struct tlsph_tip_search *q);
+
+void tlsph_fibres_release(struct tlsph_fibres *f);
+
+#endif
