@@ -183,30 +183,25 @@ static int parse_crack(const json_t *e, int dim, struct tlsph_crack_spec *c, con
     if (tlsph_keys_read(e, &tlsph_crack_keys, P, &(struct tlsph_key_target){.base = c}, err) !=
         0)
         return -1;
-    const json_t *poly = json_object_get(e, "polygon"), *seg = json_object_get(e, "segment");
+    /* the form the dimension asks for, and the other one */
+    const char *form = dim == 3 ? "polygon" : "segment", *other = dim == 3 ? "segment" : "polygon";
     char p[TLSPH_POINTER_MAX];
-    if (dim == 2 && poly) {
-        tlsph_pointer_join(p, sizeof p, P, "polygon");
-        tlsph_errors_add(err, p,
-                         "a crack of a 2-D scene is a \"segment\" (its trace in the x-y plane, "
-                         "2 points), not a polygon");
+    if (json_object_get(e, other)) {
+        tlsph_pointer_join(p, sizeof p, P, other);
+        tlsph_errors_add(err, p, "a crack of a %d-D scene is a \"%s\" (%s), not a %s", dim, form,
+                         dim == 3 ? "a surface, >= 3 corners" : "its trace in the x-y plane, 2 points",
+                         other);
         return -1;
     }
-    if (dim == 3 && seg) {
-        tlsph_pointer_join(p, sizeof p, P, "segment");
-        tlsph_errors_add(err, p,
-                         "a crack of a 3-D scene is a \"polygon\" (a surface, >= 3 corners), not "
-                         "a segment");
+    const json_t *points = json_object_get(e, form);
+    if (!points) {
+        tlsph_errors_add(err, P, "a crack needs its \"%s\"", form);
         return -1;
     }
-    if (!(dim == 3 ? poly : seg)) {
-        tlsph_errors_add(err, P, "a crack needs its \"%s\"", dim == 3 ? "polygon" : "segment");
-        return -1;
-    }
-    tlsph_pointer_join(p, sizeof p, P, dim == 3 ? "polygon" : "segment");
+    tlsph_pointer_join(p, sizeof p, P, form);
     if (dim == 2)
-        return read_points(seg, 2, 2, p, c, err) == 0 ? check_segment(c, p, err) : -1;
-    return read_points(poly, 3, TLSPH_MAX_CRACK_CORNERS, p, c, err) == 0
+        return read_points(points, 2, 2, p, c, err) == 0 ? check_segment(c, p, err) : -1;
+    return read_points(points, 3, TLSPH_MAX_CRACK_CORNERS, p, c, err) == 0
                ? check_polygon(c, p, err)
                : -1;
 }
