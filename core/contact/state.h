@@ -6,6 +6,7 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "crack/crack_surface.h"
 #include "contact/contact.h"
 #include "run/model.h"
 #include "sph/virtual_links.h"
@@ -126,6 +127,17 @@ static inline __attribute__((always_inline)) int
 tlsph_contact_same_body_pair(const struct tlsph_particles *p, size_t i, size_t j)
 {
     return !tlsph_contact_reference_pair(p, i, j) || p->damage[i] >= 1.0 || p->damage[j] >= 1.0;
+}
+
+/* Is the pair i, j (same body) one that a pre-crack cut at setup (its
+ * reference sight line crosses m->crack_surface, crack/precrack.h)?  Such a
+ * pair is no continuum: the crack's faces may touch.  0 without cracks. */
+static inline int tlsph_contact_cut_pair(const struct tlsph_model *m, size_t i, size_t j)
+{
+    if (!m->crack_surface)
+        return 0;
+    const size_t lo = i < j ? i : j, hi = i < j ? j : i; /* as the cut tested it */
+    return tlsph_crack_surface_blocks(m->crack_surface, m->p.X + 3 * lo, m->p.X + 3 * hi, NULL);
 }
 
 /* The same with virtual links (sph/virtual_links.h), where the continuum is

@@ -234,6 +234,58 @@ START_TEST(crack_opens_in_mode_one)
 }
 END_TEST
 
+/* Contact between the faces (2-D, a damage model so that contact runs within
+ * the body, its failure strain 5 so that nothing fails): the plate squeezed
+ * by v_y = -20000 y (1/s), the faces closing at 20 m/s.  Without contact
+ * between them the face rows y = +-0.5 mm pass through each other's places
+ * (their mean gap, 1 mm at the start, goes negative); with it (pairs cut by
+ * the crack are not a continuum, contact/state.h) the faces meet, store
+ * contact work and bounce, and the smallest gap stays above half its start
+ * (a penalty contact lets the faces overlap a little, never pass). */
+static double face_gap(const struct tlsph_model *m)
+{
+    return 1e-3 + face_displacement(m, 5e-4) - face_displacement(m, -5e-4);
+}
+
+START_TEST(contact_keeps_the_faces_apart)
+{
+    const char *velocity = ",\"initial_velocity\":[0,\"-20000*y\",0]";
+    double gap[2], work[2];
+    for (int on = 0; on < 2; on++) {
+        char json[4096];
+        snprintf(json, sizeof json,
+                 "{\"dimension\":2,\"time\":{\"end\":1e-4},"
+                 "\"discretization\":{\"support_factor\":2.01},"
+                 "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+                 "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
+                 "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
+                 "\"damage\":{\"type\":\"johnson_cook\",\"d1\":5,\"d2\":0,\"d3\":0}}},"
+                 "\"bodies\":[{\"name\":\"plate\",\"material\":\"steel\",\"spacing\":0.001,"
+                 "\"geometry\":{\"box\":{\"min\":[-0.01,-0.01,0],\"max\":[0.01,0.01,0]}}%s}],"
+                 "\"cracks\":[{\"segment\":[[-0.011,0,0],[0,0,0]]}]%s}",
+                 velocity, on ? "" : ",\"contact\":{\"enabled\":false}");
+        struct tlsph_model *m = build_model(json);
+        double min_gap = INFINITY;
+        work[on] = 0.0;
+        for (int s = 0; s < 400; s++) {
+            tlsph_model_step(m);
+            min_gap = fmin(min_gap, face_gap(m));
+            work[on] = fmax(work[on], m->energy.contact);
+        }
+        gap[on] = min_gap;
+        fprintf(stderr,
+                "contact %s: faces' smallest gap %.4g m in %.3g s, largest contact work %.4g J, "
+                "at the end kinetic %.4g internal %.4g balance %.3g J\n",
+                on ? "on" : "off", gap[on], m->t, work[on], m->energy.kinetic, m->energy.internal,
+                tlsph_energy_balance(&m->energy));
+        tlsph_model_free(m);
+    }
+    ck_assert_msg(gap[0] < 0.0, "without contact the faces should pass (gap %.4g m)", gap[0]);
+    ck_assert_msg(gap[1] > 0.5e-3 && work[1] > 0.0, "with contact: gap %.4g m, work %.4g J",
+                  gap[1], work[1]);
+}
+END_TEST
+
 START_TEST(a_crack_missing_every_body_is_refused)
 {
     char pointer[256] = "";
@@ -249,4 +301,5 @@ START_TEST(a_crack_missing_every_body_is_refused)
 END_TEST
 
 TLSPH_CHECK_MAIN("precrack", 300, pairs_across_the_crack_are_cut, no_force_crosses_the_crack,
-                 crack_opens_in_mode_one, a_crack_missing_every_body_is_refused)
+                 crack_opens_in_mode_one, contact_keeps_the_faces_apart,
+                 a_crack_missing_every_body_is_refused)
