@@ -96,4 +96,14 @@ long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
 
 void tlsph_fibres_release(struct tlsph_fibres *f);
 
+/* fibre_model.c: for a scene where some body has a "thickness_axis",
+ * m->fibres (one set per body, empty for the others) from the particles'
+ * reference positions; a body whose particles break the lattice rule is
+ * refused at /bodies/<b>/thickness_axis.  0, or -1 with err (what was built
+ * stays for tlsph_model_fibres_release). */
+struct tlsph_model;
+struct tlsph_errors;
+int tlsph_model_fibres_setup(struct tlsph_model *m, struct tlsph_errors *err);
+void tlsph_model_fibres_release(struct tlsph_model *m);
+
 #endif

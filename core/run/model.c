@@ -9,6 +9,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "crack/fibre.h"
 #include "crack/precrack.h"
 #include "rigid/rigid.h"
 #include "material/constitutive.h"
@@ -83,6 +84,7 @@ void tlsph_model_free(struct tlsph_model *m)
     if (m->crack && m->crack->release)
         m->crack->release(m);
     tlsph_precrack_release(m);
+    tlsph_model_fibres_release(m);
     tlsph_measures_free(&m->measures);
     tlsph_scene_free(&m->scene);
     free(m);
@@ -106,6 +108,8 @@ static void select_modules(struct tlsph_model *m)
     add_module(m, "kinematics:corrected_gradient");
     if (m->crack_surface)
         add_module(m, "crack:precrack");
+    if (m->fibres)
+        add_module(m, "crack:fibres");
     int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0, evolution = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
@@ -368,6 +372,12 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
 
     if (generate(m, err) != 0)
         goto fail;
+    for (size_t b = 0; b < m->scene.nbodies; b++)
+        if (m->scene.bodies[b].thickness_axis >= 0) { /* some body is thin */
+            if (tlsph_model_fibres_setup(m, err) != 0)
+                goto fail;
+            break;
+        }
 
     if (tlsph_build_pairs(m->p.X, m->p.h, m->p.body, m->p.n, &m->pairs.start, &m->pairs.j) != 0) {
         tlsph_errors_add(err, "", "out of memory building the neighbour list");

@@ -23,6 +23,7 @@ struct tlsph_contact;     /* contact/state.h: the contact phase's state */
 struct tlsph_rigid;       /* rigid/state.h: the rigid bodies' state */
 struct tlsph_links;       /* sph/virtual_links.h: the virtual links' state */
 struct tlsph_crack_surface; /* crack/crack_surface.h: crack facets */
+struct tlsph_fibres;        /* crack/fibre.h: a thin body's fibres */
 
 struct tlsph_particles {
     size_t n;
@@ -154,6 +155,9 @@ struct tlsph_model {
                                        (crack/precrack.h), owned; NULL without cracks:
                                        nothing allocated or run.  A growing crack adds
                                        its facets here. */
+    struct tlsph_fibres *fibres;    /* [nbodies]: each thin body's fibres (crack/fibre.h;
+                                       empty for the others), owned; NULL when no body
+                                       has a "thickness_axis" */
 
     /* run state */
     long step;

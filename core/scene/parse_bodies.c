@@ -141,6 +141,22 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
     if (geometry_ok)
         bad |= tlsph_parse_refine(obj, s->dimension, b, P, err) != 0;
+    /* fibres stack the particles of a uniform lattice through a plate's
+     * thickness (crack/fibre.h): other sets have no unambiguous stacks */
+    if (b->thickness_axis >= 0 &&
+        (s->dimension == 2 || b->placement == TLSPH_PLACEMENT_CONFORMING ||
+         json_object_get(obj, "refine"))) {
+        tlsph_pointer_join(p, sizeof p, P, "thickness_axis");
+        tlsph_errors_add(err, p,
+                         "body '%s': fibres stack a uniform lattice through a plate's thickness: "
+                         "%s",
+                         b->name,
+                         s->dimension == 2 ? "a 2-D scene has no thickness to stack"
+                         : json_object_get(obj, "refine")
+                             ? "a refined body's finer particles have no stacks"
+                             : "conforming shells have no stacks");
+        bad = 1;
+    }
     return bad ? -1 : 0;
 }
 

@@ -265,6 +265,9 @@ static const struct tlsph_key_choice lattices[] = {{"simple_cubic", 0}, {0}};
 static const struct tlsph_key_choice placements[] = {
     {"lattice", TLSPH_PLACEMENT_LATTICE}, {"conforming", TLSPH_PLACEMENT_CONFORMING}, {0}};
 
+static const struct tlsph_key_choice axes[] = {
+    {"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}, {0}};
+
 static const struct tlsph_key body_keys[] = {
     {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
      .size = TLSPH_NAME_MAX, .description = "unique body name"},
@@ -294,6 +297,11 @@ static const struct tlsph_key body_keys[] = {
     {.name = "refine", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_refine_keys,
      .description = "regions filled at a finer spacing, graded back to the body's spacing "
                     "(lattice placement only); absent = uniform"},
+    {.name = "thickness_axis", .kind = CHOICE, .flags = DEFAULT, .def = -1, .size = 32,
+     .choices = axes, .noun = "thickness axis", .offset = offsetof(struct tlsph_body, thickness_axis),
+     .description = "a thin body (a plate; 3-D, uniform lattice): its thickness direction, "
+                    "along which its particles stack into fibres for the crack-tip search; "
+                    "none = not thin"},
 };
 const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL, body_keys);
 

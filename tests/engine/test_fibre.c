@@ -200,31 +200,39 @@ START_TEST(the_fan_picks_the_damaged_fibre_ahead)
 }
 END_TEST
 
-/* The fibres of a generated lattice body: a plate 12 x 8 x 3 mm, spacing 1 mm:
- * 12 x 8 fibres of 3 particles. */
-START_TEST(a_generated_plate_has_its_fibres)
+/* The fibres of a generated lattice body declared thin: a plate 12 x 8 x 3 mm,
+ * spacing 1 mm, "thickness_axis": "z": 12 x 8 fibres of 3 particles, built at
+ * setup in m->fibres; the same body without the key has none. */
+START_TEST(a_thin_plate_has_its_fibres)
 {
-    struct tlsph_model *m = build_model(
+    const char *fmt =
         "{\"dimension\":3,\"time\":{\"end\":1e-5},\"materials\":{\"steel\":{\"density\":7850,"
         "\"youngs_modulus\":2.1e11,\"poisson_ratio\":0.3}},\"bodies\":[{\"name\":\"plate\","
         "\"material\":\"steel\",\"spacing\":0.001,\"geometry\":{\"box\":{\"min\":[0,0,0],"
-        "\"max\":[0.012,0.008,0.003]}}}]}");
-    size_t *index = malloc(m->p.n * sizeof *index);
-    ck_assert_ptr_nonnull(index);
-    for (size_t i = 0; i < m->p.n; i++)
-        index[i] = i;
-    struct tlsph_fibres f;
-    ck_assert_int_eq(tlsph_fibres_build(&f, m->p.X, index, m->p.n, 0.001, 2, NULL),
-                     TLSPH_FIBRE_OK);
-    ck_assert_uint_eq(f.n, 96);
-    for (size_t k = 0; k < f.n; k++)
-        ck_assert_uint_eq(f.start[k + 1] - f.start[k], 3);
-    tlsph_fibres_release(&f);
-    free(index);
+        "\"max\":[0.012,0.008,0.003]}}%s}]}";
+    char json[1024];
+    snprintf(json, sizeof json, fmt, ",\"thickness_axis\":\"z\"");
+    struct tlsph_model *m = build_model(json);
+    ck_assert_ptr_nonnull(m->fibres);
+    ck_assert(model_has_module(m, "crack:fibres"));
+    const struct tlsph_fibres *f = &m->fibres[0];
+    ck_assert_int_eq(f->axis, 2);
+    ck_assert_uint_eq(f->n, 96);
+    for (size_t k = 0; k < f->n; k++) {
+        ck_assert_uint_eq(f->start[k + 1] - f->start[k], 3);
+        for (size_t p = f->start[k]; p < f->start[k + 1]; p++)
+            ck_assert_double_eq_tol(m->p.X[3 * f->particle[p] + 2],
+                                    (0.5 + (double)(p - f->start[k])) * 1e-3, 1e-12);
+    }
+    tlsph_model_free(m);
+    snprintf(json, sizeof json, fmt, "");
+    m = build_model(json);
+    ck_assert_ptr_null(m->fibres);
+    ck_assert(!model_has_module(m, "crack:fibres"));
     tlsph_model_free(m);
 }
 END_TEST
 
 TLSPH_CHECK_MAIN("fibre", 60, fibres_stack_the_layers, off_lattice_sets_are_refused,
                  fibre_damage_is_the_sum, the_fan_picks_the_damaged_fibre_ahead,
-                 a_generated_plate_has_its_fibres)
+                 a_thin_plate_has_its_fibres)

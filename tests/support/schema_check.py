@@ -23,6 +23,8 @@ SEMANTIC_ONLY = {
     "crack_zero_area",
     "crack_segment_zero_length",
     "crack_misses_body",      # needs the particles
+    "thickness_axis_2d",      # fibres: 3-D uniform lattices only
+    "thickness_axis_refined",
     # JSON-level: Python's json module accepts these, jansson does not
     "duplicate_key",          # JSON_REJECT_DUPLICATES
     "huge_number",            # 1e400 overflows a double
