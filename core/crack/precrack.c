@@ -99,6 +99,20 @@ size_t tlsph_precrack_cut_pairs(const struct tlsph_crack_surface *s, const doubl
     int64_t *kept = malloc((n ? n : 1) * sizeof *kept);
     if (!kept)
         return SIZE_MAX;
+    /* the facets' bounding box, widened by a hair (the facet test's own
+     * tolerances are 1e-12 relative): a pair whose segment lies outside it
+     * crosses no facet, and most pairs of a body are far from its crack */
+    double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t f = 0; f < s->nfacets; f++)
+        for (int v = 0; v < 3; v++)
+            for (int a = 0; a < 3; a++) {
+                lo[a] = fmin(lo[a], s->facet[f][v][a]);
+                hi[a] = fmax(hi[a], s->facet[f][v][a]);
+            }
+    for (int a = 0; a < 3; a++) {
+        lo[a] -= 1e-9 * s->cell;
+        hi[a] += 1e-9 * s->cell;
+    }
     /* each row compacted within itself (rows are independent), then the rows
      * moved down in order */
 #pragma omp parallel for schedule(dynamic, 256) if (n >= TLSPH_PARALLEL_MIN_ITEMS)
@@ -106,8 +120,11 @@ size_t tlsph_precrack_cut_pairs(const struct tlsph_crack_surface *s, const doubl
         int64_t w = start[i];
         for (int64_t k = start[i]; k < start[i + 1]; k++) {
             const size_t o = (size_t)j[k];
-            const size_t lo = i < o ? i : o, hi = i < o ? o : i;
-            if (!tlsph_crack_surface_blocks(s, X + 3 * lo, X + 3 * hi, NULL))
+            const double *a = X + 3 * (i < o ? i : o), *b = X + 3 * (i < o ? o : i);
+            int near = 1;
+            for (int c = 0; c < 3; c++)
+                near &= fmax(a[c], b[c]) >= lo[c] && fmin(a[c], b[c]) <= hi[c];
+            if (!near || !tlsph_crack_surface_blocks(s, a, b, NULL))
                 j[w++] = j[k];
         }
         kept[i] = w - start[i];
