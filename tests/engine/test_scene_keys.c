@@ -27,7 +27,7 @@
 #include "scene/scene.h"
 #include "support/check_main.h"
 
-#define MAX_TABLES 64
+#define MAX_TABLES 128
 
 struct tables {
     const struct tlsph_key_table *t[MAX_TABLES];
