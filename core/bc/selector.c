@@ -9,19 +9,27 @@ static const struct tlsph_key box_keys[] = {
     TLSPH_KEY_POINT("min", "minimum corner"),
     TLSPH_KEY_POINT("max", "maximum corner, greater than min in every used axis"),
 };
+/* The same keys under each owner of a selector: a table knows the one path it
+ * is documented and checked at. */
 static const struct tlsph_key_table box_table =
     TLSPH_KEY_TABLE("/boundary_conditions/*/select/box", NULL, box_keys);
+static const struct tlsph_key_table probe_box_table =
+    TLSPH_KEY_TABLE("/output/probes/*/select/box", NULL, box_keys);
 
-static const struct tlsph_key selector_keys[] = {
-    {.name = "body", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_CALLER, .size = TLSPH_NAME_MAX,
-     .description = "name of a body; absent = every body"},
-    {.name = "box", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &box_table,
-     .description = "axis-aligned box, closed, around the reference positions; z ignored in 2-D"},
-    {.name = "expression", .kind = TLSPH_KEY_EXPRESSION, .flags = TLSPH_KEY_CALLER,
-     .description = "condition of the reference position x, y, z: non-zero selects"},
-};
+#define SELECTOR_KEYS(box_table_)                                                              \
+    {.name = "body", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_CALLER, .size = TLSPH_NAME_MAX, \
+     .description = "name of a body; absent = every body"},                                    \
+    {.name = "box", .kind = TLSPH_KEY_OBJECT, .flags = TLSPH_KEY_CALLER, .table = &(box_table_), \
+     .description = "axis-aligned box, closed, around the reference positions; z ignored in 2-D"}, \
+    {.name = "expression", .kind = TLSPH_KEY_EXPRESSION, .flags = TLSPH_KEY_CALLER,             \
+     .description = "condition of the reference position x, y, z: non-zero selects"}
+
+static const struct tlsph_key selector_keys[] = {SELECTOR_KEYS(box_table)};
+static const struct tlsph_key probe_selector_keys[] = {SELECTOR_KEYS(probe_box_table)};
 const struct tlsph_key_table tlsph_selector_keys =
     TLSPH_KEY_TABLE("/boundary_conditions/*/select", NULL, selector_keys);
+const struct tlsph_key_table tlsph_probe_selector_keys =
+    TLSPH_KEY_TABLE("/output/probes/*/select", NULL, probe_selector_keys);
 /* clang-format on */
 
 static const char *const xyz[] = {"x", "y", "z"};
@@ -31,7 +39,12 @@ int tlsph_selector_parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_
 {
     const struct tlsph_key *row = tlsph_key_find(bc->kind->keys, "select");
     const int required = row && (row->flags & TLSPH_KEY_REQUIRED);
-    struct tlsph_selector *sel = &bc->select;
+    return tlsph_selector_read(obj, required, s, &bc->select, P, err);
+}
+
+int tlsph_selector_read(const json_t *obj, int required, struct tlsph_scene *s,
+                        struct tlsph_selector *sel, const char *P, struct tlsph_errors *err)
+{
     sel->body = -1;
     sel->has_box = 0;
     const json_t *v = json_object_get(obj, "select");

@@ -16,6 +16,8 @@ struct tlsph_model;
 
 /* The keys of "select" ("/boundary_conditions/<i>/select"), and of its box. */
 extern const struct tlsph_key_table tlsph_selector_keys;
+/* The same keys under "/output/probes/<i>/select" (core/io/measures.h). */
+extern const struct tlsph_key_table tlsph_probe_selector_keys;
 
 /* A kind's "select" row: flags TLSPH_KEY_REQUIRED, or 0 when an absent selector
  * has a meaning the description gives. */
@@ -32,6 +34,12 @@ extern const struct tlsph_key_table tlsph_selector_keys;
  * every problem in err.  A kind's parse hook when "select" is its only key. */
 int tlsph_selector_parse(const json_t *obj, struct tlsph_scene *s, struct tlsph_bc *bc,
                          const char *pointer, struct tlsph_errors *err);
+
+/* The same for any owner of a selector: obj's "select" into sel, P the
+ * owner's pointer; an absent selector is an error when required, else it
+ * selects every particle.  The expression in sel is freed with the scene. */
+int tlsph_selector_read(const json_t *obj, int required, struct tlsph_scene *s,
+                        struct tlsph_selector *sel, const char *P, struct tlsph_errors *err);
 
 /* Whether the scene gave any test (an absent selector selects everything). */
 int tlsph_selector_given(const struct tlsph_selector *sel);

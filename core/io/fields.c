@@ -426,6 +426,20 @@ static const struct tlsph_series_column rigid_columns[] = {
     {"torque", 3, "N m", "torque of those forces about the reference point", NULL, NULL},
 };
 
+/* Probes (output.probes): the centre of mass of the particles they picked. */
+static const struct tlsph_series_column probe_columns[] = {
+    {"displacement", 3, "m",
+     "displacement of the centre of mass of the probe's particles (mass-weighted mean of x - X)",
+     NULL, NULL},
+    {"velocity", 3, "m/s", "velocity of that centre of mass (momentum / mass)", NULL, NULL},
+};
+
+static size_t probe_count(const struct tlsph_model *m) { return m->scene.nprobes; }
+static const char *probe_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.probes[k].name;
+}
+
 static size_t rigid_count(const struct tlsph_model *m)
 {
     return m->rigid ? m->scene.nrigid : 0;
@@ -533,6 +547,9 @@ const struct tlsph_series_family tlsph_series_families[] = {
                                contact_item, contact_values},
     [TLSPH_FAMILY_RIGID] = {"rigid", 0, rigid_columns, sizeof rigid_columns / sizeof *rigid_columns,
                             rigid_count, rigid_item, rigid_values},
+    [TLSPH_FAMILY_PROBES] = {"probes", 0, probe_columns,
+                             sizeof probe_columns / sizeof *probe_columns, probe_count,
+                             probe_item, tlsph_probe_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

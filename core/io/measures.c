@@ -2,7 +2,11 @@
  * particles are chosen once from the reference positions, so a section follows
  * the material through necking and fracture, as an extensometer does.  Means
  * are weighted by the reference volume; a failed particle contributes its zero
- * stress, so the section's mean stress falls as the crack crosses it. */
+ * stress, so the section's mean stress falls as the crack crosses it.  Probes
+ * are Lagrangian too and weighted by mass: they follow the centre of mass of
+ * the material they picked, which a particle's own motion (one particle of a
+ * lattice, which a crack or a contact may shake) would not. */
+#include "bc/selector.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -82,6 +86,28 @@ static int init_section(struct tlsph_model *m, size_t k, struct tlsph_errors *er
     return 0;
 }
 
+static int init_probe(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
+{
+    struct tlsph_probe *q = &m->scene.probes[k];
+    struct tlsph_measures *ms = &m->measures;
+    const size_t n = tlsph_selector_pick(m, &q->select, NULL);
+    char p[TLSPH_POINTER_MAX];
+    snprintf(p, sizeof p, "/output/probes/%zu/select", k);
+    if (n == 0) {
+        tlsph_errors_add(err, p, "probe '%s' selects no particle", q->name);
+        return -1;
+    }
+    if (!(ms->probe_index[k] = tlsph_alloc(m, n, sizeof(int32_t)))) {
+        tlsph_errors_add(err, p, "out of memory");
+        return -1;
+    }
+    ms->probe_count[k] = tlsph_selector_pick(m, &q->select, ms->probe_index[k]);
+    ms->probe_mass[k] = 0.0;
+    for (size_t a = 0; a < n; a++)
+        ms->probe_mass[k] += m->p.mass[ms->probe_index[k][a]];
+    return 0;
+}
+
 int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err)
 {
     int bad = 0;
@@ -89,6 +115,8 @@ int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err)
         bad |= init_gauge(m, k, err) != 0;
     for (size_t k = 0; k < m->scene.nsections; k++)
         bad |= init_section(m, k, err) != 0;
+    for (size_t k = 0; k < m->scene.nprobes; k++)
+        bad |= init_probe(m, k, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -97,7 +125,25 @@ void tlsph_measures_free(struct tlsph_measures *ms)
     for (size_t k = 0; k < TLSPH_MAX_MEASURES; k++) {
         free(ms->section_index[k]);
         ms->section_index[k] = NULL;
+        free(ms->probe_index[k]);
+        ms->probe_index[k] = NULL;
     }
+}
+
+void tlsph_probe_values(const struct tlsph_model *m, size_t k, double out[6])
+{
+    const struct tlsph_measures *ms = &m->measures;
+    double sum[6] = {0};
+    for (size_t a = 0; a < ms->probe_count[k]; a++) {
+        const size_t i = (size_t)ms->probe_index[k][a];
+        const double mi = m->p.mass[i];
+        for (int d = 0; d < 3; d++) {
+            sum[d] += mi * (m->p.x[3 * i + d] - m->p.X[3 * i + d]);
+            sum[3 + d] += mi * m->p.v[3 * i + d];
+        }
+    }
+    for (int c = 0; c < 6; c++)
+        out[c] = sum[c] / ms->probe_mass[k];
 }
 
 void tlsph_gauge_values(const struct tlsph_model *m, size_t k, double out[2])

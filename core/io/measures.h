@@ -1,9 +1,9 @@
-/* Scene measurements sampled as time series (scene "output.gauges" and
- * "output.sections", see core/scene/scene.h): engineering stress and strain between
- * two loaded groups, and averages over a Lagrangian cross-section, the
- * quantities tensile tests report (paper 000 §6: engineering stress-strain of
+/* Scene measurements sampled as time series (scene "output.gauges",
+ * "output.sections" and "output.probes", see core/scene/scene.h): engineering
+ * stress and strain between two loaded groups, averages over a Lagrangian
+ * cross-section (the quantities tensile tests report (paper 000 §6: engineering stress-strain of
  * smooth bars, principal stress vs plastic strain averaged over the notch
- * section of notched bars). */
+ * section of notched bars), and the motion of selected particles' centre of mass. */
 #ifndef TLSPH_MEASURES_H
 #define TLSPH_MEASURES_H
 
@@ -22,6 +22,9 @@ struct tlsph_measures {
     int32_t *section_index[TLSPH_MAX_MEASURES]; /* particles of each section (owned) */
     size_t section_count[TLSPH_MAX_MEASURES];
     double section_volume[TLSPH_MAX_MEASURES];  /* reference volume of the section, m^3 */
+    int32_t *probe_index[TLSPH_MAX_MEASURES];   /* particles of each probe (owned) */
+    size_t probe_count[TLSPH_MAX_MEASURES];
+    double probe_mass[TLSPH_MAX_MEASURES];      /* their mass, kg */
 };
 
 /* Values of one section, in this order; the output keeps the present ones. */
@@ -33,10 +36,10 @@ enum tlsph_section_value {
     TLSPH_SECTION_NVALUES
 };
 
-/* Sets up the gauges (axis, length) and sections (particle lists) from the
- * reference configuration; needs the boundary groups.  A section that holds
- * no particle, or a gauge whose groups share a centroid, is an error naming
- * the scene field.  Returns 0 or -1 with err. */
+/* Sets up the gauges (axis, length), sections and probes (particle lists) from
+ * the reference configuration; needs the boundary groups.  A section or probe
+ * that holds no particle, or a gauge whose groups share a centroid, is an
+ * error naming the scene field.  Returns 0 or -1 with err. */
 int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err);
 void tlsph_measures_free(struct tlsph_measures *ms);
 
@@ -46,5 +49,8 @@ void tlsph_gauge_values(const struct tlsph_model *m, size_t k, double out[2]);
  * entries whose module is absent (plasticity, damage) are 0. */
 void tlsph_section_values(const struct tlsph_model *m, size_t k,
                           double out[TLSPH_SECTION_NVALUES]);
+/* Probe k: the mass-weighted mean displacement x - X (m) of its particles in
+ * out[0..2] and their mean velocity (m/s: momentum / mass) in out[3..5]. */
+void tlsph_probe_values(const struct tlsph_model *m, size_t k, double out[6]);
 
 #endif

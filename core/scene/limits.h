@@ -13,7 +13,7 @@
 #define TLSPH_MAX_PARAMS         40        /* entries of "parameters" */
 #define TLSPH_MAX_MATERIALS      1000      /* entries of "materials" */
 #define TLSPH_MAX_BODIES         10000     /* items of "bodies" */
-#define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", of "output.sections" */
+#define TLSPH_MAX_MEASURES       32        /* items of "output.gauges", "output.sections", "output.probes" */
 #define TLSPH_MAX_RIGID_BODIES   32        /* items of "rigid_bodies" */
 #define TLSPH_MAX_CRACKS         32        /* items of "cracks" */
 #define TLSPH_MAX_CRACK_CORNERS  64        /* corners of one crack polygon */

@@ -434,6 +434,8 @@ void tlsph_scene_free(struct tlsph_scene *s)
         for (int k = 0; k < 3; k++)
             tlsph_expr_free(&s->bcs[i].velocity[k]);
     }
+    for (size_t i = 0; i < s->nprobes; i++)
+        tlsph_expr_free(&s->probes[i].select.expression);
     free(s->bodies);
     free(s->bcs);
     tlsph_rigid_specs_free(s->rigid, s->nrigid);

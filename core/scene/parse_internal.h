@@ -17,6 +17,7 @@ extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
 extern const struct tlsph_key_table tlsph_refine_keys;   /* "/bodies/<i>/refine/<k>" (refine.c) */
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
+extern const struct tlsph_key_table tlsph_probe_keys;    /* "/output/probes/<i>" */
 extern const struct tlsph_key_table tlsph_contact_keys;  /* "/contact" */
 extern const struct tlsph_key_table tlsph_rigid_body_keys; /* "/rigid_bodies/<i>" */
 

@@ -1,11 +1,13 @@
 /* Scene measurements written as time series (see core/io/measures.h):
  *   "output": {"gauges": [{"name", "between": [GROUP, GROUP], "area", "length"?}],
- *              "sections": [{"name", "point", "normal", "thickness"}]}
+ *              "sections": [{"name", "point", "normal", "thickness"}],
+ *              "probes": [{"name", "select"}]}
  * A gauge's groups must be load-carrying boundary conditions (fixed or
  * velocity), since the gauge reads their reactions. */
 #include <string.h>
 
 #include "bc/kind.h"
+#include "bc/selector.h"
 #include "scene/parse_internal.h"
 
 /* The array at out[key] (absent = empty): its size, or -1 with an error. */
@@ -161,5 +163,18 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
     }
     if (n > 0)
         s->nsections = (size_t)n;
+
+    n = measure_array(out, "probes", &arr, err);
+    bad |= n < 0;
+    if (n > 0)
+        s->nprobes = (size_t)n; /* before parsing: the scene frees what the items hold */
+    for (long i = 0; i < n; i++) {
+        struct tlsph_probe *q = &s->probes[i];
+        q->select.body = -1;
+        const json_t *o = measure_item(arr, (size_t)i, "probes", "probe name", &tlsph_probe_keys,
+                                       q->name, s->probes[0].name, sizeof *q, P, err);
+        if (!o || tlsph_selector_read(o, 1, s, &q->select, P, err) != 0)
+            bad = 1;
+    }
     return bad ? -1 : 0;
 }

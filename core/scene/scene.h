@@ -214,6 +214,15 @@ struct tlsph_crack_spec {
     double corner[TLSPH_MAX_CRACK_CORNERS][3]; /* m */
 };
 
+/* A probe: the centre of mass of the particles a selector picks (by reference
+ * position, once at setup), followed through the run: its displacement and
+ * velocity, the point measurements a test reads from a dial gauge or a laser
+ * (a beam's deflection, a bar's end). */
+struct tlsph_probe {
+    char name[TLSPH_NAME_MAX];
+    struct tlsph_selector select;  /* the expression is freed with the scene */
+};
+
 /* Contact between bodies and between the separated parts of a body
  * ("contact" block, core/contact/): on when law != NULL.  On by default
  * (without the block) in a scene of more than one body or with a damage
@@ -270,6 +279,7 @@ struct tlsph_scene {
     long series_every;            /* steps between time-series samples, >= 1 */
     struct tlsph_gauge gauges[TLSPH_MAX_MEASURES];     size_t ngauges;
     struct tlsph_section sections[TLSPH_MAX_MEASURES]; size_t nsections;
+    struct tlsph_probe probes[TLSPH_MAX_MEASURES];     size_t nprobes;
 
     struct tlsph_param *params;   size_t nparams;
     struct tlsph_material *materials; size_t nmaterials;

@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <string.h>
 
+#include "bc/selector.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
 
@@ -191,6 +192,17 @@ static const struct tlsph_key section_keys[] = {
 const struct tlsph_key_table tlsph_section_keys =
     TLSPH_KEY_TABLE("/output/sections/*", NULL, section_keys);
 
+static const struct tlsph_key probe_keys[] = {
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
+     .size = TLSPH_NAME_MAX, .description = "unique among the probes; names the output series"},
+    {.name = "select", .kind = TLSPH_KEY_OBJECT, .flags = REQUIRED | CALLER,
+     .table = &tlsph_probe_selector_keys,
+     .description = "the particles whose centre of mass the probe follows (by reference "
+                    "position)"},
+};
+const struct tlsph_key_table tlsph_probe_keys =
+    TLSPH_KEY_TABLE("/output/probes/*", NULL, probe_keys);
+
 static const struct tlsph_key output_keys[] = {
     {.name = "frames", .kind = INTEGER, .flags = DEFAULT,
      .range = {1.0, (double)TLSPH_MAX_FRAMES, JC_CLOSED, JC_CLOSED}, .unit = "1",
@@ -204,6 +216,8 @@ static const struct tlsph_key output_keys[] = {
      .description = "engineering stress-strain gauges"},
     {.name = "sections", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_section_keys,
      .description = "Lagrangian cross-sections"},
+    {.name = "probes", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_probe_keys,
+     .description = "displacement and velocity of selected particles' centre of mass"},
 };
 static const struct tlsph_key_table output_table = TLSPH_KEY_TABLE("/output", NULL, output_keys);
 

@@ -17,7 +17,13 @@
  *     residual elastic waves; measured 1.014).  The middle section's mean
  *     normal stress and largest principal stress equal the engineering stress
  *     within the same 3 % (uniaxial, small strain: the area change is 6e-4;
- *     measured equal to 1e-4). */
+ *     measured equal to 1e-4).
+ *  4. A probe reads the centre of mass of the particles it picked: two free
+ *     bodies of different density moving at different uniform velocities
+ *     (no force acts: F = I) give the mass-weighted mean displacement
+ *     (m_a v_a + m_b v_b) t / (m_a + m_b) and velocity, exact up to the
+ *     round-off of the drift (1e-9 relative); a probe on one body reads that
+ *     body's v t. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -118,4 +124,48 @@ START_TEST(elastic_bar_follows_hooke)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("measures", 300, section_means_are_exact, gauge_length_and_axis, elastic_bar_follows_hooke)
+static const char *two_bodies_scene =
+    "{\"dimension\":2,\"time\":{\"end\":2e-5,\"cfl\":0.3},"
+    "\"contact\":{\"enabled\":false},"
+    "\"output\":{\"probes\":[{\"name\":\"both\",\"select\":{\"box\":{\"min\":[-1,-1,0],"
+    "\"max\":[1,1,0]}}},{\"name\":\"light\",\"select\":{\"body\":\"light\"}}]},"
+    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+    "\"poisson_ratio\":0.3},\"alu\":{\"density\":2700,\"youngs_modulus\":7e10,"
+    "\"poisson_ratio\":0.33}},"
+    "\"bodies\":[{\"name\":\"heavy\",\"material\":\"steel\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.01,0.006,0]}},"
+    "\"initial_velocity\":[2,0,0]},"
+    "{\"name\":\"light\",\"material\":\"alu\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0.05,0,0],\"max\":[0.058,0.004,0]}},"
+    "\"initial_velocity\":[0,-3,0]}]}";
+
+START_TEST(probe_reads_the_centre_of_mass)
+{
+    struct tlsph_model *m = build_model(two_bodies_scene);
+    ck_assert_uint_eq(m->scene.nprobes, 2);
+    double ma = 0.0, mb = 0.0;
+    for (size_t i = 0; i < m->p.n; i++)
+        *(m->p.body[i] == 0 ? &ma : &mb) += m->p.mass[i];
+    ck_assert_uint_eq(m->measures.probe_count[0], m->p.n);
+    ck_assert_msg(fabs(m->measures.probe_mass[0] - (ma + mb)) <= 1e-12 * (ma + mb), "mass");
+    run_until(m, m->scene.end_time);
+    const double t = m->t, va[3] = {2, 0, 0}, vb[3] = {0, -3, 0};
+    double both[6], light[6];
+    tlsph_probe_values(m, 0, both);
+    tlsph_probe_values(m, 1, light);
+    for (int d = 0; d < 3; d++) {
+        const double v = (ma * va[d] + mb * vb[d]) / (ma + mb);
+        ck_assert_msg(fabs(both[d] - v * t) <= 1e-9 * 3.0 * t, "both u[%d] %.17g, want %.17g", d,
+                      both[d], v * t);
+        ck_assert_msg(fabs(both[3 + d] - v) <= 1e-9 * 3.0, "both v[%d] %.17g", d, both[3 + d]);
+        ck_assert_msg(fabs(light[d] - vb[d] * t) <= 1e-9 * 3.0 * t, "light u[%d] %.17g", d,
+                      light[d]);
+        ck_assert_msg(fabs(light[3 + d] - vb[d]) <= 1e-9 * 3.0, "light v[%d]", d);
+    }
+    ck_assert_uint_eq(tlsph_family_width(&tlsph_series_families[TLSPH_FAMILY_PROBES], m), 6);
+    tlsph_model_free(m);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("measures", 300, section_means_are_exact, gauge_length_and_axis,
+                 elastic_bar_follows_hooke, probe_reads_the_centre_of_mass)

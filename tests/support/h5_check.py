@@ -66,7 +66,8 @@ def load_docs(path):
     # sections are optional like the global ones: they follow the modules)
     families = {"groups": table(doc, "group-series"), "gauges": table(doc, "gauge-series"),
                 "sections": table(doc, "section-series"), "walls": table(doc, "wall-series"),
-                "contacts": table(doc, "contact-series"), "rigid": table(doc, "rigid-series")}
+                "contacts": table(doc, "contact-series"), "rigid": table(doc, "rigid-series"),
+                "probes": table(doc, "probe-series")}
     for row in families["sections"]:
         row["optional"] = row.get("present when", "always") != "always"
     return table(doc, "fields"), table(doc, "series") + optional, families
@@ -164,7 +165,7 @@ def check_series_group(g, rows, where, live):
         lengths.append(T)
     documented = {r["name"] for r in rows}
     for name in g:
-        if name not in ("groups", "gauges", "sections", "walls", "contacts", "rigid"):
+        if name not in ("groups", "gauges", "sections", "walls", "contacts", "rigid", "probes"):
             check(name in documented, "%s/%s is documented" % (where, name))
     return lengths
 
@@ -207,7 +208,8 @@ def check_series(f, series, families, scene, live):
              "sections": [c["name"] for c in out.get("sections", [])],
              "walls": walls,
              "contacts": contact_items(scene),
-             "rigid": [r["name"] for r in scene.get("rigid_bodies", [])]}
+             "rigid": [r["name"] for r in scene.get("rigid_bodies", [])],
+             "probes": [q["name"] for q in out.get("probes", [])]}
     check("groups" in obs, "/observables/groups exists")
     for family, names in items.items():
         if not names:

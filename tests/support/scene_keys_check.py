@@ -15,7 +15,7 @@ schemas/scene.schema.json: each table's object (found by its path; a model's
   x-unit and the unit in the description's parentheses (vectors read by the
   caller too).  A table whose object holds exactly one of its keys (a
   geometry) is a oneOf of one-key branches.
-docs/scene.md: every table marked <!-- keys PATH [MODEL] --> documents only keys
+docs/scene.md: every table marked <!-- keys PATH[,PATH...] [MODEL] --> documents only keys
   the engine accepts, with the same unit, default (or "**required**",
   "required with `X`") and range; every key of every table is documented.  In
   a family's table (PATH of models chosen by "type", no MODEL) a "type" column
@@ -308,8 +308,9 @@ def doc_tables(doc):
         if len(rows) < 3:
             problem("docs line %d: marker without a table" % (i + 1))
             continue
-        path = "" if m.group(1) == "/" else m.group(1)
-        out.append((i + 1, path, m.group(2), rows[0], rows[2:]))
+        for path in m.group(1).split(","):  # one table documents every path it lists
+            path = "" if path == "/" else path
+            out.append((i + 1, path, m.group(2), rows[0], rows[2:]))
     return out
 
 

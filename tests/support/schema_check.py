@@ -115,6 +115,10 @@ SEMANTIC_ONLY = {
     "rigid_box_negative_half_size",    # c is ignored in 2-D, so > 0 depends on "dimension"
     "rigid_2d_box_rotated_about_x",    # depends on "dimension"
     "rigid_free_plane",                # motion compared with the shape
+    # probes (core/scene/parse_measures.c, core/io/measures.c)
+    "probe_duplicate_name",            # uniqueness
+    "probe_selects_nothing",           # the particles at t = 0
+    "probe_unknown_body",              # a name in /bodies
 }
 
 
