@@ -25,6 +25,7 @@ struct tlsph_links;       /* sph/virtual_links.h: the virtual links' state */
 
 struct tlsph_particles {
     size_t n;
+    size_t cap;       /* particles allocated in every array (>= n; run/particles_grow.h) */
     int64_t *id;      /* stable id: order of generation, body by body */
     int32_t *body;    /* index into scene->bodies */
     double *X;        /* reference position, m [3n] */
