@@ -8,6 +8,7 @@
 #include <string.h>
 
 #include "crack/local_rebuild.h"
+#include "crack/split_state.h"
 #include "io/measures.h"
 
 static double dot3(const double a[3], const double b[3])
@@ -206,9 +207,9 @@ static void split_fields(struct tlsph_particles *p, size_t i, size_t q, const do
 static int validate(const struct tlsph_model *m, const struct tlsph_split *sp, double phi[2],
                     size_t *body, struct tlsph_errors *err)
 {
-    if (m->contact || m->rigid || m->links) {
-        tlsph_errors_add(err, "", "split: not yet with %s (its particle state is not remapped)",
-                         m->contact ? "contact" : m->rigid ? "rigid bodies" : "virtual links");
+    if (m->links) {
+        tlsph_errors_add(err, "", "split: not yet with virtual links (their per-pair state is "
+                         "not remapped)");
         return -1;
     }
     if (sp->n == 0 || !sp->index) {
@@ -248,6 +249,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     struct tlsph_particles *p = &m->p;
     struct lists lists = {0};
     struct tlsph_rebuild_plan plan = {0};
+    struct tlsph_split_state state = {0};
     double *Xh = malloc(6 * k * sizeof *Xh); /* X1 [3k] then X2 [3k] */
     if (!Xh) {
         tlsph_errors_add(err, "", "split: out of memory");
@@ -262,6 +264,10 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     if (tlsph_rebuild_plan(&view, cs, first_new_facet, &plan, err) != 0 ||
         prepare_lists(m, sp, &lists, err) != 0)
         goto fail;
+    if (tlsph_split_state_prepare(m, k, &state) != 0) {
+        tlsph_errors_add(err, "", "split: out of memory");
+        goto fail;
+    }
     if (tlsph_particles_reserve(m, p->n + k, alloc, ctx) != 0) {
         tlsph_errors_add(err, "", "split: out of memory growing to %zu particles", p->n + k);
         goto fail;
@@ -270,6 +276,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     int64_t maxid = -1;
     for (size_t i = 0; i < p->n; i++)
         maxid = p->id[i] > maxid ? p->id[i] : maxid;
+    tlsph_split_state_commit(m, &state, p->n, at, sp->index, k, phi[0] / (phi[0] + phi[1]));
     tlsph_particles_open(m, at, k);
     for (size_t s = 0; s < k; s++)
         split_fields(p, sp->index[s], at + s, phi, sp->delta, maxid + 1 + 2 * (int64_t)s,
@@ -286,6 +293,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     free(Xh);
     return 0;
 fail:
+    tlsph_split_state_free(&state);
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);
     free(Xh);

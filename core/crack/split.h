@@ -53,12 +53,12 @@
  * Index-holding structures: pairs (rebuilt, local_rebuild.h), body ranges
  * (the body grows by k, later bodies shift by k), boundary groups and
  * sections (indices shifted; a half joins every group and section of its
- * parent).  Refused with an error, the model unchanged: a parent in a
- * pressure group (its reference area vector cannot be shared without the
- * surface), scenes with contact, rigid bodies or virtual links (their per-
- * particle and per-pair state is not remapped yet).  The output writer
- * assumes a fixed count (io/output/): a run that splits must not write frames
- * yet. */
+ * parent), the contact phase's and the rigid bodies' per-particle arrays and
+ * candidate lists (crack/split_state.h).  Refused with an error, the model
+ * unchanged: a parent in a pressure group (its reference area vector cannot
+ * be shared without the surface), and virtual links (D_ij per pair is not
+ * remapped yet).  The output writer assumes a fixed count (io/output/): a run
+ * that splits must not write frames yet. */
 #ifndef TLSPH_CRACK_SPLIT_H
 #define TLSPH_CRACK_SPLIT_H
 

@@ -26,7 +26,9 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "contact/state.h"
 #include "crack/split.h"
+#include "rigid/state.h"
 #include "sph/correction.h"
 #include "sph/neighbors.h"
 #include "support/check_main.h"
@@ -535,5 +537,114 @@ START_TEST(momentum_after_split)
 }
 END_TEST
 
+/* A damaging plate (contact on by default) moving into a block, above a
+ * rigid plane: the contact and rigid state follow the split (the same
+ * particles by id in every candidate list and per-particle array), a search
+ * of each runs at the next evaluation, and the two free bodies keep their
+ * momentum to 1e-12 of sum m|v| through contact (the plane is out of reach:
+ * it exerts nothing, which the test checks). */
+static const char *contact_scene =
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000},"
+    "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+    "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
+    "\"damage\":{\"type\":\"johnson_cook\",\"d1\":5,\"d2\":0,\"d3\":0}}},"
+    "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}},"
+    "\"initial_velocity\":[\"40\",\"30*cos(700*y*x*100)\",\"0\"]},"
+    "{\"name\":\"block\",\"material\":\"m\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0.0100,0,0],\"max\":[0.0140,0.004,0.003]}},"
+    "\"initial_velocity\":[\"-40\",\"0\",\"0\"]}],"
+    "\"rigid_bodies\":[{\"name\":\"floor\",\"shape\":{\"type\":\"plane\","
+    "\"point\":[0,-0.01,0],\"normal\":[0,1,0]}}]}";
+
+START_TEST(contact_and_rigid_follow)
+{
+    struct tlsph_model *m = build_model(contact_scene);
+    ck_assert_ptr_nonnull(m->contact);
+    ck_assert_ptr_nonnull(m->rigid);
+    double p0[3], p1[3];
+    tlsph_model_momentum(m, p0);
+    const double scale = momentum_scale(m);
+    for (int s = 0; s < 20; s++)
+        tlsph_model_step(m);
+    ck_assert_uint_gt(m->contact->active, 0); /* the bodies touch */
+    struct tlsph_contact *c = m->contact;
+    /* the contact candidates and per-particle state by id before */
+    const size_t n0 = m->p.n;
+    int64_t *cand_id = malloc((size_t)c->start[n0] * sizeof *cand_id);
+    int64_t *row_id = malloc((size_t)c->start[n0] * sizeof *row_id);
+    double *reach = malloc(n0 * sizeof *reach);
+    ck_assert(cand_id && row_id && reach);
+    for (size_t i = 0; i < n0; i++) {
+        reach[i] = c->reach ? c->reach[i] : 0.0;
+        for (int64_t e = c->start[i]; e < c->start[i + 1]; e++) {
+            cand_id[e] = m->p.id[c->j[e]];
+            row_id[e] = m->p.id[i];
+        }
+    }
+    int64_t *id0 = malloc(n0 * sizeof *id0);
+    ck_assert_ptr_nonnull(id0);
+    memcpy(id0, m->p.id, n0 * sizeof *id0);
+    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.003);
+    struct tlsph_crack_surface cs;
+    ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
+    add_crack(&cs, yt, -0.001, xa);
+    size_t parent[MAXF];
+    const size_t k = fibre(m, xa, yt, parent);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, 0, NULL, NULL, &err), 0);
+    tlsph_errors_free(&err);
+    check_against_full(m, &cs);
+    /* every candidate entry joins the same ids; the halves have none yet */
+    const size_t at = m->body_end[0] - k;
+    for (size_t i = 0; i < m->p.n; i++) {
+        if (i >= at && i < at + k) {
+            ck_assert_int_eq(c->start[i + 1], c->start[i]);
+            ck_assert(isinf(c->x_search[3 * i]) && isinf(m->rigid->x_search[3 * i]));
+            continue;
+        }
+        const size_t o = i < at ? i : i - k; /* old index */
+        int parent_of = 0;
+        for (size_t s = 0; s < k; s++)
+            parent_of |= parent[s] == o;
+        if (!parent_of)
+            ck_assert_int_eq(m->p.id[i], id0[o]);
+        if (c->reach)
+            ck_assert(c->reach[i] == reach[o]);
+        for (int64_t e = c->start[i]; e < c->start[i + 1]; e++) {
+            ck_assert_int_eq(row_id[e], id0[o]);
+            const int64_t now = m->p.id[c->j[e]];
+            if (now != cand_id[e]) { /* only a split parent's id changed */
+                int was_parent = 0;
+                for (size_t s = 0; s < k; s++)
+                    was_parent |= id0[parent[s]] == cand_id[e] && (size_t)c->j[e] == parent[s];
+                ck_assert(was_parent);
+            }
+        }
+    }
+    for (int64_t e = 0; e < m->rigid->start[m->rigid->nb]; e++)
+        ck_assert_uint_lt((size_t)m->rigid->cand[e], m->p.n);
+    const long searches = c->searches, rsearches = m->rigid->searches;
+    tlsph_model_step(m);
+    ck_assert_int_eq(c->searches, searches + 1);
+    ck_assert_int_eq(m->rigid->searches, rsearches + 1);
+    for (int s = 0; s < 40; s++)
+        tlsph_model_step(m);
+    ck_assert_uint_eq(m->rigid->active, 0);
+    tlsph_model_momentum(m, p1);
+    for (int q = 0; q < 3; q++)
+        ck_assert_msg(fabs(p1[q] - p0[q]) <= 1e-12 * scale, "component %d drifted %.3g", q,
+                      p1[q] - p0[q]);
+    free(cand_id);
+    free(row_id);
+    free(reach);
+    free(id0);
+    tlsph_crack_surface_release(&cs);
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("split", 120, split_two_fibres, growth_failure_leaves_model,
-                 refusals_leave_model, angles, momentum_after_split)
+                 refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow)
