@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sph/correction.h"
+#include "util/mat3.h"
 
 /* A set of particle indices (open addressing, key + 1 stored, 0 = empty):
  * the walk's visited set, sized by what it visits, not by the body. */
@@ -401,6 +402,14 @@ void tlsph_rebuild_commit(struct tlsph_model *m, struct tlsph_rebuild_plan *plan
             deficient++;
         else
             m->max_L_condition = fmax(m->max_L_condition, cond);
+        /* P_tilde = P L^-T folds the old L: refold it, P = sigma cof(F) (=
+         * J sigma F^-T, the stress of the last evaluation), so that the next
+         * step's first energy half (kinematics.h) and forces see the new L */
+        double S[9], adj[9], P[9];
+        sym6_to_mat3(m->p.sigma + 6 * i, S);
+        mat3_adjugate(m->p.F + 9 * i, adj);
+        mat3_mul_bt(S, adj, P);
+        mat3_mul_bt(P, m->p.Linv + 9 * i, m->p.P_tilde + 9 * i);
     }
     m->deficient_supports = m->deficient_supports - plan->old_deficient + deficient;
     m->isolated = m->isolated - plan->old_isolated + isolated;
