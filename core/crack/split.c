@@ -10,6 +10,7 @@
 #include "crack/local_rebuild.h"
 #include "crack/split_state.h"
 #include "io/measures.h"
+#include "sph/forces.h"
 
 static double dot3(const double a[3], const double b[3])
 {
@@ -250,6 +251,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     struct lists lists = {0};
     struct tlsph_rebuild_plan plan = {0};
     struct tlsph_split_state state = {0};
+    double *ext = NULL; /* the forces that are not pair forces (contact, rigid, loads) [3(n+k)] */
     double *Xh = malloc(6 * k * sizeof *Xh); /* X1 [3k] then X2 [3k] */
     if (!Xh) {
         tlsph_errors_add(err, "", "split: out of memory");
@@ -264,7 +266,8 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     if (tlsph_rebuild_plan(&view, cs, first_new_facet, &plan, err) != 0 ||
         prepare_lists(m, sp, &lists, err) != 0)
         goto fail;
-    if (tlsph_split_state_prepare(m, k, &state) != 0) {
+    if (tlsph_split_state_prepare(m, k, &state) != 0 ||
+        !(ext = malloc(3 * (p->n + k) * sizeof *ext))) {
         tlsph_errors_add(err, "", "split: out of memory");
         goto fail;
     }
@@ -272,11 +275,28 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
         tlsph_errors_add(err, "", "split: out of memory growing to %zu particles", p->n + k);
         goto fail;
     }
-    /* commit: nothing fails from here */
+    /* commit: nothing fails from here.  The stored force splits into the
+     * pair forces (recomputed now: the old supports) and the rest, which the
+     * halves share by mass; the pair forces are recomputed on the new supports
+     * at the end (split.h). */
+    const size_t n = p->n;
+    memcpy(ext, p->f, 3 * n * sizeof *ext);
+    (void)tlsph_forces(m);
+    for (size_t q = 0; q < 3 * n; q++)
+        ext[q] -= p->f[q];
+    memmove(ext + 3 * (at + k), ext + 3 * at, 3 * (n - at) * sizeof *ext);
+    const double share = phi[0] / (phi[0] + phi[1]);
+    for (size_t s = 0; s < k; s++)
+        for (int c = 0; c < 3; c++) {
+            double *e1 = ext + 3 * sp->index[s] + c, *e2 = ext + 3 * (at + s) + c;
+            const double whole = *e1;
+            *e1 = whole * share;
+            *e2 = whole - *e1;
+        }
     int64_t maxid = -1;
     for (size_t i = 0; i < p->n; i++)
         maxid = p->id[i] > maxid ? p->id[i] : maxid;
-    tlsph_split_state_commit(m, &state, p->n, at, sp->index, k, phi[0] / (phi[0] + phi[1]));
+    tlsph_split_state_commit(m, &state, n, at, sp->index, k, share);
     tlsph_particles_open(m, at, k);
     for (size_t s = 0; s < k; s++)
         split_fields(p, sp->index[s], at + s, phi, sp->delta, maxid + 1 + 2 * (int64_t)s,
@@ -288,11 +308,16 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     }
     commit_lists(m, sp, at, &lists);
     tlsph_rebuild_commit(m, &plan);
+    (void)tlsph_forces(m);
+    for (size_t q = 0; q < 3 * p->n; q++)
+        p->f[q] += ext[q];
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);
+    free(ext);
     free(Xh);
     return 0;
 fail:
+    free(ext);
     tlsph_split_state_free(&state);
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);

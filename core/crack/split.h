@@ -28,13 +28,23 @@
  *   v             eqs. 29-30: copied (momentum and kinetic energy conserved
  *                 to round-off: m1 v + m2 v = m v)
  *   f, f_hourglass, f_viscous
- *                 the parent's share by mass, f1 = f m1/m, f2 = f - f1: both
- *                 halves get the parent's acceleration for the half kick that
- *                 starts the next step (run/integrate.h).  Eqs. 31-32 zero the
- *                 acceleration (a central-difference code recomputes it
- *                 before using it); the velocity-Verlet kick here uses the
- *                 stored f, and zeroing the halves' share would change the
- *                 total momentum by dt/2 f_parent in that kick
+ *                 the pair forces (stress, hourglass, viscous) recomputed on
+ *                 the new supports for every particle, plus the rest of the
+ *                 last evaluation's force (contact, rigid bodies, loads: the
+ *                 stored f minus the pair forces recomputed on the old
+ *                 supports), the parent's rest shared by mass (f1 = f m1/m,
+ *                 f2 = f - f1).  Eqs. 31-32 zero the halves' acceleration (a
+ *                 central-difference code recomputes it before using it);
+ *                 the velocity-Verlet step here starts with a half kick by
+ *                 the stored force (run/integrate.h), which must be the one
+ *                 the next energy update is conjugate to: with the old
+ *                 supports' forces the balance jumps at the split (1.4e-3 J
+ *                 of 1.41 J in tests/engine/test_split.c), with zero for the
+ *                 halves momentum changes by dt/2 f_parent.  Pair forces stay
+ *                 antisymmetric, so momentum is exact.  Cost: two force
+ *                 passes per split.  With viscosity the recomputed viscous
+ *                 forces see the velocities at t_n instead of t_(n-1/2) (a
+ *                 difference of the order of dt that sums to zero)
  *   h, spacing    copied (the split cuts the support, it does not refine it)
  *   F, Fdot, P_tilde, sigma, e, eps_p, plastic_strain, eps_p_rate,
  *   yield_stress, hg_scale, T, damage, damage_init, void_*, crack_gradient
@@ -48,12 +58,9 @@
  *   body          the parent's
  * Energy account: kinetic and internal energy are unchanged by the split, no
  * term is booked.  P_tilde = P L^-T of the rebuilt rows is refolded with the
- * new L (local_rebuild.h), so the next step's energy update uses the new
- * supports; the stored forces of its first half kick are the old supports'
- * (shared as above), which the balance sees once: 9.8e-4 J of a largest
- * term of 1.41 J in tests/engine/test_split.c's violent free plate (1.4e-3 J
- * without the refold).  Recomputing the pair forces on the new supports at
- * the split would remove it at the cost of two force passes per split.
+ * new L (local_rebuild.h) and the forces recomputed (above), so the next step
+ * is conjugate again: its balance moves by -7.8e-5 J of 1.41 J in the test's
+ * violent free plate (-3.2e-5 J for the same step without a split).
  *
  * Index-holding structures: pairs (rebuilt, local_rebuild.h), body ranges
  * (the body grows by k, later bodies shift by k), boundary groups and
