@@ -69,8 +69,8 @@
  * candidate lists (crack/split_state.h).  Refused with an error, the model
  * unchanged: a parent in a pressure group (its reference area vector cannot
  * be shared without the surface), and virtual links (D_ij per pair is not
- * remapped yet).  The output writer assumes a fixed count (io/output/): a run
- * that splits must not write frames yet. */
+ * remapped yet).  The result file holds one count per run: after a split
+ * tlsph_output_frame returns an error (io/output/output.h). */
 #ifndef TLSPH_CRACK_SPLIT_H
 #define TLSPH_CRACK_SPLIT_H
 

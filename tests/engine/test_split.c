@@ -25,9 +25,11 @@
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "contact/state.h"
 #include "crack/split.h"
+#include "io/output/output.h"
 #include "rigid/state.h"
 #include "sph/correction.h"
 #include "sph/neighbors.h"
@@ -657,5 +659,36 @@ START_TEST(contact_and_rigid_follow)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("split", 120, split_two_fibres, growth_failure_leaves_model,
+/* The result file holds one particle count per run (docs/crack-growth.md,
+ * next): a frame after a split is refused as an error, never written past
+ * the datasets' extent. */
+START_TEST(output_refuses_a_new_count)
+{
+    struct tlsph_model *m = build_model(plate_scene);
+    char dir[] = "/tmp/test_split.XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    struct tlsph_output *o = tlsph_output_open(dir, m, &err);
+    ck_assert_ptr_nonnull(o);
+    ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.0);
+    size_t parent[MAXF];
+    const size_t k = fibre(m, xa, yt, parent);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, NULL, 0, NULL, NULL, &err), 0);
+    ck_assert_int_eq(tlsph_output_frame(o, m), -1);
+    tlsph_output_abort(o);
+    tlsph_errors_free(&err);
+    char path[64];
+    snprintf(path, sizeof path, "%s/result.h5", dir);
+    unlink(path);
+    snprintf(path, sizeof path, "%s/result.xmf", dir);
+    unlink(path);
+    ck_assert_int_eq(rmdir(dir), 0);
+    tlsph_model_free(m);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("split", 120, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
                  refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow)
