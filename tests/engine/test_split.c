@@ -196,6 +196,15 @@ static void check_against_full(struct tlsph_model *m, const struct tlsph_crack_s
     }
     ck_assert_uint_eq(deficient, m->deficient_supports);
     ck_assert_uint_eq(isolated, m->isolated);
+    /* the local CSR is symmetric: j in i's row <=> i in j's */
+    for (size_t i = 0; i < n; i++)
+        for (int64_t k = local.start[i]; k < local.start[i + 1]; k++) {
+            const size_t j = (size_t)local.j[k];
+            int back = 0;
+            for (int64_t q = local.start[j]; q < local.start[j + 1] && !back; q++)
+                back = (size_t)local.j[q] == i;
+            ck_assert_msg(back, "pair %zu-%zu has no mirror", i, j);
+        }
     ck_assert(cond >= m->max_L_condition);
     /* back to the local state */
     pairs_free(&m->pairs);
