@@ -699,5 +699,32 @@ START_TEST(output_refuses_a_new_count)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("split", 120, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
+/* A fibre whose top particle carries a pressure load: refused (its area
+ * vector cannot be shared), the model bit for bit as it was. */
+START_TEST(pressure_parent_refused)
+{
+    struct tlsph_model *m = build_model(
+        "{\"dimension\":3,\"time\":{\"end\":1e-6},\"contact\":{\"enabled\":false},"
+        "\"materials\":{\"m\":{\"density\":2700,\"youngs_modulus\":7e10,\"poisson_ratio\":0.33}},"
+        "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}}}],"
+        "\"boundary_conditions\":[{\"type\":\"pressure\",\"name\":\"top\","
+        "\"select\":{\"expression\":\"z > 0.002\"},\"normal\":[0,0,1],\"pressure\":1e6}]}");
+    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.005);
+    size_t parent[MAXF];
+    const size_t k = fibre(m, xa, yt, parent);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+    const unsigned long h0 = model_hash(m);
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, NULL, 0, NULL, NULL, &err), -1);
+    ck_assert_uint_eq(err.count, 1);
+    ck_assert_ptr_nonnull(strstr(err.items[0].message, "pressure group"));
+    tlsph_errors_free(&err);
+    ck_assert(model_hash(m) == h0);
+    tlsph_model_free(m);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("split", 120, pressure_parent_refused, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
                  refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow)
