@@ -175,7 +175,8 @@ static void copy_particle(struct tlsph_particles *p, size_t dst, size_t src)
     }
 }
 
-/* The field assignment of split.h for parent i (half 1 stays at i) and half 2 at q. */
+/* The field assignment of split.h for parent i (half 1 stays at i) and half 2
+ * at q; the forces are set afterwards (rest_of_force, pair forces). */
 static void split_fields(struct tlsph_particles *p, size_t i, size_t q, const double phi[2],
                          const double delta[3], int64_t id1, int64_t id2)
 {
@@ -193,13 +194,6 @@ static void split_fields(struct tlsph_particles *p, size_t i, size_t q, const do
         p->X[3 * q + c] -= delta[c];
         p->x[3 * i + c] += Fd;
         p->x[3 * q + c] -= Fd;
-        double *f3[3] = {p->f, p->f_hourglass, p->f_viscous};
-        for (int k = 0; k < 3; k++)
-            if (f3[k]) {
-                const double f1 = f3[k][3 * i + c] * share;
-                f3[k][3 * q + c] = f3[k][3 * i + c] - f1;
-                f3[k][3 * i + c] = f1;
-            }
     }
     p->id[i] = id1;
     p->id[q] = id2;
@@ -236,6 +230,28 @@ static int validate(const struct tlsph_model *m, const struct tlsph_split *sp, d
         *body = (size_t)m->p.body[i];
     }
     return 0;
+}
+
+/* The stored force minus the pair forces on the old supports (contact,
+ * rigid, loads) into ext, laid out for n + k particles, the parents' rest
+ * shared by mass with their halves (split.h).  Overwrites p.f and the stored
+ * hourglass and viscous forces, which the end of the split recomputes. */
+static void rest_of_force(struct tlsph_model *m, const struct tlsph_split *sp, size_t at,
+                          double share, double *ext)
+{
+    const size_t n = m->p.n, k = sp->n;
+    memcpy(ext, m->p.f, 3 * n * sizeof *ext);
+    (void)tlsph_forces(m);
+    for (size_t q = 0; q < 3 * n; q++)
+        ext[q] -= m->p.f[q];
+    memmove(ext + 3 * (at + k), ext + 3 * at, 3 * (n - at) * sizeof *ext);
+    for (size_t s = 0; s < k; s++)
+        for (int c = 0; c < 3; c++) {
+            double *e1 = ext + 3 * sp->index[s] + c, *e2 = ext + 3 * (at + s) + c;
+            const double whole = *e1;
+            *e1 = whole * share;
+            *e2 = whole - *e1;
+        }
 }
 
 int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
@@ -275,24 +291,10 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
         tlsph_errors_add(err, "", "split: out of memory growing to %zu particles", p->n + k);
         goto fail;
     }
-    /* commit: nothing fails from here.  The stored force splits into the
-     * pair forces (recomputed now: the old supports) and the rest, which the
-     * halves share by mass; the pair forces are recomputed on the new supports
-     * at the end (split.h). */
+    /* commit: nothing fails from here */
     const size_t n = p->n;
-    memcpy(ext, p->f, 3 * n * sizeof *ext);
-    (void)tlsph_forces(m);
-    for (size_t q = 0; q < 3 * n; q++)
-        ext[q] -= p->f[q];
-    memmove(ext + 3 * (at + k), ext + 3 * at, 3 * (n - at) * sizeof *ext);
     const double share = phi[0] / (phi[0] + phi[1]);
-    for (size_t s = 0; s < k; s++)
-        for (int c = 0; c < 3; c++) {
-            double *e1 = ext + 3 * sp->index[s] + c, *e2 = ext + 3 * (at + s) + c;
-            const double whole = *e1;
-            *e1 = whole * share;
-            *e2 = whole - *e1;
-        }
+    rest_of_force(m, sp, at, share, ext);
     int64_t maxid = -1;
     for (size_t i = 0; i < p->n; i++)
         maxid = p->id[i] > maxid ? p->id[i] : maxid;
@@ -308,7 +310,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     }
     commit_lists(m, sp, at, &lists);
     tlsph_rebuild_commit(m, &plan);
-    (void)tlsph_forces(m);
+    (void)tlsph_forces(m); /* the pair forces on the new supports, plus the rest */
     for (size_t q = 0; q < 3 * p->n; q++)
         p->f[q] += ext[q];
     lists_free(&lists, m->scene.nbcs);
