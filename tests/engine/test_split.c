@@ -343,6 +343,17 @@ static double lattice(const struct tlsph_model *m, int axis, double v)
     return at;
 }
 
+/* Momentum now against p0 (kg m/s), to 1e-12 of scale = sum m|v| at the start
+ * (check_momentum_kept's tolerance). */
+static void check_momentum_since(const struct tlsph_model *m, const double p0[3], double scale)
+{
+    double p1[3];
+    tlsph_model_momentum(m, p1);
+    for (int c = 0; c < 3; c++)
+        ck_assert_msg(fabs(p1[c] - p0[c]) <= 1e-12 * scale, "component %d drifted %.3g", c,
+                      p1[c] - p0[c]);
+}
+
 /* A crack surface from outside the plate up to the fibre nearest x (row
  * y = 0.004): inits *cs, adds the facets, fills parent; returns the fibre's
  * size. */
@@ -531,7 +542,7 @@ END_TEST
 START_TEST(momentum_after_split)
 {
     struct tlsph_model *m = build_model(free_scene);
-    double p0[3], p1[3];
+    double p0[3];
     tlsph_model_momentum(m, p0);
     const double scale = momentum_scale(m);
     for (int s = 0; s < 30; s++)
@@ -559,10 +570,7 @@ START_TEST(momentum_after_split)
     ck_assert_msg(fabs(jump) < 1e-4 * m->energy.scale, "balance jumped %.3g J (scale %.3g J)", jump,
                   m->energy.scale);
     check_momentum_kept(m, 59);
-    tlsph_model_momentum(m, p1);
-    for (int c = 0; c < 3; c++)
-        ck_assert_msg(fabs(p1[c] - p0[c]) <= 1e-12 * scale, "component %d drifted %.3g", c,
-                      p1[c] - p0[c]);
+    check_momentum_since(m, p0, scale);
     tlsph_crack_surface_release(&cs);
     tlsph_model_free(m);
 }
@@ -593,7 +601,7 @@ START_TEST(contact_and_rigid_follow)
 {
     struct tlsph_model *m = build_model(contact_scene);
     ck_assert(m->contact && m->rigid);
-    double p0[3], p1[3];
+    double p0[3];
     tlsph_model_momentum(m, p0);
     const double scale = momentum_scale(m);
     for (int s = 0; s < 20; s++)
@@ -661,10 +669,7 @@ START_TEST(contact_and_rigid_follow)
     for (int s = 0; s < 40; s++)
         tlsph_model_step(m);
     ck_assert_uint_eq(m->rigid->active, 0);
-    tlsph_model_momentum(m, p1);
-    for (int q = 0; q < 3; q++)
-        ck_assert_msg(fabs(p1[q] - p0[q]) <= 1e-12 * scale, "component %d drifted %.3g", q,
-                      p1[q] - p0[q]);
+    check_momentum_since(m, p0, scale);
     free(cand_id);
     free(row_id);
     free(reach);
@@ -732,5 +737,56 @@ START_TEST(pressure_parent_refused)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("split", 120, pressure_parent_refused, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
+/* A crack grown through a free plate opening in mode I (v_y = +-5 m/s on
+ * either side of the crack row, which starts at rest, plus a shear wave): a fibre split every 10
+ * steps, five in all, each with the facets up to it; every step passes the
+ * stability contract (energy balance, det F, finite values); momentum to
+ * 1e-12 of sum m|v| at the end, 30 steps after the last split; the CSR
+ * equals a full rebuild after the last split. */
+START_TEST(crack_grows_through_opening_plate)
+{
+    struct tlsph_model *m = build_model(
+        "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000},\"contact\":{\"enabled\":false},"
+        "\"discretization\":{\"hourglass\":{\"enabled\":true}},"
+        "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},"
+        "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.008,0.003]}},"
+        "\"initial_velocity\":[\"2*sin(300*y)\",\"5*tanh((y-0.0045)*1e5)\",\"0\"]}]}");
+    double p0[3];
+    tlsph_model_momentum(m, p0);
+    const double scale = momentum_scale(m);
+    const double yt = lattice(m, 1, 0.0045), x0 = lattice(m, 0, 0.0); /* the row at rest */
+    ck_assert(fabs(yt - 0.0045) < 1e-12);
+    struct tlsph_crack_surface cs;
+    ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
+    struct tlsph_diagnostic d;
+    for (int e = 0; e < 5; e++) {
+        for (int s = 0; s < 10; s++) {
+            tlsph_model_step(m);
+            ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+        }
+        const double xf = x0 + e * SPACING;
+        size_t parent[MAXF];
+        const size_t k = fibre(m, xf, yt, parent);
+        ck_assert_uint_eq(k, 3);
+        const size_t first = cs.nfacets;
+        add_crack(&cs, yt, e ? xf - SPACING : xf - 2 * SPACING, xf);
+        struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+        struct tlsph_errors err;
+        tlsph_errors_init(&err);
+        ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, first, NULL, NULL, &err), 0);
+        tlsph_errors_free(&err);
+    }
+    check_against_full(m, &cs);
+    for (int s = 0; s < 30; s++) {
+        tlsph_model_step(m);
+        ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+    }
+    check_momentum_since(m, p0, scale);
+    tlsph_crack_surface_release(&cs);
+    tlsph_model_free(m);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("split", 120, crack_grows_through_opening_plate, pressure_parent_refused, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
                  refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow)
