@@ -180,6 +180,7 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
 {
     struct tlsph_particles *p = &m->p;
     p->n = n;
+    p->cap = n;
     p->id = tlsph_alloc(m, n, sizeof *p->id);
     p->body = tlsph_alloc(m, n, sizeof *p->body);
     p->X = tlsph_alloc(m, 3 * n, sizeof(double));

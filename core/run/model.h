@@ -27,6 +27,7 @@ struct tlsph_fibres;        /* crack/fibre.h: a thin body's fibres */
 
 struct tlsph_particles {
     size_t n;
+    size_t cap;       /* particles allocated in every array (>= n; run/particles_grow.h) */
     int64_t *id;      /* stable id: order of generation, body by body */
     int32_t *body;    /* index into scene->bodies */
     double *X;        /* reference position, m [3n] */

@@ -13,6 +13,14 @@
  * particles with no neighbour at all in m->isolated. */
 void tlsph_correction_build(struct tlsph_model *m);
 
+/* The same for row i alone (the local rebuild after a split, crack/split.h):
+ * pairs.dw (and w) of i's pairs from the kernel, then Linv_i.  Returns 1 when
+ * L_i needed the safe inverse, else 0 with *condition. */
+int tlsph_correction_row(struct tlsph_model *m, size_t i, double *condition);
+/* What tlsph_correction_row would return for row i as the pairs stand (dw as
+ * stored), writing nothing: the bookkeeping of a row before it is rebuilt. */
+int tlsph_correction_row_status(const struct tlsph_model *m, size_t i, double *condition);
+
 /* The safe inverse of one correction matrix L (symmetric; in 2-D its z row and
  * column are replaced by the identity, in place).  Returns 1 when L was
  * rank-deficient (the pseudo-inverse was used), else 0 with *condition =

@@ -442,6 +442,8 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
 
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
 {
+    if (m->p.n != o->n) /* the datasets' second axis and the scratch are o->n */
+        return -1;
     /* Every field is checked before any is written, so a refused frame leaves
      * the file as it was (the values are extracted twice: cheap next to the
      * write). */

@@ -69,7 +69,8 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf
  * (via a temporary file and rename) when the last rewrite is more than 2 s old;
  * tlsph_output_close always rewrites it.  Returns 0, TLSPH_OUTPUT_REFUSED (nothing
- * written) or -1 (I/O error). */
+ * written) or -1 (I/O error, or a particle count other than at open: the file
+ * holds one count per run, and particle splitting, crack/split.h, changes it). */
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m);
 /* Appends one sample of every time-series column.  Rows are buffered and written
  * (and flushed) when 1024 are pending, at every frame, after ~1 s of wall time and
