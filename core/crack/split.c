@@ -1,5 +1,5 @@
 /* Particle splitting, eqs. 21-32 of paper 003 (split.h): validate, plan
- * everything that can fail (the new pairs, the groups' and sections' arrays,
+ * everything that can fail (the new pairs, the groups', sections' and probes' arrays,
  * the particle capacity), then commit, which cannot fail. */
 #include "crack/split.h"
 
@@ -52,13 +52,27 @@ static size_t slot_of(const struct tlsph_split *sp, size_t i)
     return s;
 }
 
-/* Index arrays that gain halves: one per group and section, prepared before
- * the commit (NULL where the array only shifts in place). */
+/* The measurements that hold particles: the sections, then the probes. */
+#define NMEASURE_LISTS (2 * TLSPH_MAX_MEASURES)
+
+static int32_t **measure_list(struct tlsph_measures *ms, size_t k, size_t **count)
+{
+    if (k < TLSPH_MAX_MEASURES) {
+        *count = &ms->section_count[k];
+        return &ms->section_index[k];
+    }
+    k -= TLSPH_MAX_MEASURES;
+    *count = &ms->probe_count[k];
+    return &ms->probe_index[k];
+}
+
+/* Index arrays that gain halves: one per group, section and probe, prepared
+ * before the commit (NULL where the array only shifts in place). */
 struct lists {
     int32_t **group;   /* [nbcs] */
     size_t *group_add; /* halves joining each group */
-    int32_t *section[TLSPH_MAX_MEASURES];
-    size_t section_add[TLSPH_MAX_MEASURES];
+    int32_t *measure[NMEASURE_LISTS];
+    size_t measure_add[NMEASURE_LISTS];
 };
 
 static void lists_free(struct lists *l, size_t ngroups)
@@ -67,8 +81,8 @@ static void lists_free(struct lists *l, size_t ngroups)
         free(l->group[g]);
     free(l->group);
     free(l->group_add);
-    for (size_t k = 0; k < TLSPH_MAX_MEASURES; k++)
-        free(l->section[k]);
+    for (size_t k = 0; k < NMEASURE_LISTS; k++)
+        free(l->measure[k]);
 }
 
 static size_t count_parents(const struct tlsph_split *sp, const int32_t *index, size_t n)
@@ -115,12 +129,12 @@ static int prepare_lists(struct tlsph_model *m, const struct tlsph_split *sp, st
         if (!(l->group[g] = malloc((gr->n + l->group_add[g]) * sizeof **l->group)))
             goto oom;
     }
-    for (size_t k = 0; k < TLSPH_MAX_MEASURES; k++) {
-        const struct tlsph_measures *ms = &m->measures;
-        if (!ms->section_index[k] ||
-            !(l->section_add[k] = count_parents(sp, ms->section_index[k], ms->section_count[k])))
+    for (size_t k = 0; k < NMEASURE_LISTS; k++) {
+        size_t *count;
+        int32_t *const *index = measure_list(&m->measures, k, &count);
+        if (!*index || !(l->measure_add[k] = count_parents(sp, *index, *count)))
             continue;
-        if (!(l->section[k] = malloc((ms->section_count[k] + l->section_add[k]) * sizeof(int32_t))))
+        if (!(l->measure[k] = malloc((*count + l->measure_add[k]) * sizeof(int32_t))))
             goto oom;
     }
     return 0;
@@ -147,20 +161,21 @@ static void commit_lists(struct tlsph_model *m, const struct tlsph_split *sp, si
         gr->n += l->group_add[g];
         m->bytes_allocated += l->group_add[g] * sizeof *gr->index;
     }
-    struct tlsph_measures *ms = &m->measures;
-    for (size_t k = 0; k < TLSPH_MAX_MEASURES; k++) {
-        if (!ms->section_index[k])
+    for (size_t k = 0; k < NMEASURE_LISTS; k++) {
+        size_t *count;
+        int32_t **index = measure_list(&m->measures, k, &count);
+        if (!*index)
             continue;
-        if (!l->section[k]) {
-            remap_list(sp, at, ms->section_index[k], ms->section_count[k], ms->section_index[k]);
+        if (!l->measure[k]) {
+            remap_list(sp, at, *index, *count, *index);
             continue;
         }
-        remap_list(sp, at, ms->section_index[k], ms->section_count[k], l->section[k]);
-        free(ms->section_index[k]);
-        ms->section_index[k] = l->section[k];
-        l->section[k] = NULL;
-        ms->section_count[k] += l->section_add[k];
-        m->bytes_allocated += l->section_add[k] * sizeof(int32_t);
+        remap_list(sp, at, *index, *count, l->measure[k]);
+        free(*index);
+        *index = l->measure[k];
+        l->measure[k] = NULL;
+        *count += l->measure_add[k];
+        m->bytes_allocated += l->measure_add[k] * sizeof(int32_t);
     }
 }
 

@@ -64,9 +64,9 @@
  * violent free plate (-3.2e-5 J for the same step without a split).
  *
  * Index-holding structures: pairs (rebuilt, local_rebuild.h), body ranges
- * (the body grows by k, later bodies shift by k), boundary groups and
- * sections (indices shifted; a half joins every group and section of its
- * parent), the contact phase's and the rigid bodies' per-particle arrays and
+ * (the body grows by k, later bodies shift by k), boundary groups,
+ * sections and probes (indices shifted; a half joins every group, section and
+ * probe of its parent), the contact phase's and the rigid bodies' per-particle arrays and
  * candidate lists (crack/split_state.h).  Refused with an error, the model
  * unchanged: a parent in a pressure group (its reference area vector cannot
  * be shared without the surface), and virtual links (D_ij per pair is not

@@ -42,7 +42,8 @@ static const char *plate_scene =
     "\"discretization\":{\"kernel\":\"cubic_spline\",\"support_factor\":2.4,"
     "\"hourglass\":{\"enabled\":true}},"
     "\"output\":{\"sections\":[{\"name\":\"s\",\"point\":[0.0005,0,0],\"normal\":[1,0,0],"
-    "\"thickness\":0.0005}]},"
+    "\"thickness\":0.0005}],\"probes\":[{\"name\":\"pa\",\"select\":{\"box\":{\"min\":[0.00025,-1,-1],"
+    "\"max\":[0.00075,1,1]}}},{\"name\":\"pb\",\"select\":{\"body\":\"block\"}}]},"
     "\"materials\":{\"m\":{\"density\":2700,\"youngs_modulus\":7e10,\"poisson_ratio\":0.33}},"
     "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
     "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}}},"
@@ -375,6 +376,8 @@ START_TEST(split_two_fibres)
     ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
     /* group ids before: "hold" holds fibre A, "far" only block particles */
     const size_t hold0 = m->groups[0].n, far0 = m->groups[1].n, sec0 = m->measures.section_count[0];
+    const size_t pa0 = m->measures.probe_count[0], pb0 = m->measures.probe_count[1];
+    ck_assert_uint_eq(pa0, sec0); /* the probe pa picks the section's particles */
     int64_t far_ids[64];
     ck_assert_uint_le(far0, 64);
     for (size_t a = 0; a < far0; a++)
@@ -384,6 +387,16 @@ START_TEST(split_two_fibres)
     /* the halves joined the parents' group and section; later indices shifted */
     ck_assert_uint_eq(m->groups[0].n, hold0 + 3);
     ck_assert_uint_eq(m->measures.section_count[0], sec0 + 3);
+    ck_assert_uint_eq(m->measures.probe_count[0], pa0 + 3);
+    ck_assert_uint_eq(m->measures.probe_count[1], pb0);
+    for (size_t k = 0; k < 2; k++) { /* each probe's particles still weigh its mass */
+        double mass = 0.0;
+        for (size_t a = 0; a < m->measures.probe_count[k]; a++)
+            mass += m->p.mass[m->measures.probe_index[k][a]];
+        ck_assert_msg(fabs(mass - m->measures.probe_mass[k]) <= 1e-14 * mass, "probe %zu mass", k);
+    }
+    for (size_t a = 0; a < pb0; a++)
+        ck_assert_int_eq(m->p.body[m->measures.probe_index[1][a]], 1);
     ck_assert_uint_eq(m->groups[1].n, far0);
     for (size_t a = 0; a < far0; a++) {
         ck_assert_int_eq(m->p.id[m->groups[1].index[a]], far_ids[a]);
