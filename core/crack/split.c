@@ -222,6 +222,11 @@ static int validate(const struct tlsph_model *m, const struct tlsph_split *sp, d
                          "not remapped)");
         return -1;
     }
+    if (m->fibres) {
+        tlsph_errors_add(err, "", "split: not yet in a body with fibres (thickness_axis: the "
+                         "fibres' particle lists are not remapped; the crack driver will)");
+        return -1;
+    }
     if (sp->n == 0 || !sp->index) {
         tlsph_errors_add(err, "", "split: no particle given");
         return -1;

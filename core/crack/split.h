@@ -69,7 +69,8 @@
  * probe of its parent), the contact phase's and the rigid bodies' per-particle arrays and
  * candidate lists (crack/split_state.h).  Refused with an error, the model
  * unchanged: a parent in a pressure group (its reference area vector cannot
- * be shared without the surface), and virtual links (D_ij per pair is not
+ * be shared without the surface), virtual links (D_ij per pair is not
+ * remapped yet) and a model with fibres (their particle lists are not
  * remapped yet).  The result file holds one count per run: after a split
  * tlsph_output_frame returns an error (io/output/output.h). */
 #ifndef TLSPH_CRACK_SPLIT_H
