@@ -9,7 +9,12 @@ edges (notch, supports, load patch) are multiples of 1 mm, hence of 1 and
 the next cell boundary (at 2 mm: the notch 4 mm wide and 20 mm deep, the
 patches 6 and 4 mm wide, one row of cells thick).
 
-usage: deep_beam_scene.py EXAMPLE SPACING OUT.json [END_TIME]"""
+With --striker K the held velocity on the load patch is replaced by a free
+rigid striker (docs/virtual-links.md, "The load"): a 4 x 50 mm box of K times
+the beam's mass, centred over the patch half a millimetre above the upper face,
+at the patch's velocity, in contact with the beam.
+
+usage: deep_beam_scene.py [--striker K] EXAMPLE SPACING OUT.json [END_TIME]"""
 import json
 import math
 import sys
@@ -25,8 +30,31 @@ def snap(box, h):
             hi[a] = math.ceil(hi[a] / h - 1e-9) * h
 
 
+def striker(d, ratio):
+    """The "impact" condition replaced by a free rigid box of ratio x the beam's mass."""
+    impact = next(bc for bc in d["boundary_conditions"] if bc["name"] == "impact")
+    d["boundary_conditions"].remove(impact)
+    lo, hi = impact["select"]["box"]["min"], impact["select"]["box"]["max"]
+    beam = d["bodies"][0]["geometry"]["difference"][0]["box"]
+    length, depth = (beam["max"][a] - beam["min"][a] for a in range(2))
+    beam_mass = d["materials"]["steel"]["density"] * length * depth  # kg per metre, notch aside
+    half = [0.002, 0.025, 0.0]
+    d["rigid_bodies"] = [{
+        "name": "striker",
+        "shape": {"type": "box", "center": [0.5 * (lo[0] + hi[0]), beam["max"][1] + 0.0005 + half[1], 0],
+                  "half_sizes": half},
+        "motion": {"type": "free", "density": ratio * beam_mass / (4 * half[0] * half[1]),
+                   "velocity": [0.0 if v is None else v for v in impact["velocity"]]}}]
+
+
 def main(argv):
+    ratio = None
+    if len(argv) > 2 and argv[1] == "--striker":
+        ratio = float(argv[2])
+        argv = argv[:1] + argv[3:]
     d = json.load(open(argv[1]))
+    if ratio is not None:
+        striker(d, ratio)
     h = float(argv[2])
     d["bodies"][0]["spacing"] = h
     snap(d["bodies"][0]["geometry"]["difference"][1]["box"], h)

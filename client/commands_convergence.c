@@ -82,6 +82,11 @@ static void print_result(FILE *f, const json_t *d)
         fprintf(f, ", extrapolated ");
         print_number(f, json_object_get(o, "extrapolated"), "%.10g");
         fprintf(f, ", Fs %.3g\n", json_number_value(json_object_get(o, "safety_factor")));
+        const json_t *osc = json_object_get(o, "oscillation");
+        if (json_is_number(osc))
+            fprintf(f, "  oscillation: half range %.4g of the three finest values (%.3g of the "
+                    "finest)\n", json_number_value(osc),
+                    json_number_value(json_object_get(o, "oscillation_relative")));
         fprintf(f, "  %12s %16s %12s %12s %12s\n", "spacing[m]", "value", "error", "rel.error",
                 "GCI");
         json_array_foreach(runs, k, r) {

@@ -172,6 +172,8 @@ static json_t *output_result(const json_t *output, const struct run *runs, size_
     json_object_set_new(o, "asymptotic_ratio", num(e.asymptotic_ratio));
     json_object_set_new(o, "extrapolated", num(e.extrapolated));
     json_object_set_new(o, "safety_factor", json_real(e.safety_factor));
+    json_object_set_new(o, "oscillation", num(e.oscillation));
+    json_object_set_new(o, "oscillation_relative", num(e.oscillation_relative));
     json_t *err = json_array(), *rel = json_array(), *gci = json_array();
     for (size_t i = 0; i < n; i++) {
         json_array_append_new(err, num(i < TRICH_MAX ? e.error[i] : NAN));

@@ -25,7 +25,8 @@ const char *trich_kind_reason(enum trich_kind k)
         return "the three finest values are equal: no discretization error is visible";
     case TRICH_OSCILLATORY:
         return "the differences between successive spacings change sign (oscillatory "
-               "convergence): no order and no error estimate can be supported";
+               "convergence): no order and no Richardson estimate can be supported; half the "
+               "range of the three finest values bounds the error instead (Stern et al. 2001)";
     case TRICH_DIVERGENT:
         return "the differences do not shrink as the spacing does: the ladder is not "
                "converging, no error estimate can be supported";
@@ -64,6 +65,7 @@ static void clear(struct trich_estimate *e, size_t n)
     e->n = n;
     e->first = 0;
     e->ratio = e->order = e->order_coarse = e->asymptotic_ratio = e->extrapolated = NAN;
+    e->oscillation = e->oscillation_relative = NAN;
     e->safety_factor = TRICH_FS;
     for (size_t i = 0; i < TRICH_MAX; i++)
         e->error[i] = e->relative[i] = e->gci[i] = NAN;
@@ -92,6 +94,11 @@ enum trich_kind trich_estimate(const double *h, const double *f, size_t n,
     double p;
     e->kind = triplet(f[0], f[1], f[2], r, &p);
     e->order = p;
+    if (e->kind == TRICH_OSCILLATORY) {
+        const double hi = fmax(f[0], fmax(f[1], f[2])), lo = fmin(f[0], fmin(f[1], f[2]));
+        e->oscillation = 0.5 * (hi - lo);
+        e->oscillation_relative = f[0] != 0.0 ? e->oscillation / fabs(f[0]) : NAN;
+    }
     if (e->kind == TRICH_UNCHANGED) {
         e->extrapolated = f[0];
     } else if (e->kind == TRICH_CONVERGING) {

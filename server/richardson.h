@@ -7,7 +7,11 @@
  * grids, 3 with two); I. B. Celik et al., "Procedure for estimation and
  * reporting of uncertainty due to discretization in CFD applications",
  * J. Fluids Eng. 130 (2008) 078001 (the three-grid procedure, the
- * oscillatory-convergence test e32/e21 < 0), as ASME V&V 20-2009 adopts it. */
+ * oscillatory-convergence test e32/e21 < 0), as ASME V&V 20-2009 adopts it;
+ * F. Stern, R. V. Wilson, H. W. Coleman, E. G. Paterson, "Comprehensive
+ * approach to verification and validation of CFD simulations - Part 1",
+ * J. Fluids Eng. 123 (2001) 793 (the uncertainty of an oscillating ladder:
+ * half the range of its values). */
 #ifndef TLSPHD_RICHARDSON_H
 #define TLSPHD_RICHARDSON_H
 
@@ -22,7 +26,8 @@
 enum trich_kind {
     TRICH_CONVERGING,     /* monotone, asymptotic: every number below is given */
     TRICH_UNCHANGED,      /* the three finest values are equal: error 0, order unknown */
-    TRICH_OSCILLATORY,    /* the differences change sign: no order, no estimate */
+    TRICH_OSCILLATORY,    /* the differences change sign: no order, no Richardson estimate;
+                           * the oscillation's half range instead (oscillation) */
     TRICH_DIVERGENT,      /* the differences do not shrink with the spacing */
     TRICH_NON_ASYMPTOTIC, /* order outside [ORDER_MIN, ORDER_MAX], or (>= 4 resolutions)
                            * the GCI ratio check fails: order given, no estimate */
@@ -45,6 +50,10 @@ struct trich_estimate {
     double error[TRICH_MAX]; /* |f_i - f_ext|, same unit as f */
     double relative[TRICH_MAX]; /* |f_i - f_ext| / |f_ext| */
     double gci[TRICH_MAX];   /* Fs |f_i - f_ext| / |f_i| (the fine-grid GCI for i = 0) */
+    /* TRICH_OSCILLATORY only (NAN otherwise): half the range of the three finest
+     * values, (max - min) / 2, Stern et al.'s uncertainty of an oscillating
+     * ladder (same unit as f), and that over |f| of the finest */
+    double oscillation, oscillation_relative;
 };
 
 /* h[0] < h[1] < ... (finest first, constant ratio: the caller checks), f the

@@ -68,10 +68,13 @@ START_TEST(flags)
     const double osc[] = {1.0, 1.1, 0.95};
     ck_assert_int_eq(trich_estimate(h, osc, 3, &e), TRICH_OSCILLATORY);
     ck_assert(isnan(e.order) && isnan(e.extrapolated) && isnan(e.error[0]) && isnan(e.gci[0]));
+    /* Stern et al.: half the range of the three values, (1.1 - 0.95) / 2, over |f1| = 1 */
+    CLOSE(e.oscillation, 0.075);
+    CLOSE(e.oscillation_relative, 0.075);
     /* divergent: the change halves as the spacing doubles (e32/e21 = 0.5) */
     const double div[] = {1.0, 1.1, 1.15};
     ck_assert_int_eq(trich_estimate(h, div, 3, &e), TRICH_DIVERGENT);
-    ck_assert(isnan(e.extrapolated));
+    ck_assert(isnan(e.extrapolated) && isnan(e.oscillation)); /* only when it oscillates */
     /* order ln(1.1)/ln 2 = 0.1375 < 0.5: reported, no estimate */
     const double slow[] = {1.0, 1.1, 1.21};
     ck_assert_int_eq(trich_estimate(h, slow, 3, &e), TRICH_NON_ASYMPTOTIC);
