@@ -32,6 +32,87 @@ pair_weights(const enum tlsph_approximation variant, double Di, double Dj, doubl
     }
 }
 
+/* Two pairs in the two lanes of an SSE2 vector (GCC's vector extension; the
+ * x86-64-v2 build has no wider one).  The compiler does not vectorise the
+ * pair loop itself (a gather of the neighbour's data, and the ordered sums),
+ * so the loop below gathers the data of pairs k and k+1 into lanes, computes
+ * both pairs' contributions with packed operations, and adds them to the
+ * particle's sums one after the other: every contribution gets exactly the
+ * operations of the scalar loop, and the sums their order, so the forces are
+ * the same bit for bit (-std=c11 contracts no multiply-add). */
+typedef double v2d __attribute__((vector_size(16)));
+
+static inline __attribute__((always_inline)) v2d lanes(const double *a, size_t o0, size_t o1)
+{
+    return (v2d){a[o0], a[o1]};
+}
+
+/* sum += v[0], then sum += v[1]: the scalar loop's order */
+static inline __attribute__((always_inline)) void add_lanes(double *sum, v2d v)
+{
+    *sum += v[0];
+    *sum += v[1];
+}
+
+/* The pairs of an intact particle i (no crack treatment weights, no
+ * viscosity), two at a time from pair k on; acc holds f0 f1 f2 h0 h1 h2 of
+ * force_particle.  Returns the first pair left for the scalar loop (at most
+ * one).  The same operations as force_particle's loop with weights 1 and
+ * hourglass_pair() inlined. */
+static inline __attribute__((always_inline)) int64_t
+intact_pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
+              const struct body_constants *bc, const int with_hg, double acc[6])
+{
+    const double *restrict X = m->p.X, *restrict x = m->p.x;
+    const double *restrict vol0 = m->p.vol0;
+    const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
+    const int32_t *restrict nbr = m->pairs.j;
+    const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
+    const double *restrict hs = m->p.hg_scale;
+    const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
+    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+    const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
+    const double hs_i = hs ? hs[i] : 1.0;
+    const double neg_coeff = -bc->hg_coeff;
+    for (; k + 1 < k_end; k += 2) {
+        const size_t j0 = (size_t)nbr[k], j1 = (size_t)nbr[k + 1];
+        const v2d d0 = lanes(X, 3 * j0, 3 * j1) - Xi0;
+        const v2d d1 = lanes(X, 3 * j0 + 1, 3 * j1 + 1) - Xi1;
+        const v2d d2 = lanes(X, 3 * j0 + 2, 3 * j1 + 2) - Xi2;
+        const v2d Vj = lanes(vol0, j0, j1);
+        const v2d s = Vj * (v2d){dw[k], dw[k + 1]};
+        v2d t[3];
+        for (int r = 0; r < 3; r++)
+            t[r] = (Pi[3 * r] + lanes(Pt, 9 * j0 + 3 * r, 9 * j1 + 3 * r)) * d0 +
+                   (Pi[3 * r + 1] + lanes(Pt, 9 * j0 + 3 * r + 1, 9 * j1 + 3 * r + 1)) * d1 +
+                   (Pi[3 * r + 2] + lanes(Pt, 9 * j0 + 3 * r + 2, 9 * j1 + 3 * r + 2)) * d2;
+        add_lanes(&acc[0], s * t[0]);
+        add_lanes(&acc[1], s * t[1]);
+        add_lanes(&acc[2], s * t[2]);
+        if (with_hg) {
+            const v2d x0 = lanes(x, 3 * j0, 3 * j1) - xi0;
+            const v2d x1 = lanes(x, 3 * j0 + 1, 3 * j1 + 1) - xi1;
+            const v2d x2 = lanes(x, 3 * j0 + 2, 3 * j1 + 2) - xi2;
+            v2d p[3];
+            for (int r = 0; r < 3; r++)
+                p[r] = (Fi[3 * r] + lanes(F, 9 * j0 + 3 * r, 9 * j1 + 3 * r)) * d0 +
+                       (Fi[3 * r + 1] + lanes(F, 9 * j0 + 3 * r + 1, 9 * j1 + 3 * r + 1)) * d1 +
+                       (Fi[3 * r + 2] + lanes(F, 9 * j0 + 3 * r + 2, 9 * j1 + 3 * r + 2)) * d2;
+            const v2d r2 = x0 * x0 + x1 * x1 + x2 * x2;
+            const v2d R2 = d0 * d0 + d1 * d1 + d2 * d2;
+            const v2d delta_over_r =
+                ((p[0] - 2.0 * x0) * x0 + (p[1] - 2.0 * x1) * x1 + (p[2] - 2.0 * x2) * x2) / r2;
+            v2d c = neg_coeff * Vj * (v2d){w[k], w[k + 1]} / R2 * delta_over_r;
+            if (hs)
+                c = 0.5 * (hs_i + lanes(hs, j0, j1)) * c;
+            add_lanes(&acc[3], c * x0);
+            add_lanes(&acc[4], c * x1);
+            add_lanes(&acc[5], c * x2);
+        }
+    }
+    return k;
+}
+
 /* The forces on particle i.  Always inlined into the variant loops below with
  * constant with_hg / with_visc / variant, so each variant's pair loop carries
  * no branch on the scene's choices (the OpenMP region must sit in the variant
@@ -68,7 +149,14 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     const double hs_i = hs ? hs[i] : 1.0;
     /* a failed particle (D = 1) neither exerts nor receives any pair force */
     const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
-    for (int64_t k = start[i]; k < k_end; k++) {
+    int64_t k = start[i];
+    if (variant == TLSPH_APPROX_INTACT && !with_visc) {
+        double acc[6] = {0};
+        k = intact_pairs2(m, i, k, k_end, bc, with_hg, acc);
+        f0 = acc[0], f1 = acc[1], f2 = acc[2];
+        h0 = acc[3], h1 = acc[4], h2 = acc[5];
+    }
+    for (; k < k_end; k++) {
         const size_t j = (size_t)nbr[k];
         const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
         const double s = vol0[j] * dw[k];
