@@ -54,15 +54,31 @@ static inline __attribute__((always_inline)) void add_lanes(double *sum, v2d v)
     *sum += v[1];
 }
 
-/* The pairs of an intact particle i (no crack treatment weights, no
- * viscosity), two at a time from pair k on; acc holds f0 f1 f2 h0 h1 h2 of
- * force_particle.  Returns the first pair left for the scalar loop (at most
- * one).  The same operations as force_particle's loop with weights 1 and
- * hourglass_pair() inlined. */
-static inline __attribute__((always_inline)) int64_t
-intact_pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
-              const struct body_constants *bc, const int with_hg, double acc[6])
+/* sum += v[l] if the lane's pair has stabilisation (weight > 0; always
+ * without a crack treatment): the scalar loop skips the other pairs */
+static inline __attribute__((always_inline)) void add_stab_lanes(double *sum, v2d v, v2d stab)
 {
+    if (stab[0] > 0.0)
+        *sum += v[0];
+    if (stab[1] > 0.0)
+        *sum += v[1];
+}
+
+/* The pairs of particle i without viscosity, two at a time from pair k on;
+ * acc holds f0 f1 f2 h0 h1 h2 of force_particle.  Returns the first pair left
+ * for the scalar loop (at most one).  The same operations as force_particle's
+ * loop with hourglass_pair() inlined; the treatment's weights are taken per
+ * pair as there and packed (constant 1 without a treatment: folded away). */
+static inline __attribute__((always_inline)) int64_t
+pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
+       const struct body_constants *bc, const int with_hg, const enum tlsph_approximation variant,
+       double acc[6])
+{
+    const int with_damage =
+        variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
+    const int with_links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
+    const double *restrict Dlink = with_links ? m->links->D : NULL;
+    const double *restrict D = m->p.damage;
     const double *restrict X = m->p.X, *restrict x = m->p.x;
     const double *restrict vol0 = m->p.vol0;
     const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
@@ -72,20 +88,28 @@ intact_pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
     const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
+    const double Di = with_damage ? D[i] : 0.0;
     const double hs_i = hs ? hs[i] : 1.0;
     const double neg_coeff = -bc->hg_coeff;
     for (; k + 1 < k_end; k += 2) {
         const size_t j0 = (size_t)nbr[k], j1 = (size_t)nbr[k + 1];
+        const struct tlsph_pair_weights w0 =
+            pair_weights(variant, Di, with_damage ? D[j0] : 0.0, with_links ? Dlink[k] : 0.0);
+        const struct tlsph_pair_weights w1 = pair_weights(
+            variant, Di, with_damage ? D[j1] : 0.0, with_links ? Dlink[k + 1] : 0.0);
+        const v2d wi = {w0.wi, w1.wi}, wj = {w0.wj, w1.wj}, stab = {w0.stab, w1.stab};
         const v2d d0 = lanes(X, 3 * j0, 3 * j1) - Xi0;
         const v2d d1 = lanes(X, 3 * j0 + 1, 3 * j1 + 1) - Xi1;
         const v2d d2 = lanes(X, 3 * j0 + 2, 3 * j1 + 2) - Xi2;
         const v2d Vj = lanes(vol0, j0, j1);
         const v2d s = Vj * (v2d){dw[k], dw[k + 1]};
         v2d t[3];
-        for (int r = 0; r < 3; r++)
-            t[r] = (Pi[3 * r] + lanes(Pt, 9 * j0 + 3 * r, 9 * j1 + 3 * r)) * d0 +
-                   (Pi[3 * r + 1] + lanes(Pt, 9 * j0 + 3 * r + 1, 9 * j1 + 3 * r + 1)) * d1 +
-                   (Pi[3 * r + 2] + lanes(Pt, 9 * j0 + 3 * r + 2, 9 * j1 + 3 * r + 2)) * d2;
+        for (int r = 0; r < 3; r++) {
+            const size_t a0 = 9 * j0 + 3 * r, a1 = 9 * j1 + 3 * r;
+            t[r] = (wi * Pi[3 * r] + wj * lanes(Pt, a0, a1)) * d0 +
+                   (wi * Pi[3 * r + 1] + wj * lanes(Pt, a0 + 1, a1 + 1)) * d1 +
+                   (wi * Pi[3 * r + 2] + wj * lanes(Pt, a0 + 2, a1 + 2)) * d2;
+        }
         add_lanes(&acc[0], s * t[0]);
         add_lanes(&acc[1], s * t[1]);
         add_lanes(&acc[2], s * t[2]);
@@ -94,20 +118,22 @@ intact_pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
             const v2d x1 = lanes(x, 3 * j0 + 1, 3 * j1 + 1) - xi1;
             const v2d x2 = lanes(x, 3 * j0 + 2, 3 * j1 + 2) - xi2;
             v2d p[3];
-            for (int r = 0; r < 3; r++)
-                p[r] = (Fi[3 * r] + lanes(F, 9 * j0 + 3 * r, 9 * j1 + 3 * r)) * d0 +
-                       (Fi[3 * r + 1] + lanes(F, 9 * j0 + 3 * r + 1, 9 * j1 + 3 * r + 1)) * d1 +
-                       (Fi[3 * r + 2] + lanes(F, 9 * j0 + 3 * r + 2, 9 * j1 + 3 * r + 2)) * d2;
+            for (int r = 0; r < 3; r++) {
+                const size_t a0 = 9 * j0 + 3 * r, a1 = 9 * j1 + 3 * r;
+                p[r] = (Fi[3 * r] + lanes(F, a0, a1)) * d0 +
+                       (Fi[3 * r + 1] + lanes(F, a0 + 1, a1 + 1)) * d1 +
+                       (Fi[3 * r + 2] + lanes(F, a0 + 2, a1 + 2)) * d2;
+            }
             const v2d r2 = x0 * x0 + x1 * x1 + x2 * x2;
             const v2d R2 = d0 * d0 + d1 * d1 + d2 * d2;
             const v2d delta_over_r =
                 ((p[0] - 2.0 * x0) * x0 + (p[1] - 2.0 * x1) * x1 + (p[2] - 2.0 * x2) * x2) / r2;
-            v2d c = neg_coeff * Vj * (v2d){w[k], w[k + 1]} / R2 * delta_over_r;
-            if (hs)
-                c = 0.5 * (hs_i + lanes(hs, j0, j1)) * c;
-            add_lanes(&acc[3], c * x0);
-            add_lanes(&acc[4], c * x1);
-            add_lanes(&acc[5], c * x2);
+            const v2d hgp = neg_coeff * Vj * (v2d){w[k], w[k + 1]} / R2 * delta_over_r;
+            const v2d stiff = hs ? 0.5 * (hs_i + lanes(hs, j0, j1)) : (v2d){1.0, 1.0};
+            const v2d c = stab * stiff * hgp;
+            add_stab_lanes(&acc[3], c * x0, stab);
+            add_stab_lanes(&acc[4], c * x1, stab);
+            add_stab_lanes(&acc[5], c * x2, stab);
         }
     }
     return k;
@@ -150,9 +176,9 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     /* a failed particle (D = 1) neither exerts nor receives any pair force */
     const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
     int64_t k = start[i];
-    if (variant == TLSPH_APPROX_INTACT && !with_visc) {
+    if (!with_visc) {
         double acc[6] = {0};
-        k = intact_pairs2(m, i, k, k_end, bc, with_hg, acc);
+        k = pairs2(m, i, k, k_end, bc, with_hg, variant, acc);
         f0 = acc[0], f1 = acc[1], f2 = acc[2];
         h0 = acc[3], h1 = acc[4], h2 = acc[5];
     }
