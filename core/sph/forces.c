@@ -64,29 +64,39 @@ static inline __attribute__((always_inline)) void add_stab_lanes(double *sum, v2
         *sum += v[1];
 }
 
-/* The pairs of particle i without viscosity, two at a time from pair k on;
- * acc holds f0 f1 f2 h0 h1 h2 of force_particle.  Returns the first pair left
- * for the scalar loop (at most one).  The same operations as force_particle's
- * loop with hourglass_pair() inlined; the treatment's weights are taken per
- * pair as there and packed (constant 1 without a treatment: folded away). */
+/* Lane l of v, or +0.0 where mask is set: the 0 viscosity_pair() returns */
+typedef long long v2l __attribute__((vector_size(16)));
+static inline __attribute__((always_inline)) v2d zero_where(v2l mask, v2d v)
+{
+    return (v2d)((v2l)v & ~mask);
+}
+
+/* The pairs of particle i, two at a time from pair k on; acc holds f0 f1 f2
+ * h0 h1 h2 q0 q1 q2 of force_particle.  Returns the first pair left for the
+ * scalar loop (at most one).  The same operations as force_particle's loop
+ * with hourglass_pair() and viscosity_pair() inlined (each square root per
+ * lane, as there); the treatment's weights are taken per pair as there and
+ * packed (constant 1 without a treatment: folded away). */
 static inline __attribute__((always_inline)) int64_t
 pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
-       const struct body_constants *bc, const int with_hg, const enum tlsph_approximation variant,
-       double acc[6])
+       const struct body_constants *bc, const int with_hg, const int with_visc,
+       const enum tlsph_approximation variant, double acc[9])
 {
     const int with_damage =
         variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
     const int with_links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
     const double *restrict Dlink = with_links ? m->links->D : NULL;
     const double *restrict D = m->p.damage;
-    const double *restrict X = m->p.X, *restrict x = m->p.x;
-    const double *restrict vol0 = m->p.vol0;
+    const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
+    const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
     const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
     const int32_t *restrict nbr = m->pairs.j;
     const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
     const double *restrict hs = m->p.hg_scale;
+    const double *restrict hsm = m->p.h;
     const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
+    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
     const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
     const double Di = with_damage ? D[i] : 0.0;
     const double hs_i = hs ? hs[i] : 1.0;
@@ -113,10 +123,14 @@ pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
         add_lanes(&acc[0], s * t[0]);
         add_lanes(&acc[1], s * t[1]);
         add_lanes(&acc[2], s * t[2]);
+        if (!with_hg && !with_visc)
+            continue;
+        const v2d x0 = lanes(x, 3 * j0, 3 * j1) - xi0;
+        const v2d x1 = lanes(x, 3 * j0 + 1, 3 * j1 + 1) - xi1;
+        const v2d x2 = lanes(x, 3 * j0 + 2, 3 * j1 + 2) - xi2;
+        const v2d r2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const v2d R2 = d0 * d0 + d1 * d1 + d2 * d2;
         if (with_hg) {
-            const v2d x0 = lanes(x, 3 * j0, 3 * j1) - xi0;
-            const v2d x1 = lanes(x, 3 * j0 + 1, 3 * j1 + 1) - xi1;
-            const v2d x2 = lanes(x, 3 * j0 + 2, 3 * j1 + 2) - xi2;
             v2d p[3];
             for (int r = 0; r < 3; r++) {
                 const size_t a0 = 9 * j0 + 3 * r, a1 = 9 * j1 + 3 * r;
@@ -124,8 +138,6 @@ pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
                        (Fi[3 * r + 1] + lanes(F, a0 + 1, a1 + 1)) * d1 +
                        (Fi[3 * r + 2] + lanes(F, a0 + 2, a1 + 2)) * d2;
             }
-            const v2d r2 = x0 * x0 + x1 * x1 + x2 * x2;
-            const v2d R2 = d0 * d0 + d1 * d1 + d2 * d2;
             const v2d delta_over_r =
                 ((p[0] - 2.0 * x0) * x0 + (p[1] - 2.0 * x1) * x1 + (p[2] - 2.0 * x2) * x2) / r2;
             const v2d hgp = neg_coeff * Vj * (v2d){w[k], w[k + 1]} / R2 * delta_over_r;
@@ -134,6 +146,20 @@ pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
             add_stab_lanes(&acc[3], c * x0, stab);
             add_stab_lanes(&acc[4], c * x1, stab);
             add_stab_lanes(&acc[5], c * x2, stab);
+        }
+        if (with_visc) {
+            const v2d vx = x0 * (lanes(v, 3 * j0, 3 * j1) - vi0) +
+                           x1 * (lanes(v, 3 * j0 + 1, 3 * j1 + 1) - vi1) +
+                           x2 * (lanes(v, 3 * j0 + 2, 3 * j1 + 2) - vi2);
+            const v2d hij = 0.5 * (hsm[i] + lanes(hsm, j0, j1));
+            const v2d mu = hij * vx / (r2 + 0.01 * hij * hij);
+            const v2d pi = (-bc->beta1 * bc->c * mu + bc->beta2 * mu * mu) / bc->rho0;
+            const v2d R = {sqrt(R2[0]), sqrt(R2[1])}, r = {sqrt(r2[0]), sqrt(r2[1])};
+            const v2d q = lanes(mass, j0, j1) * pi * (v2d){dw[k], dw[k + 1]} * R / r;
+            const v2d c = stab * zero_where(vx >= 0.0, q);
+            add_stab_lanes(&acc[6], c * x0, stab);
+            add_stab_lanes(&acc[7], c * x1, stab);
+            add_stab_lanes(&acc[8], c * x2, stab);
         }
     }
     return k;
@@ -176,11 +202,12 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     /* a failed particle (D = 1) neither exerts nor receives any pair force */
     const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
     int64_t k = start[i];
-    if (!with_visc) {
-        double acc[6] = {0};
-        k = pairs2(m, i, k, k_end, bc, with_hg, variant, acc);
+    {
+        double acc[9] = {0};
+        k = pairs2(m, i, k, k_end, bc, with_hg, with_visc, variant, acc);
         f0 = acc[0], f1 = acc[1], f2 = acc[2];
         h0 = acc[3], h1 = acc[4], h2 = acc[5];
+        q0 = acc[6], q1 = acc[7], q2 = acc[8];
     }
     for (; k < k_end; k++) {
         const size_t j = (size_t)nbr[k];
