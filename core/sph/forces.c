@@ -71,17 +71,19 @@ static inline __attribute__((always_inline)) v2d zero_where(v2l mask, v2d v)
     return (v2d)((v2l)v & ~mask);
 }
 
-/* The pairs of particle i, two at a time from pair k on; acc holds f0 f1 f2
- * h0 h1 h2 q0 q1 q2 of force_particle.  Returns the first pair left for the
- * scalar loop (at most one).  The same operations as force_particle's loop
- * with hourglass_pair() and viscosity_pair() inlined (each square root per
- * lane, as there); the treatment's weights are taken per pair as there and
- * packed (constant 1 without a treatment: folded away). */
-static inline __attribute__((always_inline)) int64_t
-pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
-       const struct body_constants *bc, const int with_hg, const int with_visc,
-       const enum tlsph_approximation variant, double acc[9])
+/* The sums over pairs k .. k_end - 1 of particle i into acc: the stress
+ * force's f0 f1 f2, the hourglass's h0 h1 h2 and the viscosity's q0 q1 q2
+ * (before the factors V_i and m_i).  Two pairs at a time with
+ * hourglass_pair()'s and viscosity_pair()'s operations per lane (each square
+ * root per lane), then the last pair of an odd count alone with the functions
+ * themselves; the treatment's weights are taken per pair and packed (constant
+ * 1 without a treatment: folded away). */
+static inline __attribute__((always_inline)) void
+pair_sums(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
+          const struct body_constants *bc, const int with_hg, const int with_visc,
+          const enum tlsph_approximation variant, double acc[9])
 {
+    /* particle damage (D_i, D_j), or link damage (D_ij): never both */
     const int with_damage =
         variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
     const int with_links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
@@ -162,7 +164,51 @@ pairs2(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
             add_stab_lanes(&acc[8], c * x2, stab);
         }
     }
-    return k;
+    /* the last pair of an odd count: one at a time */
+    for (; k < k_end; k++) {
+        const size_t j = (size_t)nbr[k];
+        const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
+        const double s = vol0[j] * dw[k];
+        const double *Pj = Pt + 9 * j;
+        /* weights of P_i and P_j, and of the stabilisation: the treatment's
+         * (1 without damage); symmetric or swapped in i, j, so f_ij = -f_ji */
+        const struct tlsph_pair_weights wt =
+            pair_weights(variant, Di, with_damage ? D[j] : 0.0, with_links ? Dlink[k] : 0.0);
+        const double wi = wt.wi, wj = wt.wj, pair = wt.stab;
+        acc[0] += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
+                       (wi * Pi[2] + wj * Pj[2]) * d2);
+        acc[1] += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
+                       (wi * Pi[5] + wj * Pj[5]) * d2);
+        acc[2] += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
+                       (wi * Pi[8] + wj * Pj[8]) * d2);
+        /* stabilisation across a crack: scaled by the intact fractions of both */
+        if ((with_hg || with_visc) && pair > 0.0) {
+            const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
+            if (with_hg) {
+                /* the pair's modulus: the mean of both particles' (symmetric in
+                 * i, j, so the force stays antisymmetric) */
+                const double stiff = hs ? 0.5 * (hs_i + hs[j]) : 1.0;
+                const double c = pair * stiff *
+                                 hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
+                                                d1, d2, x0, x1, x2);
+                acc[3] += c * x0;
+                acc[4] += c * x1;
+                acc[5] += c * x2;
+            }
+            if (with_visc) {
+                const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
+                /* the pair's symmetric smoothing length (the body's on a uniform lattice) */
+                const double hij = 0.5 * (hsm[i] + hsm[j]);
+                const double c =
+                    pair * viscosity_pair(mass[j], hij, bc->c, bc->rho0, bc->beta1,
+                                          bc->beta2, dw[k], R, x0, x1, x2, v[3 * j] - vi0,
+                                          v[3 * j + 1] - vi1, v[3 * j + 2] - vi2);
+                acc[6] += c * x0;
+                acc[7] += c * x1;
+                acc[8] += c * x2;
+            }
+        }
+    }
 }
 
 /* The forces on particle i.  Always inlined into the variant loops below with
@@ -175,84 +221,19 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
                const int with_visc, const enum tlsph_approximation variant, double *power_hg,
                double *power_visc)
 {
-    /* particle damage (D_i, D_j), or link damage (D_ij): never both */
     const int with_damage =
         variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
-    const int with_links = variant == TLSPH_APPROX_VIRTUAL_LINKS;
-    const double *restrict Dlink = with_links ? m->links->D : NULL;
-    const double *restrict D = m->p.damage;
-    const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
-    const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
-    const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
+    const double *restrict v = m->p.v, *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
     const int64_t *restrict start = m->pairs.start;
-    const int32_t *restrict nbr = m->pairs.j;
-    const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
     double *restrict f = m->p.f;
     double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
-    const double *restrict hs = m->p.hg_scale;
-    const double *restrict hsm = m->p.h;
-    const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
-    const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
-    const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
-    double f0 = 0, f1 = 0, f2 = 0;
-    double h0 = 0, h1 = 0, h2 = 0, q0 = 0, q1 = 0, q2 = 0;
-    const double Di = with_damage ? D[i] : 0.0;
-    const double hs_i = hs ? hs[i] : 1.0;
     /* a failed particle (D = 1) neither exerts nor receives any pair force */
-    const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
-    int64_t k = start[i];
-    {
-        double acc[9] = {0};
-        k = pairs2(m, i, k, k_end, bc, with_hg, with_visc, variant, acc);
-        f0 = acc[0], f1 = acc[1], f2 = acc[2];
-        h0 = acc[3], h1 = acc[4], h2 = acc[5];
-        q0 = acc[6], q1 = acc[7], q2 = acc[8];
-    }
-    for (; k < k_end; k++) {
-        const size_t j = (size_t)nbr[k];
-        const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
-        const double s = vol0[j] * dw[k];
-        const double *Pj = Pt + 9 * j;
-        /* weights of P_i and P_j, and of the stabilisation: the treatment's
-         * (1 without damage); symmetric or swapped in i, j, so f_ij = -f_ji */
-        const struct tlsph_pair_weights wt =
-            pair_weights(variant, Di, with_damage ? D[j] : 0.0, with_links ? Dlink[k] : 0.0);
-        const double wi = wt.wi, wj = wt.wj, pair = wt.stab;
-        f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
-                   (wi * Pi[2] + wj * Pj[2]) * d2);
-        f1 += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
-                   (wi * Pi[5] + wj * Pj[5]) * d2);
-        f2 += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
-                   (wi * Pi[8] + wj * Pj[8]) * d2);
-        /* stabilisation across a crack: scaled by the intact fractions of both */
-        if ((with_hg || with_visc) && pair > 0.0) {
-            const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
-            if (with_hg) {
-                /* the pair's modulus: the mean of both particles' (symmetric in
-                 * i, j, so the force stays antisymmetric) */
-                const double stiff = hs ? 0.5 * (hs_i + hs[j]) : 1.0;
-                const double c = pair * stiff *
-                                 hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
-                                                d1, d2, x0, x1, x2);
-                h0 += c * x0;
-                h1 += c * x1;
-                h2 += c * x2;
-            }
-            if (with_visc) {
-                const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
-                /* the pair's symmetric smoothing length (the body's on a uniform lattice) */
-                const double hij = 0.5 * (hsm[i] + hsm[j]);
-                const double c =
-                    pair * viscosity_pair(mass[j], hij, bc->c, bc->rho0, bc->beta1,
-                                          bc->beta2, dw[k], R, x0, x1, x2, v[3 * j] - vi0,
-                                          v[3 * j + 1] - vi1, v[3 * j + 2] - vi2);
-                q0 += c * x0;
-                q1 += c * x1;
-                q2 += c * x2;
-            }
-        }
-    }
+    const int64_t k_end = with_damage && m->p.damage[i] >= 1.0 ? start[i] : start[i + 1];
+    double acc[9] = {0};
+    pair_sums(m, i, start[i], k_end, bc, with_hg, with_visc, variant, acc);
+    const double f0 = acc[0], f1 = acc[1], f2 = acc[2];
+    double h0 = acc[3], h1 = acc[4], h2 = acc[5], q0 = acc[6], q1 = acc[7], q2 = acc[8];
     const double Vi = vol0[i];
     h0 *= Vi; h1 *= Vi; h2 *= Vi;
     q0 *= mass[i]; q1 *= mass[i]; q2 *= mass[i];
