@@ -32,15 +32,56 @@ pair_weights(const enum tlsph_approximation variant, double Di, double Dj, doubl
     }
 }
 
-/* The forces on particle i.  Always inlined into the variant loops below with
- * constant with_hg / with_visc / variant, so each variant's pair loop carries
- * no branch on the scene's choices (the OpenMP region must sit in the variant
- * itself: a parallel loop is outlined before inlining, and flags passed into
- * it would stay run-time values). */
+/* Two pairs in the two lanes of an SSE2 vector (GCC's vector extension; the
+ * x86-64-v2 build has no wider one).  The compiler does not vectorise the
+ * pair loop itself (a gather of the neighbour's data, and the ordered sums),
+ * so the loop below gathers the data of pairs k and k+1 into lanes, computes
+ * both pairs' contributions with packed operations, and adds them to the
+ * particle's sums one after the other: every contribution gets exactly the
+ * operations of the scalar loop, and the sums their order, so the forces are
+ * the same bit for bit (-std=c11 contracts no multiply-add). */
+typedef double v2d __attribute__((vector_size(16)));
+
+static inline __attribute__((always_inline)) v2d lanes(const double *a, size_t o0, size_t o1)
+{
+    return (v2d){a[o0], a[o1]};
+}
+
+/* sum += v[0], then sum += v[1]: the scalar loop's order */
+static inline __attribute__((always_inline)) void add_lanes(double *sum, v2d v)
+{
+    *sum += v[0];
+    *sum += v[1];
+}
+
+/* sum += v[l] if the lane's pair has stabilisation (weight > 0; always
+ * without a crack treatment): the scalar loop skips the other pairs */
+static inline __attribute__((always_inline)) void add_stab_lanes(double *sum, v2d v, v2d stab)
+{
+    if (stab[0] > 0.0)
+        *sum += v[0];
+    if (stab[1] > 0.0)
+        *sum += v[1];
+}
+
+/* Lane l of v, or +0.0 where mask is set: the 0 viscosity_pair() returns */
+typedef long long v2l __attribute__((vector_size(16)));
+static inline __attribute__((always_inline)) v2d zero_where(v2l mask, v2d v)
+{
+    return (v2d)((v2l)v & ~mask);
+}
+
+/* The sums over pairs k .. k_end - 1 of particle i into acc: the stress
+ * force's f0 f1 f2, the hourglass's h0 h1 h2 and the viscosity's q0 q1 q2
+ * (before the factors V_i and m_i).  Two pairs at a time with
+ * hourglass_pair()'s and viscosity_pair()'s operations per lane (each square
+ * root per lane), then the last pair of an odd count alone with the functions
+ * themselves; the treatment's weights are taken per pair and packed (constant
+ * 1 without a treatment: folded away). */
 static inline __attribute__((always_inline)) void
-force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc, const int with_hg,
-               const int with_visc, const enum tlsph_approximation variant, double *power_hg,
-               double *power_visc)
+pair_sums(const struct tlsph_model *m, size_t i, int64_t k, int64_t k_end,
+          const struct body_constants *bc, const int with_hg, const int with_visc,
+          const enum tlsph_approximation variant, double acc[9])
 {
     /* particle damage (D_i, D_j), or link damage (D_ij): never both */
     const int with_damage =
@@ -51,24 +92,80 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
     const double *restrict X = m->p.X, *restrict x = m->p.x, *restrict v = m->p.v;
     const double *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
     const double *restrict Pt = m->p.P_tilde, *restrict F = m->p.F;
-    const int64_t *restrict start = m->pairs.start;
     const int32_t *restrict nbr = m->pairs.j;
     const double *restrict dw = m->pairs.dw, *restrict w = m->pairs.w;
-    double *restrict f = m->p.f;
-    double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
     const double *restrict hs = m->p.hg_scale;
     const double *restrict hsm = m->p.h;
     const double Xi0 = X[3 * i], Xi1 = X[3 * i + 1], Xi2 = X[3 * i + 2];
     const double xi0 = x[3 * i], xi1 = x[3 * i + 1], xi2 = x[3 * i + 2];
     const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
     const double *Pi = Pt + 9 * i, *Fi = F + 9 * i;
-    double f0 = 0, f1 = 0, f2 = 0;
-    double h0 = 0, h1 = 0, h2 = 0, q0 = 0, q1 = 0, q2 = 0;
     const double Di = with_damage ? D[i] : 0.0;
     const double hs_i = hs ? hs[i] : 1.0;
-    /* a failed particle (D = 1) neither exerts nor receives any pair force */
-    const int64_t k_end = with_damage && Di >= 1.0 ? start[i] : start[i + 1];
-    for (int64_t k = start[i]; k < k_end; k++) {
+    const double neg_coeff = -bc->hg_coeff;
+    for (; k + 1 < k_end; k += 2) {
+        const size_t j0 = (size_t)nbr[k], j1 = (size_t)nbr[k + 1];
+        const struct tlsph_pair_weights w0 =
+            pair_weights(variant, Di, with_damage ? D[j0] : 0.0, with_links ? Dlink[k] : 0.0);
+        const struct tlsph_pair_weights w1 = pair_weights(
+            variant, Di, with_damage ? D[j1] : 0.0, with_links ? Dlink[k + 1] : 0.0);
+        const v2d wi = {w0.wi, w1.wi}, wj = {w0.wj, w1.wj}, stab = {w0.stab, w1.stab};
+        const v2d d0 = lanes(X, 3 * j0, 3 * j1) - Xi0;
+        const v2d d1 = lanes(X, 3 * j0 + 1, 3 * j1 + 1) - Xi1;
+        const v2d d2 = lanes(X, 3 * j0 + 2, 3 * j1 + 2) - Xi2;
+        const v2d Vj = lanes(vol0, j0, j1);
+        const v2d s = Vj * (v2d){dw[k], dw[k + 1]};
+        v2d t[3];
+        for (int r = 0; r < 3; r++) {
+            const size_t a0 = 9 * j0 + 3 * r, a1 = 9 * j1 + 3 * r;
+            t[r] = (wi * Pi[3 * r] + wj * lanes(Pt, a0, a1)) * d0 +
+                   (wi * Pi[3 * r + 1] + wj * lanes(Pt, a0 + 1, a1 + 1)) * d1 +
+                   (wi * Pi[3 * r + 2] + wj * lanes(Pt, a0 + 2, a1 + 2)) * d2;
+        }
+        add_lanes(&acc[0], s * t[0]);
+        add_lanes(&acc[1], s * t[1]);
+        add_lanes(&acc[2], s * t[2]);
+        if (!with_hg && !with_visc)
+            continue;
+        const v2d x0 = lanes(x, 3 * j0, 3 * j1) - xi0;
+        const v2d x1 = lanes(x, 3 * j0 + 1, 3 * j1 + 1) - xi1;
+        const v2d x2 = lanes(x, 3 * j0 + 2, 3 * j1 + 2) - xi2;
+        const v2d r2 = x0 * x0 + x1 * x1 + x2 * x2;
+        const v2d R2 = d0 * d0 + d1 * d1 + d2 * d2;
+        if (with_hg) {
+            v2d p[3];
+            for (int r = 0; r < 3; r++) {
+                const size_t a0 = 9 * j0 + 3 * r, a1 = 9 * j1 + 3 * r;
+                p[r] = (Fi[3 * r] + lanes(F, a0, a1)) * d0 +
+                       (Fi[3 * r + 1] + lanes(F, a0 + 1, a1 + 1)) * d1 +
+                       (Fi[3 * r + 2] + lanes(F, a0 + 2, a1 + 2)) * d2;
+            }
+            const v2d delta_over_r =
+                ((p[0] - 2.0 * x0) * x0 + (p[1] - 2.0 * x1) * x1 + (p[2] - 2.0 * x2) * x2) / r2;
+            const v2d hgp = neg_coeff * Vj * (v2d){w[k], w[k + 1]} / R2 * delta_over_r;
+            const v2d stiff = hs ? 0.5 * (hs_i + lanes(hs, j0, j1)) : (v2d){1.0, 1.0};
+            const v2d c = stab * stiff * hgp;
+            add_stab_lanes(&acc[3], c * x0, stab);
+            add_stab_lanes(&acc[4], c * x1, stab);
+            add_stab_lanes(&acc[5], c * x2, stab);
+        }
+        if (with_visc) {
+            const v2d vx = x0 * (lanes(v, 3 * j0, 3 * j1) - vi0) +
+                           x1 * (lanes(v, 3 * j0 + 1, 3 * j1 + 1) - vi1) +
+                           x2 * (lanes(v, 3 * j0 + 2, 3 * j1 + 2) - vi2);
+            const v2d hij = 0.5 * (hsm[i] + lanes(hsm, j0, j1));
+            const v2d mu = hij * vx / (r2 + 0.01 * hij * hij);
+            const v2d pi = (-bc->beta1 * bc->c * mu + bc->beta2 * mu * mu) / bc->rho0;
+            const v2d R = {sqrt(R2[0]), sqrt(R2[1])}, r = {sqrt(r2[0]), sqrt(r2[1])};
+            const v2d q = lanes(mass, j0, j1) * pi * (v2d){dw[k], dw[k + 1]} * R / r;
+            const v2d c = stab * zero_where(vx >= 0.0, q);
+            add_stab_lanes(&acc[6], c * x0, stab);
+            add_stab_lanes(&acc[7], c * x1, stab);
+            add_stab_lanes(&acc[8], c * x2, stab);
+        }
+    }
+    /* the last pair of an odd count: one at a time */
+    for (; k < k_end; k++) {
         const size_t j = (size_t)nbr[k];
         const double d0 = X[3 * j] - Xi0, d1 = X[3 * j + 1] - Xi1, d2 = X[3 * j + 2] - Xi2;
         const double s = vol0[j] * dw[k];
@@ -78,12 +175,12 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
         const struct tlsph_pair_weights wt =
             pair_weights(variant, Di, with_damage ? D[j] : 0.0, with_links ? Dlink[k] : 0.0);
         const double wi = wt.wi, wj = wt.wj, pair = wt.stab;
-        f0 += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
-                   (wi * Pi[2] + wj * Pj[2]) * d2);
-        f1 += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
-                   (wi * Pi[5] + wj * Pj[5]) * d2);
-        f2 += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
-                   (wi * Pi[8] + wj * Pj[8]) * d2);
+        acc[0] += s * ((wi * Pi[0] + wj * Pj[0]) * d0 + (wi * Pi[1] + wj * Pj[1]) * d1 +
+                       (wi * Pi[2] + wj * Pj[2]) * d2);
+        acc[1] += s * ((wi * Pi[3] + wj * Pj[3]) * d0 + (wi * Pi[4] + wj * Pj[4]) * d1 +
+                       (wi * Pi[5] + wj * Pj[5]) * d2);
+        acc[2] += s * ((wi * Pi[6] + wj * Pj[6]) * d0 + (wi * Pi[7] + wj * Pj[7]) * d1 +
+                       (wi * Pi[8] + wj * Pj[8]) * d2);
         /* stabilisation across a crack: scaled by the intact fractions of both */
         if ((with_hg || with_visc) && pair > 0.0) {
             const double x0 = x[3 * j] - xi0, x1 = x[3 * j + 1] - xi1, x2 = x[3 * j + 2] - xi2;
@@ -94,9 +191,9 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
                 const double c = pair * stiff *
                                  hourglass_pair(bc->hg_coeff, vol0[j], w[k], Fi, F + 9 * j, d0,
                                                 d1, d2, x0, x1, x2);
-                h0 += c * x0;
-                h1 += c * x1;
-                h2 += c * x2;
+                acc[3] += c * x0;
+                acc[4] += c * x1;
+                acc[5] += c * x2;
             }
             if (with_visc) {
                 const double R = sqrt(d0 * d0 + d1 * d1 + d2 * d2);
@@ -106,12 +203,37 @@ force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc,
                     pair * viscosity_pair(mass[j], hij, bc->c, bc->rho0, bc->beta1,
                                           bc->beta2, dw[k], R, x0, x1, x2, v[3 * j] - vi0,
                                           v[3 * j + 1] - vi1, v[3 * j + 2] - vi2);
-                q0 += c * x0;
-                q1 += c * x1;
-                q2 += c * x2;
+                acc[6] += c * x0;
+                acc[7] += c * x1;
+                acc[8] += c * x2;
             }
         }
     }
+}
+
+/* The forces on particle i.  Always inlined into the variant loops below with
+ * constant with_hg / with_visc / variant, so each variant's pair loop carries
+ * no branch on the scene's choices (the OpenMP region must sit in the variant
+ * itself: a parallel loop is outlined before inlining, and flags passed into
+ * it would stay run-time values). */
+static inline __attribute__((always_inline)) void
+force_particle(struct tlsph_model *m, size_t i, const struct body_constants *bc, const int with_hg,
+               const int with_visc, const enum tlsph_approximation variant, double *power_hg,
+               double *power_visc)
+{
+    const int with_damage =
+        variant == TLSPH_APPROX_DAMAGE_AWARE || variant == TLSPH_APPROX_PSEUDO_SPRING;
+    const double *restrict v = m->p.v, *restrict vol0 = m->p.vol0, *restrict mass = m->p.mass;
+    const int64_t *restrict start = m->pairs.start;
+    double *restrict f = m->p.f;
+    double *restrict f_hg = m->p.f_hourglass, *restrict f_visc = m->p.f_viscous;
+    const double vi0 = v[3 * i], vi1 = v[3 * i + 1], vi2 = v[3 * i + 2];
+    /* a failed particle (D = 1) neither exerts nor receives any pair force */
+    const int64_t k_end = with_damage && m->p.damage[i] >= 1.0 ? start[i] : start[i + 1];
+    double acc[9] = {0};
+    pair_sums(m, i, start[i], k_end, bc, with_hg, with_visc, variant, acc);
+    const double f0 = acc[0], f1 = acc[1], f2 = acc[2];
+    double h0 = acc[3], h1 = acc[4], h2 = acc[5], q0 = acc[6], q1 = acc[7], q2 = acc[8];
     const double Vi = vol0[i];
     h0 *= Vi; h1 *= Vi; h2 *= Vi;
     q0 *= mass[i]; q1 *= mass[i]; q2 *= mass[i];
