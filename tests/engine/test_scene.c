@@ -109,7 +109,7 @@ START_TEST(test_defaults_and_derived)
     ck_assert_uint_eq(e.count, 0);
     ck_assert_str_eq(s.name, "scene");
     ck_assert_int_eq(s.dimension, 3);
-    ck_assert(s.cfl == 0.3 && s.fixed_dt == 0.0 && s.max_steps == 0);
+    ck_assert(s.cfl == 0.6 && s.fixed_dt == 0.0 && s.max_steps == 0);
     ck_assert(s.kernel == TLSPH_KERNEL_WENDLAND_C2 && s.support_factor == 2.01);
     ck_assert(s.hourglass == 1 && s.hourglass_coefficient == 1.0 && s.hourglass_tangent == 1);
     ck_assert(s.viscosity == 0 && s.viscosity_linear == 1.0 && s.viscosity_quadratic == 0.0);

@@ -2,13 +2,13 @@
 # Deep beams with virtual links (paper 001 §5.4; docs/virtual-links.md, case 4):
 # examples/deep-beam-links.json (notch at mid-span) and
 # examples/deep-beam-mixed-links.json (notch 75 mm from the left support) at
-# 2 mm (bench/deep_beam_scene.py: 5.8k particles, ~3000 steps each), 300 µs;
+# 2 mm (bench/deep_beam_scene.py: 5.8k particles, ~2700 steps each at the default cfl 0.6), 300 µs;
 # crack path by bench/deep_beam_path.py (its docstring states the definitions).
 # Reference: the paper's text (its figures are not in it): the mid-span notch
 # gives a mode-I crack that "propagates vertically from the notch edge", the
 # offset notch a mixed-mode crack; the notch-to-load line runs at 90° and 47.6°.
 # Checked, for both: the run ends successful with the energy balance within
-# 1e-3 of the external work (measured 2.9e-5 and 3.5e-5); the crack starts at
+# 1e-3 of the external work (measured 4.3e-5 both; 1.1e-5 and 9e-6 at cfl 0.3); the crack starts at
 # the notch tip (the first frame with a broken link in the beam between the
 # notch tip's height and 5 mm below the top face, away from the supports and the
 # load patch, has one within 3 spacings of the tip) and crosses at least 90 % of
@@ -17,7 +17,7 @@
 #    5 mm within 2 spacings of the vertical through the tip (measured 90.0°,
 #    1.0 mm);
 #  - mixed mode: the crack leans towards the load, between the vertical and the
-#    notch-to-load line: 55° to 80° (measured 63.6° here, 69.3° at the paper's
+#    notch-to-load line: 55° to 80° (measured 65.5° here, 63.8° at cfl 0.3, 69.3° at the paper's
 #    1 mm, docs/virtual-links.md); a
 #    crack that runs straight up (pure mode I) or along the lattice diagonal
 #    (45°) fails it.
