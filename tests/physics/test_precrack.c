@@ -47,7 +47,8 @@
     "\"poisson_ratio\":0.3}}"
 
 /* The plate of dimension dim, with its crack when cracked; extra: more keys
- * of the scene (or ""). */
+ * of the scene (or "").  cfl 0.3: the tests count steps (200 in mode I), and
+ * their horizons and hand estimates were set at that step. */
 static struct tlsph_model *plate(int dim, int cracked, const char *body_extra,
                                  const char *scene_extra)
 {
@@ -56,7 +57,7 @@ static struct tlsph_model *plate(int dim, int cracked, const char *body_extra,
     const char *crack3 = ",\"cracks\":[{\"polygon\":[[-0.007,0,-0.001],[0,0,-0.001],[0,0,0.004],"
                          "[-0.007,0,0.004]]}]";
     snprintf(json, sizeof json,
-             "{\"dimension\":%d,\"time\":{\"end\":1e-4},"
+             "{\"dimension\":%d,\"time\":{\"end\":1e-4,\"cfl\":0.3},"
              "\"discretization\":{\"support_factor\":2.01%s}," STEEL ","
              "\"bodies\":[{\"name\":\"plate\",\"material\":\"steel\",\"spacing\":0.001,"
              "\"geometry\":{\"box\":{\"min\":[%s,%s,0],\"max\":[%s,%s,%s]}}%s}]%s}",
@@ -254,7 +255,7 @@ START_TEST(contact_keeps_the_faces_apart)
     for (int on = 0; on < 2; on++) {
         char json[4096];
         snprintf(json, sizeof json,
-                 "{\"dimension\":2,\"time\":{\"end\":1e-4},"
+                 "{\"dimension\":2,\"time\":{\"end\":1e-4,\"cfl\":0.3},"
                  "\"discretization\":{\"support_factor\":2.01},"
                  "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
                  "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
