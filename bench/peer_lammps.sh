@@ -19,7 +19,9 @@
 # PEER_BUILD=0 never builds.  Without a binary it runs tlsph alone and says so.
 #
 # usage: bench/peer_lammps.sh [SPACING_M] [PAIRS]   (default 0.0006 = 5 334
-#        particles, 3 pairs; THREADS=n for tlsph's threads, default 1)
+#        particles, 3 pairs; THREADS=n for tlsph's threads, default 1;
+#        END=seconds for another end time than the example's 80 us: LAMMPS
+#        stops at the tlsph scene's end, so both solve the same interval)
 set -euo pipefail
 . "$(dirname "$0")/common.sh"
 spacing=${1:-0.0006}
@@ -93,9 +95,18 @@ PY
 }
 
 "$py" "$here/peer_lammps.py" scene "$spacing" >"$out/s.json"
+if [ -n "${END:-}" ]; then
+  "$py" - "$out/s.json" "$END" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+s["time"]["end"] = float(sys.argv[2])
+json.dump(s, open(sys.argv[1], "w"), indent=1)
+PY
+fi
+t_end_us=$("$py" -c 'import json,sys; print("%g" % (json.load(open(sys.argv[1]))["time"]["end"] * 1e6))' "$out/s.json")
 echo "load average at start: $(cut -d' ' -f1-3 /proc/loadavg); tlsph threads: $threads; LAMMPS: ${lmp:-none} (1 rank)"
 echo
-echo "| pair | code | particles | steps to 80 us | wall (s) | particle-steps/s | peak RSS/particle (B) | load |"
+echo "| pair | code | particles | steps to $t_end_us us | wall (s) | particle-steps/s | peak RSS/particle (B) | load |"
 echo "|---:|---|---:|---:|---:|---:|---:|---|"
 : >"$out/rows"
 for i in $(seq 1 "$pairs"); do
@@ -140,7 +151,7 @@ if "lammps" in med:
     t, l = med["tlsph"], med["lammps"]
     print("| LAMMPS / tlsph | %.2f | %.2f | %.2f (tlsph / LAMMPS) | %.2f |" % (l[1] / t[1], l[2] / t[2], t[3] / l[3], l[4] / t[4]))
 print()
-print("| shape at 80 us | L (mm) | D foot (mm) | lift-off (mm) | max eps_p |")
+print("| shape at the end | L (mm) | D foot (mm) | lift-off (mm) | max eps_p |")
 print("|---|---:|---:|---:|---:|")
 for c, f in (("tlsph", "shape.t"), ("LAMMPS", "shape.l")):
     p = os.path.join(out, f)
