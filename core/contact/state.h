@@ -134,10 +134,8 @@ tlsph_contact_same_body_pair(const struct tlsph_particles *p, size_t i, size_t j
  * pair is no continuum: the crack's faces may touch.  0 without cracks. */
 static inline int tlsph_contact_cut_pair(const struct tlsph_model *m, size_t i, size_t j)
 {
-    if (!m->crack_surface)
-        return 0;
-    const size_t lo = i < j ? i : j, hi = i < j ? j : i; /* as the cut tested it */
-    return tlsph_crack_surface_blocks(m->crack_surface, m->p.X + 3 * lo, m->p.X + 3 * hi, NULL);
+    return m->crack_surface &&
+           tlsph_crack_surface_cuts_pair(m->crack_surface, m->p.X + 3 * i, i, m->p.X + 3 * j, j);
 }
 
 /* The same with virtual links (sph/virtual_links.h), where the continuum is

@@ -56,6 +56,18 @@ enum tlsph_crack_status tlsph_crack_surface_add(struct tlsph_crack_surface *s, c
 bool tlsph_crack_surface_blocks(const struct tlsph_crack_surface *s, const double A[3], const double B[3],
                                 size_t *tests);
 
+/* Is the reference pair i, j cut, with Xi, Xj their positions?  The sight
+ * line is always tested from the lower index to the higher, so every caller
+ * (the setup's cut, the local rebuild after a split, contact between crack
+ * faces) gets the same answer for the same pair, in degenerate cases too. */
+static inline bool tlsph_crack_surface_cuts_pair(const struct tlsph_crack_surface *s,
+                                                 const double *Xi, size_t i, const double *Xj,
+                                                 size_t j)
+{
+    return i < j ? tlsph_crack_surface_blocks(s, Xi, Xj, NULL)
+                 : tlsph_crack_surface_blocks(s, Xj, Xi, NULL);
+}
+
 void tlsph_crack_surface_release(struct tlsph_crack_surface *s);
 
 #endif

@@ -6,6 +6,7 @@
 #include <string.h>
 
 #include "sph/correction.h"
+#include "sph/neighbors.h"
 #include "util/mat3.h"
 
 /* A set of particle indices (open addressing, key + 1 stored, 0 = empty):
@@ -255,13 +256,9 @@ static size_t row_pairs(const struct space *sp, const struct tlsph_crack_surface
                 continue;
         }
         const double *Xq = pos(sp, q);
-        /* the reference search's test, the same operations (sph/neighbors.c) */
-        const double dx = Xq[0] - Xa[0], dy = Xq[1] - Xa[1], dz = Xq[2] - Xa[2];
-        const double r2 = dx * dx + dy * dy + dz * dz;
-        const double rc = ha + h[orig(sp, q)];
-        if (!(r2 < rc * rc))
+        if (!tlsph_pair_in_support(Xa, Xq, ha, h[orig(sp, q)]))
             continue;
-        if (cs && tlsph_crack_surface_blocks(cs, Xa, Xq, NULL))
+        if (cs && tlsph_crack_surface_cuts_pair(cs, Xa, a, Xq, q))
             continue;
         out[n++] = (int32_t)q;
         far += r >= nrows;

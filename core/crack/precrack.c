@@ -120,11 +120,11 @@ size_t tlsph_precrack_cut_pairs(const struct tlsph_crack_surface *s, const doubl
         int64_t w = start[i];
         for (int64_t k = start[i]; k < start[i + 1]; k++) {
             const size_t o = (size_t)j[k];
-            const double *a = X + 3 * (i < o ? i : o), *b = X + 3 * (i < o ? o : i);
+            const double *a = X + 3 * i, *b = X + 3 * o;
             int near = 1;
             for (int c = 0; c < 3; c++)
                 near &= fmax(a[c], b[c]) >= lo[c] && fmin(a[c], b[c]) <= hi[c];
-            if (!near || !tlsph_crack_surface_blocks(s, a, b, NULL))
+            if (!near || !tlsph_crack_surface_cuts_pair(s, a, i, b, o))
                 j[w++] = j[k];
         }
         kept[i] = w - start[i];

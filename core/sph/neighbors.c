@@ -184,11 +184,7 @@ static size_t scan(const struct grid *g, const struct cell_entry *e, const doubl
                 if (j == i)
                     continue;
                 seen++;
-                const double dx = X[3 * j] - X[3 * i], dy_ = X[3 * j + 1] - X[3 * i + 1],
-                             dz_ = X[3 * j + 2] - X[3 * i + 2];
-                const double r2 = dx * dx + dy_ * dy_ + dz_ * dz_;
-                const double rc = h[i] + h[j];
-                if (r2 < rc * rc) {
+                if (tlsph_pair_in_support(X + 3 * i, X + 3 * j, h[i], h[j])) {
                     if (out)
                         out[count] = (int32_t)j;
                     count++;

@@ -18,6 +18,17 @@
 int tlsph_cell_order(const double *X, const int32_t *body, size_t n, double cell_size,
                      size_t *order);
 
+/* Is X_j within the support of the pair kernel of i and j, |X_j - X_i| <
+ * h_i + h_j?  The one test of the setup's search and of the local rebuild
+ * after a split (crack/local_rebuild.c), so that both find the same pairs. */
+static inline int tlsph_pair_in_support(const double *Xi, const double *Xj, double hi, double hj)
+{
+    const double dx = Xj[0] - Xi[0], dy = Xj[1] - Xi[1], dz = Xj[2] - Xi[2];
+    const double r2 = dx * dx + dy * dy + dz * dz;
+    const double rc = hi + hj;
+    return r2 < rc * rc;
+}
+
 /* CSR pair list: pairs (i, j), i != j, same body, |X_j - X_i| < h_i + h_j
  * (the support radius of the pair kernel, smoothing length (h_i + h_j)/2).
  * *start gets n+1 entries and *nbr start[n] entries (both malloc'ed, owned by
