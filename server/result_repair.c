@@ -186,6 +186,7 @@ done:
 #define FRAME_STEP  "/particles/solid/position/step"
 #define FRAME_TIME  "/particles/solid/position/time"
 #define FRAME_VALUE "/particles/solid/position/value"
+#define FRAME_COUNT "/particles/solid/count/value" /* only with a changing count */
 
 /* Rewrites xmf to list every complete frame of h5 (frames: len(step), the
  * writer's commit marker) with the fields the file holds, as the engine's
@@ -202,8 +203,10 @@ static long rewrite_sidecar(const char *h5, const char *xmf, char *err, size_t e
     h5r_quiet(); /* error printing is per thread in a thread-safe HDF5 */
     long frames = -1;
     double *times = NULL;
+    int64_t *count64 = NULL;
+    size_t *counts = NULL; /* a changing count (io/output/output.h): each frame's */
     const struct tlsph_field **present = NULL;
-    hid_t f = h5r_open_file(h5, err, errsize), step = -1, time = -1, value = -1;
+    hid_t f = h5r_open_file(h5, err, errsize), step = -1, time = -1, value = -1, cnt = -1;
     if (f < 0)
         return -1;
     int srank, trank, vrank;
@@ -227,6 +230,40 @@ static long rewrite_sidecar(const char *h5, const char *xmf, char *err, size_t e
         h5r_error(err, errsize, "cannot read", FRAME_TIME);
         goto done;
     }
+    const int changing = h5r_path_exists(f, FRAME_COUNT);
+    if (changing < 0) {
+        h5r_error(err, errsize, "cannot look up", FRAME_COUNT);
+        goto done;
+    }
+    if (changing) {
+        int crank;
+        hsize_t cdims[3];
+        if ((cnt = h5r_open_refreshed(f, FRAME_COUNT, &crank, cdims, err, errsize)) < 0)
+            goto done;
+        if (crank != 1 || cdims[0] < nframes) {
+            errmsg_set(err, errsize, "%s: the frame datasets disagree", h5);
+            goto done;
+        }
+        count64 = malloc((nframes ? nframes : 1) * sizeof *count64);
+        counts = malloc((nframes ? nframes : 1) * sizeof *counts);
+        if (!count64 || !counts) {
+            errmsg_set(err, errsize, "out of memory");
+            goto done;
+        }
+        if (nframes > 0 &&
+            h5r_read_rows(cnt, crank, cdims, nframes, H5T_NATIVE_INT64, count64) < 0) {
+            h5r_error(err, errsize, "cannot read", FRAME_COUNT);
+            goto done;
+        }
+        for (hsize_t k = 0; k < nframes; k++) {
+            if (count64[k] < 0 || (hsize_t)count64[k] > vdims[1]) {
+                errmsg_set(err, errsize, "%s: frame %llu's count %lld is outside the datasets",
+                           h5, (unsigned long long)k, (long long)count64[k]);
+                goto done;
+            }
+            counts[k] = (size_t)count64[k];
+        }
+    }
     size_t npresent = 0;
     for (size_t i = 0; i < tlsph_nfields; i++) {
         char path[256];
@@ -241,17 +278,20 @@ static long rewrite_sidecar(const char *h5, const char *xmf, char *err, size_t e
     }
     const char *slash = strrchr(h5, '/');
     if (tlsph_xdmf_write(xmf, slash ? slash + 1 : h5, (size_t)vdims[1], (size_t)nframes, times,
-                         present, npresent) < 0) {
+                         counts, present, npresent) < 0) {
         errmsg_set(err, errsize, "cannot write %s: %s", xmf, strerror(errno));
         goto done;
     }
     frames = (long)nframes;
 done:
+    h5r_close(&cnt, H5Dclose);
     h5r_close(&value, H5Dclose);
     h5r_close(&time, H5Dclose);
     h5r_close(&step, H5Dclose);
     h5r_close(&f, H5Fclose);
     free(times);
+    free(count64);
+    free(counts);
     free(present);
     return frames;
 }

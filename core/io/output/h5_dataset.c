@@ -1,6 +1,7 @@
 /* HDF5 datasets of the result file; see h5_dataset.h. */
 #include "io/output/h5_dataset.h"
 
+#include <stdint.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -92,6 +93,35 @@ hid_t tlsph_h5_extendible(hid_t loc, const char *name, hid_t ftype, int rank, co
     return tlsph_h5_chunked(loc, name, ftype, rank, dims, maxdims, chunk, compress);
 }
 
+hid_t tlsph_h5_frames_dataset(hid_t loc, const char *name, hid_t ftype, int ncomp, size_t n0,
+                              size_t nchunk, int compress)
+{
+    const int rank = ncomp > 1 ? 3 : 2;
+    const hsize_t dims[3] = {0, n0, (hsize_t)ncomp};
+    const hsize_t maxdims[3] = {H5S_UNLIMITED, H5S_UNLIMITED, (hsize_t)ncomp};
+    const hsize_t chunk[3] = {1, nchunk, (hsize_t)ncomp};
+    const int64_t none = -1; /* integer fields: no particle (ids and bodies are >= 0) */
+    hid_t space = H5Screate_simple(rank, dims, maxdims);
+    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
+    hid_t ds = H5I_INVALID_HID;
+    if (space < 0 || dcpl < 0)
+        goto done;
+    if (H5Pset_chunk(dcpl, rank, chunk) < 0)
+        goto done;
+    if (H5Tget_class(ftype) == H5T_INTEGER &&
+        H5Pset_fill_value(dcpl, H5T_NATIVE_INT64, &none) < 0)
+        goto done;
+    if (compress && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, DEFLATE_LEVEL) < 0))
+        goto done;
+    ds = H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
+done:
+    if (dcpl >= 0)
+        H5Pclose(dcpl);
+    if (space >= 0)
+        H5Sclose(space);
+    return ds;
+}
+
 int tlsph_h5_string_dataset(hid_t loc, const char *name, const char *text,
                             const char *description)
 {
@@ -141,6 +171,42 @@ int tlsph_h5_append_rows(hid_t ds, hid_t mtype, size_t have, size_t rows, hid_t 
     if (mspace < 0 && (ms = H5Screate_simple(rank, count, NULL)) < 0)
         goto done;
     if (H5Dwrite(ds, mtype, mspace >= 0 ? mspace : ms, fspace, H5P_DEFAULT, buf) < 0)
+        goto done;
+    if (H5Dflush(ds) < 0)
+        goto done;
+    rc = 0;
+done:
+    if (ms >= 0)
+        H5Sclose(ms);
+    if (fspace >= 0)
+        H5Sclose(fspace);
+    return rc;
+}
+
+int tlsph_h5_append_frame(hid_t ds, hid_t mtype, size_t have, size_t n, const void *buf)
+{
+    int rc = -1;
+    hid_t fspace = H5Dget_space(ds), ms = H5I_INVALID_HID;
+    if (fspace < 0)
+        return -1;
+    hsize_t dims[3], start[3] = {have, 0, 0}, count[3] = {1, n, 0};
+    int rank = H5Sget_simple_extent_ndims(fspace);
+    if (rank < 2 || rank > 3 || H5Sget_simple_extent_dims(fspace, dims, NULL) < 0)
+        goto done;
+    H5Sclose(fspace);
+    fspace = H5I_INVALID_HID;
+    dims[0] = have + 1;
+    if (dims[1] < n)
+        dims[1] = n;
+    if (rank == 3)
+        count[2] = dims[2];
+    if (H5Dset_extent(ds, dims) < 0 || (fspace = H5Dget_space(ds)) < 0)
+        goto done;
+    if (H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) < 0)
+        goto done;
+    if ((ms = H5Screate_simple(rank, count, NULL)) < 0)
+        goto done;
+    if (n && H5Dwrite(ds, mtype, ms, fspace, H5P_DEFAULT, buf) < 0)
         goto done;
     if (H5Dflush(ds) < 0)
         goto done;

@@ -34,6 +34,13 @@ hid_t tlsph_h5_chunked(hid_t loc, const char *name, hid_t ftype, int rank, const
  * holds the rank - 1 fixed extents of the other axes. */
 hid_t tlsph_h5_extendible(hid_t loc, const char *name, hid_t ftype, int rank, const hsize_t *tail,
                           const hsize_t *chunk, int compress);
+/* The value dataset of a field in a file whose particle count changes
+ * (docs/output.md, "Changing particle counts"): [0, n0] or [0, n0, ncomp]
+ * with both the frame and the particle axis unlimited, chunks [1, nchunk(,
+ * ncomp)], fill value 0 for float types and -1 for integer types (the
+ * entries past a frame's count). */
+hid_t tlsph_h5_frames_dataset(hid_t loc, const char *name, hid_t ftype, int ncomp, size_t n0,
+                              size_t nchunk, int compress);
 /* A scalar fixed-length string dataset (no size limit, unlike compact
  * attributes) with a "description" attribute. */
 int tlsph_h5_string_dataset(hid_t loc, const char *name, const char *text,
@@ -44,5 +51,11 @@ int tlsph_h5_string_dataset(hid_t loc, const char *name, const char *text,
  * memory selection (with as many elements). */
 int tlsph_h5_append_rows(hid_t ds, hid_t mtype, size_t have, size_t rows, hid_t mspace,
                          const void *buf);
+
+/* A dataset of tlsph_h5_frames_dataset: extends ds to have + 1 frames and
+ * at least n particles and writes frame `have`'s first n particles from buf
+ * (contiguous, memory type mtype), then flushes ds.  Particles past n keep
+ * the fill value. */
+int tlsph_h5_append_frame(hid_t ds, hid_t mtype, size_t have, size_t n, const void *buf);
 
 #endif

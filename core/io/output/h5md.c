@@ -146,6 +146,8 @@ static int reopen_datasets(struct tlsph_output *o)
     for (size_t i = 0; i < o->nseries; i++)
         if ((o->series[i].value = H5Dopen2(o->file, o->series[i].path, dapl)) < 0)
             goto done;
+    if (o->changing && (o->count = H5Dopen2(o->file, "/particles/solid/count/value", dapl)) < 0)
+        goto done;
     if (o->nframe_fields && timeline_open(&o->frame_timeline, o->file, dapl) < 0)
         goto done;
     if (o->nseries && timeline_open(&o->series_timeline, o->file, dapl) < 0)
@@ -172,6 +174,7 @@ static int close_datasets(struct tlsph_output *o)
         failed |= close_dataset(&o->frames[i].value) < 0;
     for (size_t i = 0; i < o->nseries; i++)
         failed |= close_dataset(&o->series[i].value) < 0;
+    failed |= close_dataset(&o->count) < 0;
     hid_t *ids[4] = {&o->frame_timeline.step, &o->frame_timeline.time,
                      &o->series_timeline.step, &o->series_timeline.time};
     for (int i = 0; i < 4; i++)
@@ -193,6 +196,7 @@ static void free_output(struct tlsph_output *o)
     free(o->series);
     free(o->present);
     free(o->frame_times);
+    free(o->frame_counts);
     free(o->scratch);
     free(o->rows);
     free(o->row_step);
@@ -205,8 +209,8 @@ static void free_output(struct tlsph_output *o)
 /* The sidecar, listing the frames written so far. */
 static int write_sidecar(const struct tlsph_output *o)
 {
-    return tlsph_xdmf_write(o->xmf_path, H5_NAME, o->n, o->nframes, o->frame_times, o->present,
-                            o->npresent);
+    return tlsph_xdmf_write(o->xmf_path, H5_NAME, o->changing ? o->nmax : o->n, o->nframes,
+                            o->frame_times, o->frame_counts, o->present, o->npresent);
 }
 
 /* HDF5 calls this when an API call fails (H5Eset_auto2, set while the file is
@@ -255,8 +259,19 @@ static void discard_output(struct tlsph_output *o, int created, struct tlsph_err
     free(xmf);
 }
 
+int tlsph_output_count_may_change(const struct tlsph_model *m)
+{
+    return m->fibres != NULL;
+}
+
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
                                        struct tlsph_errors *err)
+{
+    return tlsph_output_open_with(dir, m, tlsph_output_count_may_change(m), err);
+}
+
+struct tlsph_output *tlsph_output_open_with(const char *dir, const struct tlsph_model *m,
+                                            int changing_count, struct tlsph_errors *err)
 {
     struct tlsph_output *o = calloc(1, sizeof *o);
     hid_t fapl = H5I_INVALID_HID;
@@ -267,7 +282,9 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     o->file = H5I_INVALID_HID;
     o->frame_timeline.step = o->frame_timeline.time = H5I_INVALID_HID;
     o->series_timeline.step = o->series_timeline.time = H5I_INVALID_HID;
-    o->n = m->p.n;
+    o->count = H5I_INVALID_HID;
+    o->n = o->nmax = m->p.n;
+    o->changing = changing_count != 0;
 
     /* HDF5 prints its error stack to stderr by default; library code must not
      * print.  The setting is process-wide (HDF5 keeps one default stack), which
@@ -310,8 +327,10 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
     o->frame_times = malloc(o->frame_times_cap * sizeof *o->frame_times);
     o->h5_path = join_path(dir, H5_NAME);
     o->xmf_path = join_path(dir, XMF_NAME);
+    if (o->changing)
+        o->frame_counts = malloc(o->frame_times_cap * sizeof *o->frame_counts);
     if (!o->present || !o->frames || !o->series || !o->rows || !o->row_step || !o->row_time ||
-        !o->frame_times || !o->h5_path || !o->xmf_path) {
+        !o->frame_times || !o->h5_path || !o->xmf_path || (o->changing && !o->frame_counts)) {
         tlsph_errors_add(err, "", "output: out of memory");
         goto fail;
     }
@@ -322,6 +341,8 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
         if (tlsph_fields[i].ncomp > maxcomp)
             maxcomp = tlsph_fields[i].ncomp;
     }
+    o->maxcomp = maxcomp;
+    o->scratch_n = o->n;
     if (!(o->scratch = malloc(o->n * (size_t)maxcomp * 8))) {
         tlsph_errors_add(err, "", "output: out of memory (%zu particles)", o->n);
         goto fail;
@@ -440,9 +461,52 @@ int tlsph_output_series(struct tlsph_output *o, const struct tlsph_model *m)
     return 0;
 }
 
+/* The layout for changing counts: the scratch holds n particles (grown by a
+ * quarter at least, as the particle arrays grow), o->n = n.  0 or -1. */
+static int take_count(struct tlsph_output *o, size_t n)
+{
+    if (n > o->scratch_n) {
+        size_t cap = o->scratch_n + o->scratch_n / 4;
+        if (cap < n)
+            cap = n;
+        void *p = realloc(o->scratch, cap * (size_t)o->maxcomp * 8);
+        if (!p)
+            return -1;
+        o->scratch = p;
+        o->scratch_n = cap;
+    }
+    o->n = n;
+    return 0;
+}
+
+/* Room for one more frame's time (and count). */
+static int frame_room(struct tlsph_output *o)
+{
+    if (o->nframes < o->frame_times_cap)
+        return 0;
+    const size_t cap = 2 * o->frame_times_cap;
+    double *t = realloc(o->frame_times, cap * sizeof *t);
+    if (!t)
+        return -1;
+    o->frame_times = t;
+    if (o->changing) {
+        size_t *c = realloc(o->frame_counts, cap * sizeof *c);
+        if (!c)
+            return -1; /* frame_times is larger than needed: harmless */
+        o->frame_counts = c;
+    }
+    o->frame_times_cap = cap;
+    return 0;
+}
+
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
 {
-    if (m->p.n != o->n) /* the datasets' second axis and the scratch are o->n */
+    if (m->p.n != o->n) {
+        /* one count per run: the datasets' second axis is o->n */
+        if (!o->changing || m->p.n == 0 || take_count(o, m->p.n) < 0)
+            return -1;
+    }
+    if (frame_room(o) < 0)
         return -1;
     /* Every field is checked before any is written, so a refused frame leaves
      * the file as it was (the values are extracted twice: cheap next to the
@@ -455,23 +519,27 @@ int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m)
     for (size_t i = 0; i < o->nframe_fields; i++) {
         const struct tlsph_field *f = o->frames[i].f;
         tlsph_output_extract(o, f, m);
-        if (tlsph_h5_append_rows(o->frames[i].value, tlsph_h5_type(f->type).mem, o->nframes, 1,
-                                 H5I_INVALID_HID, o->scratch) < 0)
+        const hid_t mem = tlsph_h5_type(f->type).mem;
+        if ((o->changing
+                 ? tlsph_h5_append_frame(o->frames[i].value, mem, o->nframes, o->n, o->scratch)
+                 : tlsph_h5_append_rows(o->frames[i].value, mem, o->nframes, 1, H5I_INVALID_HID,
+                                        o->scratch)) < 0)
             return -1;
+    }
+    if (o->changing) {
+        const int64_t count = (int64_t)o->n;
+        if (tlsph_h5_append_rows(o->count, H5T_NATIVE_INT64, o->nframes, 1, H5I_INVALID_HID,
+                                 &count) < 0)
+            return -1;
+        if (o->n > o->nmax)
+            o->nmax = o->n;
+        o->frame_counts[o->nframes] = o->n;
     }
     if (o->nframe_fields) {
         int64_t step = m->step;
         double t = m->t;
         if (timeline_append(&o->frame_timeline, o->nframes, 1, &step, &t) < 0)
             return -1;
-    }
-    if (o->nframes == o->frame_times_cap) {
-        size_t cap = 2 * o->frame_times_cap;
-        double *t = realloc(o->frame_times, cap * sizeof *t);
-        if (!t)
-            return -1;
-        o->frame_times = t;
-        o->frame_times_cap = cap;
     }
     o->frame_times[o->nframes++] = m->t;
     if (flush_series(o) < 0 || commit(o) < 0)

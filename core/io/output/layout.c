@@ -80,6 +80,7 @@ struct element {
     hsize_t tail[2];   /* extents of value's other axes */
     hsize_t chunk[3];
     int compress;
+    int changing;      /* the particle axis unlimited too (tlsph_h5_frames_dataset) */
     const char *units, *description, *components;
 };
 
@@ -92,7 +93,11 @@ static int create_element(hid_t parent, const char *parent_path, const struct el
     hid_t g = make_group(parent, e->name);
     if (g < 0)
         return -1;
-    hid_t v = tlsph_h5_extendible(g, "value", e->ftype, e->rank, e->tail, e->chunk, e->compress);
+    hid_t v = e->changing ? tlsph_h5_frames_dataset(g, "value", e->ftype,
+                                                    e->rank > 2 ? (int)e->tail[1] : 1,
+                                                    e->tail[0], e->chunk[1], e->compress)
+                          : tlsph_h5_extendible(g, "value", e->ftype, e->rank, e->tail,
+                                                e->chunk, e->compress);
     int rc = -1;
     if (v >= 0 && tlsph_h5_describe(v, e->units, e->description, e->components) == 0 &&
         add_timeline(tl, g, path, step_chunk) == 0)
@@ -133,6 +138,7 @@ static int create_frame_field(struct tlsph_output *o, hid_t solid, const struct 
         .tail = {o->n, ncomp},
         .chunk = {1, particles_per_chunk(o->n, f->ncomp, t.size), ncomp},
         .compress = f->type != TLSPH_FLOAT64, /* float64 positions barely compress */
+        .changing = o->changing,
         .units = f->units,
         .description = f->description,
         .components = f->components,
@@ -143,6 +149,24 @@ static int create_frame_field(struct tlsph_output *o, hid_t solid, const struct 
         return -1;
     o->frames[o->nframe_fields++] = (struct output_frame_value){f, H5I_INVALID_HID};
     return 0;
+}
+
+/* The layout for changing counts: /particles/solid/count, each frame's
+ * particle count, on the frame fields' step and time. */
+static int create_count(struct tlsph_output *o, hid_t solid)
+{
+    const struct element e = {
+        .name = "count",
+        .ftype = H5T_STD_I64LE,
+        .rank = 1,
+        .chunk = {FRAME_STEP_CHUNK, 0, 0},
+        .units = "1",
+        .description = "number of particles of each frame: the first count entries of the "
+                       "frame's row of every field are its particles",
+    };
+    char path[TLSPH_OUTPUT_PATH_MAX];
+    return create_element(solid, "/particles/solid", &e, &o->frame_timeline, FRAME_STEP_CHUNK,
+                          path, sizeof path);
 }
 
 /* One series column in group parent (path parent_path). */
@@ -267,7 +291,8 @@ static int create_box(hid_t solid)
 }
 
 /* /particles/solid: the box, the reference fields (written now) and the frame
- * fields (written by tlsph_output_frame). */
+ * fields (written by tlsph_output_frame); with a changing count every field
+ * is a frame field, and the count follows them. */
 static int create_particles(struct tlsph_output *o, const struct tlsph_model *m)
 {
     hid_t parts = make_group(o->file, "particles");
@@ -277,9 +302,12 @@ static int create_particles(struct tlsph_output *o, const struct tlsph_model *m)
     int rc = solid < 0 || create_box(solid) < 0 ? -1 : 0;
     for (size_t i = 0; i < o->npresent && rc == 0; i++) {
         const struct tlsph_field *f = o->present[i];
-        rc = f->kind == TLSPH_FIELD_REFERENCE ? write_reference_field(o, solid, f, m)
-                                              : create_frame_field(o, solid, f);
+        rc = f->kind == TLSPH_FIELD_REFERENCE && !o->changing
+                 ? write_reference_field(o, solid, f, m)
+                 : create_frame_field(o, solid, f);
     }
+    if (rc == 0 && o->changing)
+        rc = create_count(o, solid);
     if (solid >= 0)
         H5Gclose(solid);
     H5Gclose(parts);

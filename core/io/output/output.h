@@ -15,7 +15,16 @@
  *   /diagnostics                      attrs status, and when unstable: step, time, quantity,
  *                                     value, limit, nids, ids, message (rewritten at close)
  * Frame datasets grow along an unlimited first axis; everything is created before
- * SWMR writing starts, so nothing is created afterwards. */
+ * SWMR writing starts, so nothing is created afterwards.
+ *
+ * A run whose particle count changes (particle splitting, crack/split.h) gets
+ * the layout for changing counts instead, chosen at open: every field, the
+ * reference fields included, is a frame field /particles/solid/<field>/value
+ * [F, Nmax] or [F, Nmax, C] whose particle axis is unlimited too, and
+ *   /particles/solid/count/{step,time,value}  int64 [F]: frame k's count n_k
+ * Frame k's particles are entries 0 .. n_k - 1 of row k (in the model's index
+ * order; `id` names them); the entries past n_k hold the fill value (0, or -1
+ * for the integer fields id and body). */
 #ifndef TLSPH_OUTPUT_H
 #define TLSPH_OUTPUT_H
 
@@ -63,14 +72,22 @@ struct tlsph_output_refusal {
 
 /* Creates dir/result.h5 (truncating) and dir/result.xmf. Returns NULL and adds an
  * error; then neither file is left in dir (a file that could not be set up holds
- * no outcome). */
+ * no outcome).  The layout for changing counts when
+ * tlsph_output_count_may_change(m). */
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,
                                        struct tlsph_errors *err);
+/* The same with the layout chosen by the caller: changing_count 1 for the
+ * layout for changing counts, 0 for one count per run. */
+struct tlsph_output *tlsph_output_open_with(const char *dir, const struct tlsph_model *m,
+                                            int changing_count, struct tlsph_errors *err);
+/* 1 when m's particle count may change during its run: a model with fibres
+ * (crack/fibre.h), the thin bodies whose crack-tip fibres are split; else 0. */
+int tlsph_output_count_may_change(const struct tlsph_model *m);
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf
  * (via a temporary file and rename) when the last rewrite is more than 2 s old;
  * tlsph_output_close always rewrites it.  Returns 0, TLSPH_OUTPUT_REFUSED (nothing
- * written) or -1 (I/O error, or a particle count other than at open: the file
- * holds one count per run, and particle splitting, crack/split.h, changes it). */
+ * written) or -1 (I/O error, or, in a file with one count per run, a particle
+ * count other than at open: particle splitting, crack/split.h, changes it). */
 int tlsph_output_frame(struct tlsph_output *o, const struct tlsph_model *m);
 /* Appends one sample of every time-series column.  Rows are buffered and written
  * (and flushed) when 1024 are pending, at every frame, after ~1 s of wall time and

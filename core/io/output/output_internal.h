@@ -36,7 +36,16 @@ struct output_series_value {
 
 struct tlsph_output {
     hid_t file;
-    size_t n;
+    size_t n;            /* particles of the model at the last frame (at open before) */
+    /* The layout for changing counts (output.h): every field per frame and
+     * /particles/solid/count; nmax is the particle extent of the value
+     * datasets (the largest count so far), frame_counts each frame's count. */
+    int changing;
+    size_t nmax;
+    size_t *frame_counts; /* [frame_times_cap]; NULL with one count */
+    hid_t count;          /* /particles/solid/count/value, open after SWMR starts */
+    size_t scratch_n;     /* particles o->scratch holds (maxcomp values each) */
+    int maxcomp;
     char *h5_path, *xmf_path;
     /* the first HDF5 failure while the file is set up (tlsph_output_open): the
      * error stack of a failing call is gone once its clean-up calls ran */

@@ -47,14 +47,15 @@ static const char *attribute_type(int ncomp)
 }
 
 /* The full-size HDF DataItem of a field: [F, N(, C)] for frame fields, [N(, C)]
- * for reference fields. */
+ * for reference fields (per_frame: every field is a frame field). */
 static void put_hdf_item(FILE *fp, const struct tlsph_field *f, const char *h5_name, size_t n,
-                         size_t nframes)
+                         size_t nframes, int per_frame)
 {
     int precision;
     const char *nt = number_type(f, &precision);
+    per_frame |= f->kind == TLSPH_FIELD_FRAME;
     fputs("      <DataItem Dimensions=\"", fp);
-    if (f->kind == TLSPH_FIELD_FRAME)
+    if (per_frame)
         fprintf(fp, "%zu ", nframes);
     fprintf(fp, "%zu", n);
     if (f->ncomp > 1)
@@ -63,38 +64,40 @@ static void put_hdf_item(FILE *fp, const struct tlsph_field *f, const char *h5_n
     put_escaped(fp, h5_name);
     fputs(":/particles/solid/", fp);
     put_escaped(fp, f->name);
-    if (f->kind == TLSPH_FIELD_FRAME)
+    if (per_frame)
         fputs("/value", fp);
     fputs("</DataItem>\n", fp);
 }
 
-/* Frame k of a frame field as a HyperSlab item; a reference field directly. */
+/* Frame k of a frame field as a HyperSlab item: its first nk of n particles;
+ * a reference field directly (per_frame: every field is a frame field). */
 static void put_data(FILE *fp, const struct tlsph_field *f, const char *h5_name, size_t n,
-                     size_t nframes, size_t k)
+                     size_t nframes, size_t k, size_t nk, int per_frame)
 {
-    if (f->kind != TLSPH_FIELD_FRAME) {
-        put_hdf_item(fp, f, h5_name, n, nframes);
+    if (f->kind != TLSPH_FIELD_FRAME && !per_frame) {
+        put_hdf_item(fp, f, h5_name, n, nframes, 0);
         return;
     }
     if (f->ncomp > 1) {
         fprintf(fp,
                 "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu %d\" Type=\"HyperSlab\">\n"
                 "      <DataItem Dimensions=\"3 3\" Format=\"XML\">%zu 0 0  1 1 1  1 %zu %d</DataItem>\n",
-                n, f->ncomp, k, n, f->ncomp);
+                nk, f->ncomp, k, nk, f->ncomp);
     } else {
         fprintf(fp,
                 "     <DataItem ItemType=\"HyperSlab\" Dimensions=\"%zu\" Type=\"HyperSlab\">\n"
                 "      <DataItem Dimensions=\"3 2\" Format=\"XML\">%zu 0  1 1  1 %zu</DataItem>\n",
-                n, k, n);
+                nk, k, nk);
     }
-    put_hdf_item(fp, f, h5_name, n, nframes);
+    put_hdf_item(fp, f, h5_name, n, nframes, per_frame);
     fputs("     </DataItem>\n", fp);
 }
 
 int tlsph_xdmf_write(const char *xmf_path, const char *h5_name, size_t n, size_t nframes,
-                     const double *times, const struct tlsph_field *const *fields,
-                     size_t nfields)
+                     const double *times, const size_t *counts,
+                     const struct tlsph_field *const *fields, size_t nfields)
 {
+    const int per_frame = counts != NULL;
     const struct tlsph_field *geometry = NULL;
     for (size_t i = 0; i < nfields && !geometry; i++)
         if (fields[i]->kind == TLSPH_FIELD_FRAME && strcmp(fields[i]->name, "position") == 0)
@@ -124,14 +127,15 @@ int tlsph_xdmf_write(const char *xmf_path, const char *h5_name, size_t n, size_t
           "  <Grid Name=\"solid\" GridType=\"Collection\" CollectionType=\"Temporal\">\n",
           fp);
     for (size_t k = 0; k < nframes; k++) {
+        const size_t nk = counts ? counts[k] : n;
         fprintf(fp,
                 "   <Grid Name=\"frame%zu\" GridType=\"Uniform\">\n"
                 "    <Time Value=\"%.17g\"/>\n"
                 "    <Topology TopologyType=\"Polyvertex\" NumberOfElements=\"%zu\" "
                 "NodesPerElement=\"1\"/>\n"
                 "    <Geometry GeometryType=\"XYZ\">\n",
-                k, times[k], n);
-        put_data(fp, geometry, h5_name, n, nframes, k);
+                k, times[k], nk);
+        put_data(fp, geometry, h5_name, n, nframes, k, nk, per_frame);
         fputs("    </Geometry>\n", fp);
         for (size_t i = 0; i < nfields; i++) {
             const struct tlsph_field *f = fields[i];
@@ -141,7 +145,7 @@ int tlsph_xdmf_write(const char *xmf_path, const char *h5_name, size_t n, size_t
             fputs("    <Attribute Name=\"", fp);
             put_escaped(fp, f->name);
             fprintf(fp, "\" AttributeType=\"%s\" Center=\"Node\">\n", at);
-            put_data(fp, f, h5_name, n, nframes, k);
+            put_data(fp, f, h5_name, n, nframes, k, nk, per_frame);
             fputs("    </Attribute>\n", fp);
         }
         fputs("   </Grid>\n", fp);

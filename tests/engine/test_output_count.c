@@ -1,0 +1,207 @@
+/* The result file of a run whose particle count changes (io/output/output.h,
+ * docs/output.md "Changing particle counts"): a free plate is stepped and
+ * written, a fibre is split (crack/split.h, the library call: no crack driver
+ * yet), it is stepped and written again, a second fibre is split, and so on.
+ * The file is then read back by an independent reader, h5py under the system
+ * Python (tests/engine/output_count_check.py), against the facts this test
+ * writes beside it (facts.json: each frame's count, each split's parent ids,
+ * masses and the halves' new ids), and, where ParaView is installed, through
+ * the XDMF sidecar with ParaView's "XDMF Reader" (every frame's number of
+ * points and one field's range).  References: the counts and ids are exact;
+ * the halves' masses sum to the parent's to one rounding (split.h: m2 = m -
+ * m1), checked to 1e-15 relative. */
+#include <check.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "crack/split.h"
+#include "io/output/output.h"
+#include "support/check_main.h"
+#include "support/scene_builder.h"
+
+/* a free plate (10 x 8 x 3 particles) opening in mode I across the row y =
+ * 0.0045, which is at rest (v_y = +-5 m/s on either side), beside a block */
+static const char *plate_scene =
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000,\"cfl\":0.3},"
+    "\"contact\":{\"enabled\":false},\"output\":{\"frames\":10},"
+    "\"discretization\":{\"hourglass\":{\"enabled\":true}},"
+    "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},"
+    "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}},"
+    "\"initial_velocity\":[\"0\",\"5*tanh((y-0.0045)*1e5)\",\"0\"]},"
+    "{\"name\":\"block\",\"material\":\"m\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0.02,0,0],\"max\":[0.023,0.003,0.003]}}}]}";
+
+#define DELTA 1e-5
+#define MAXF 8
+#define EVENTS 3
+
+/* The particles of body 0 at (x, y): a fibre (ascending z). */
+static size_t fibre(const struct tlsph_model *m, double x, double y, size_t *out)
+{
+    size_t n = 0;
+    for (size_t i = m->body_begin[0]; i < m->body_end[0]; i++)
+        if (fabs(m->p.X[3 * i] - x) < 1e-9 && fabs(m->p.X[3 * i + 1] - y) < 1e-9) {
+            ck_assert_uint_lt(n, MAXF);
+            out[n++] = i;
+        }
+    return n;
+}
+
+/* The lattice coordinate of body 0 nearest to v along axis. */
+static double lattice(const struct tlsph_model *m, int axis, double v)
+{
+    double best = INFINITY, at = 0.0;
+    for (size_t i = m->body_begin[0]; i < m->body_end[0]; i++) {
+        const double c = m->p.X[3 * i + axis];
+        if (fabs(c - v) < best) {
+            best = fabs(c - v);
+            at = c;
+        }
+    }
+    return at;
+}
+
+static void steps(struct tlsph_model *m, int n)
+{
+    for (int s = 0; s < n; s++)
+        tlsph_model_step(m);
+}
+
+static void remove_dir(const char *dir)
+{
+    const char *names[] = {"result.h5", "result.xmf", "facts.json"};
+    char path[128];
+    for (size_t i = 0; i < sizeof names / sizeof *names; i++) {
+        snprintf(path, sizeof path, "%s/%s", dir, names[i]);
+        unlink(path);
+    }
+    ck_assert_int_eq(rmdir(dir), 0);
+}
+
+/* Runs the system Python's h5py check (and ParaView's, where installed) on dir. */
+static int run_checker(const char *dir)
+{
+    const char *py = getenv("SYSTEM_PYTHON");
+    const char *top = getenv("top_srcdir");
+    if (!py || !*py || strcmp(py, "no") == 0)
+        py = "/usr/bin/python3";
+    char cmd[1024];
+    snprintf(cmd, sizeof cmd, "'%s' '%s/tests/engine/output_count_check.py' '%s'", py,
+             top ? top : ".", dir);
+    return system(cmd);
+}
+
+START_TEST(changing_count_read_back)
+{
+    struct tlsph_model *m = build_model(plate_scene);
+    ck_assert_int_eq(tlsph_output_count_may_change(m), 0);
+    char dir[] = "/tmp/test_output_count.XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    char path[128];
+    snprintf(path, sizeof path, "%s/facts.json", dir);
+    FILE *facts = fopen(path, "w");
+    ck_assert_ptr_nonnull(facts);
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    struct tlsph_output *o = tlsph_output_open_with(dir, m, 1, &err);
+    ck_assert_msg(o != NULL, "%s", err.count ? err.items[0].message : "");
+    fprintf(facts, "{\"counts\": [%zu", m->p.n);
+    ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    steps(m, 3);
+    ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    fprintf(facts, ", %zu", m->p.n);
+    /* each event: the parents' ids and masses (before), the halves' ids (after) */
+    const double yt = lattice(m, 1, 0.0045), x0 = lattice(m, 0, 0.0);
+    int64_t pid[EVENTS][MAXF], h1[EVENTS][MAXF], h2[EVENTS][MAXF];
+    double pmass[EVENTS][MAXF];
+    size_t kk[EVENTS];
+    for (int e = 0; e < EVENTS; e++) {
+        size_t parent[MAXF];
+        const size_t k = fibre(m, x0 + 0.001 * e, yt, parent);
+        ck_assert_uint_eq(k, 3);
+        kk[e] = k;
+        for (size_t s = 0; s < k; s++) {
+            pid[e][s] = m->p.id[parent[s]];
+            pmass[e][s] = m->p.mass[parent[s]];
+        }
+        const size_t n0 = m->p.n, at = m->body_end[0];
+        struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+        ck_assert_int_eq(tlsph_split_particles(m, &sp, NULL, 0, NULL, NULL, &err), 0);
+        ck_assert_uint_eq(m->p.n, n0 + k);
+        for (size_t s = 0; s < k; s++) {
+            h1[e][s] = m->p.id[parent[s]]; /* half 1 keeps the index */
+            h2[e][s] = m->p.id[at + s];    /* half 2 at the end of the body's range */
+        }
+        steps(m, 3);
+        ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+        fprintf(facts, ", %zu", m->p.n);
+    }
+    /* a frame of the same count again: nothing new */
+    steps(m, 2);
+    ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    fprintf(facts, ", %zu], \"splits\": [", m->p.n);
+    for (int e = 0; e < EVENTS; e++)
+        for (size_t s = 0; s < kk[e]; s++)
+            fprintf(facts, "%s{\"frame\": %d, \"parent\": %lld, \"mass\": %.17g, \"halves\": [%lld, %lld]}",
+                    e || s ? ", " : "", e + 2, (long long)pid[e][s], pmass[e][s],
+                    (long long)h1[e][s], (long long)h2[e][s]);
+    fputs("]}\n", facts);
+    ck_assert_int_eq(fclose(facts), 0);
+    struct tlsph_cost cost = {.particles = m->p.n, .steps = m->step, .threads = 1};
+    ck_assert_int_eq(tlsph_output_close(o, m, &cost, "successful", NULL), 0);
+    tlsph_errors_free(&err);
+    ck_assert_int_eq(run_checker(dir), 0);
+    remove_dir(dir);
+    tlsph_model_free(m);
+}
+END_TEST
+
+/* A file with one count per run refuses a frame of another count (-1), and a
+ * file for changing counts opened where no file can be made leaves nothing
+ * allocated (the sanitizer build checks the leak). */
+START_TEST(refusals)
+{
+    struct tlsph_model *m = build_model(plate_scene);
+    char dir[] = "/tmp/test_output_count.XXXXXX";
+    ck_assert_ptr_nonnull(mkdtemp(dir));
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    struct tlsph_output *o = tlsph_output_open_with(dir, m, 0, &err);
+    ck_assert_ptr_nonnull(o);
+    ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    size_t parent[MAXF];
+    const size_t k = fibre(m, lattice(m, 0, 0.0), lattice(m, 1, 0.0045), parent);
+    ck_assert_uint_eq(k, 3);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, NULL, 0, NULL, NULL, &err), 0);
+    ck_assert_int_eq(tlsph_output_frame(o, m), -1);
+    tlsph_output_abort(o);
+    remove_dir(dir);
+    ck_assert_ptr_null(tlsph_output_open_with("/proc/no-such-dir/out", m, 1, &err));
+    ck_assert_uint_ge(err.count, 1);
+    tlsph_errors_free(&err);
+    tlsph_model_free(m);
+}
+END_TEST
+
+/* A model with fibres (a body with a thickness_axis) gets the layout for
+ * changing counts from tlsph_output_open. */
+START_TEST(fibres_choose_changing_count)
+{
+    struct tlsph_model *m = build_model(
+        "{\"dimension\":3,\"time\":{\"end\":1e-6},\"contact\":{\"enabled\":false},"
+        "\"materials\":{\"m\":{\"density\":2700,\"youngs_modulus\":7e10,\"poisson_ratio\":0.33}},"
+        "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+        "\"thickness_axis\":\"z\","
+        "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.006,0.004,0.002]}}}]}");
+    ck_assert_int_eq(tlsph_output_count_may_change(m), 1);
+    tlsph_model_free(m);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("output_count", 120, changing_count_read_back, refusals,
+                 fibres_choose_changing_count)
