@@ -48,6 +48,9 @@ DEPTH, LOAD_X = 0.076, 0.154
 def measure(path, notch_x, notch_depth=0.019, threshold=0.2):
     f = h5py.File(path + "/result.h5", "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; deep_beam_path.py reads one count per run"
+                 % path)
     X = p["reference_position"][:, :2]
     Dall = p["link_damage/value"]
     D = Dall[-1]

@@ -27,6 +27,9 @@ SUPPORTS = (0.027, 0.281)
 def panel(k, title, path, notch_x):
     f = h5py.File(path + "/result.h5", "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; deep_beam_plot.py reads one count per run"
+                 % path)
     X = p["reference_position"][:, :2]
     D = np.clip(p["link_damage/value"][-1], 0.0, 1.0)
     h = math.sqrt(p["volume"][0])

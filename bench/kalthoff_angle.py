@@ -80,6 +80,9 @@ def fit_angle(R):
 def measure(path, tip, threshold):
     f = h5py.File(path + "/result.h5", "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; kalthoff_angle.py reads one count per run"
+                 % path)
     X = p["reference_position"][:, :2]
     name = "link_damage" if "link_damage" in p else "damage"
     D = p[name + "/value"][-1]

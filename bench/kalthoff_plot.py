@@ -50,6 +50,9 @@ def damage_cells(X, D, h, px, c, lowest=0.15):
 def panel(k, title, path):
     f = h5py.File(path + "/result.h5", "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; kalthoff_plot.py reads one count per run"
+                 % path)
     X = p["reference_position"][:, :2]
     name = "link_damage" if "link_damage" in p else "damage"
     D = np.clip(p[name + "/value"][-1], 0.0, 1.0)

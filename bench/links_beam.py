@@ -35,6 +35,9 @@ def main(argv):
     # the projectile's speed, from the scene the run stored
     V = -json.loads(f["parameters/scene"][()])["rigid_bodies"][0]["motion"]["velocity"][1]
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; links_beam.py reads one count per run"
+                 % argv[1])
     X = p["reference_position"][:]
     body = p["body"][:]
     beam = body == 0

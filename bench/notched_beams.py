@@ -47,6 +47,9 @@ def main(argv):
     res, scene = argv[1], json.load(open(argv[2]))
     f = h5py.File(res + "/result.h5", "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; notched_beams.py reads one count per run"
+                 % res)
     X = p["reference_position"][:, :2]
     h = scene["bodies"][0]["spacing"]
     t = p["displacement/time"][:] if "time" in p["displacement"] else p["det_F/time"][:]

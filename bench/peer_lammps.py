@@ -102,6 +102,7 @@ def scene(spacing, variants):
 
 def lammps(result_dir, out_dir, no_rate=False):
     with Result(result_dir) as r:
+        r.require_one_count("peer_lammps.py")
         sc = r.scene
         h = r.spacing()
         X = r.field("reference_position")
@@ -176,6 +177,7 @@ def rate_factor(result_dir):
     with Result(result_dir) as r:
         st = r.scene["materials"]["ofhc_copper"]["strength"]
         C, e0 = st["rate_coefficient"], st.get("reference_strain_rate", 1.0)
+        r.require_one_count("peer_lammps.py")
         vol = r.field("volume")
         rates, weights = [], []
         for k in range(len(r.frame_times("plastic_strain_rate"))):

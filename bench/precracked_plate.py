@@ -20,6 +20,9 @@ MAGNIFY = 50.0
 def main(path, out):
     with h5py.File(path, "r") as f:
         g = f["particles/solid"]
+        if "count" in g:  # particle splitting (docs/output.md, "Changing particle counts")
+            sys.exit("%s: the particle count changes during this run; precracked_plate.py reads one count per run"
+                     % path)
         X = g["reference_position"][:]
         u = g["displacement/value"][-1]
         s = g["stress/value"][-1]

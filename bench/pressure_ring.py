@@ -65,6 +65,9 @@ def run(build, h, tmp):
     cpu = resource.getrusage(resource.RUSAGE_CHILDREN).ru_utime - before
     f = h5py.File(os.path.join(out, "result.h5"), "r")
     p = f["particles/solid"]
+    if "count" in p:  # particle splitting (docs/output.md, "Changing particle counts")
+        sys.exit("%s: the particle count changes during this run; pressure_ring.py reads one count per run"
+                 % out)
     X = p["reference_position"][:, :2]
     r = np.hypot(X[:, 0], X[:, 1])
     c, s = X[:, 0] / r, X[:, 1] / r

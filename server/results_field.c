@@ -43,6 +43,43 @@ static int frame_count(hid_t f, long *frames, char *err, size_t errsize)
     return 0;
 }
 
+/* The particle count of frame k in a file whose count changes
+ * (/particles/solid/count/value, written before the frame's step): 1 with
+ * *n, 0 when the file has one count per run, -1 with err. */
+static int frame_particles(hid_t f, long k, long *n, char *err, size_t errsize)
+{
+    static const char *path = "/particles/solid/count/value";
+    const int t = h5r_object_type(f, path);
+    if (t < 0) {
+        h5r_error(err, errsize, "cannot look up", path);
+        return -1;
+    }
+    if (t != OT_DATASET)
+        return 0;
+    int r;
+    hsize_t d[3];
+    hid_t ds = h5r_open_refreshed(f, path, &r, d, err, errsize);
+    if (ds < 0)
+        return -1;
+    int rc = -1;
+    int64_t v;
+    hsize_t one = 1, start = (hsize_t)k;
+    hid_t fs = H5Dget_space(ds), ms = H5Screate_simple(1, &one, NULL);
+    if (r != 1 || (hsize_t)k >= d[0])
+        errmsg_set(err, errsize, "%s holds no frame %ld", path, k);
+    else if (fs < 0 || ms < 0 || H5Sselect_hyperslab(fs, H5S_SELECT_SET, &start, NULL, &one, NULL) < 0 ||
+             H5Dread(ds, H5T_NATIVE_INT64, ms, fs, H5P_DEFAULT, &v) < 0)
+        h5r_error(err, errsize, "cannot read", path);
+    else {
+        *n = (long)v;
+        rc = 1;
+    }
+    h5r_close(&ms, H5Sclose);
+    h5r_close(&fs, H5Sclose);
+    h5r_close(&ds, H5Dclose);
+    return rc;
+}
+
 void tres_field_free(struct tres_field *f)
 {
     if (!f)
@@ -137,6 +174,20 @@ enum tres_rc tres_field(const char *h5path, const char *name, long frame,
         }
         n_rows = dv[1];
         ncomp = rv == 3 ? dv[2] : 1;
+        /* a file whose particle count changes (io/output/output.h): frame k
+         * is the first count[k] particles of its row */
+        long nk;
+        const int c = frame_particles(f, k, &nk, err, errsize);
+        if (c < 0)
+            goto out;
+        if (c == 1) {
+            if (nk < 0 || (hsize_t)nk > n_rows) {
+                errmsg_set(err, errsize, "frame %ld of field %s: count %ld outside its %llu rows",
+                           k, name, nk, (unsigned long long)n_rows);
+                goto out;
+            }
+            n_rows = (hsize_t)nk;
+        }
         /* step and time of the frame */
         int64_t stepv;
         double timev;

@@ -48,11 +48,11 @@ def reached(r):
     largest temperature over all frames, the fraction of failed particles at the last frame, the steps."""
     out = {"steps": float(r.cost["steps"])}
     if r.has_field("det_F"):
-        out["detF"] = float(np.min(r.file["particles/solid/det_F/value"][:]))
+        out["detF"] = float(np.min(r.field_values("det_F")))
     if r.has_field("temperature"):
-        out["Tmax"] = float(np.max(r.file["particles/solid/temperature/value"][:]))
+        out["Tmax"] = float(np.max(r.field_values("temperature")))
     if r.has_field("plastic_strain"):
-        out["eps_p"] = float(np.max(r.file["particles/solid/plastic_strain/value"][:]))
+        out["eps_p"] = float(np.max(r.field_values("plastic_strain")))
     if r.has_field("damage"):
         out["failed"] = float(np.mean(r.field("damage") >= 1.0))
     return out

@@ -9,6 +9,12 @@ returns and how series, fields, diagnostics and cost are stored.
         D = r.field("damage", frame=-1)       # per-particle field at one frame
         r.status, r.cost["steps"], r.scene["bodies"][0]["spacing"]
 
+A run whose particle count changes (particle splitting; docs/output.md,
+"Changing particle counts") stores every field per frame with the frame's
+count in particles/solid/count: field() returns that frame's particles (and
+"id" names them), so a caller that compares frames by index must use ids
+(r.changing_count says which layout the file has).
+
 Scripts outside tests/support put that folder on sys.path first
 (bench/*_metrics.py do).  Needs h5py and numpy (Debian: python3-h5py,
 python3-numpy; run with /usr/bin/python3).  Units are those of the file: SI.
@@ -110,14 +116,46 @@ class Result:
     def has_field(self, name):
         return name in self.file[PARTICLES]
 
+    @property
+    def changing_count(self):
+        """True when the particle count changes between frames (the layout
+        with particles/solid/count)."""
+        return "count" in self.file[PARTICLES]
+
+    def count(self, frame=-1):
+        """The number of particles of a frame."""
+        if self.changing_count:
+            return int(self.file[PARTICLES]["count"]["value"][frame])
+        return int(self.file[PARTICLES]["id"].shape[0])
+
     def field(self, name, frame=-1):
         """A per-frame field at one frame ([N] or [N, components]), or a
         per-particle constant ("reference_position", "volume", "mass", "body",
-        "id") when the name has no frames."""
+        "id") when the name has no frames.  With a changing count every field
+        has frames and N is the frame's count."""
         g = self.file[PARTICLES][name]
         if isinstance(g, h5py.Dataset):
             return g[()]
+        if self.changing_count:
+            return g["value"][frame, :self.count(frame)]
         return g["value"][frame]
+
+    def field_values(self, name):
+        """Every frame's values of a per-frame field, the frames' particles
+        one after the other ([sum of counts] or [..., components]): for
+        extremes over the run, with either layout."""
+        v = self.file[PARTICLES][name]["value"]
+        if not self.changing_count:
+            return v[()].reshape((-1,) + v.shape[2:])
+        counts = self.file[PARTICLES]["count"]["value"][:v.shape[0]]
+        return np.concatenate([v[k, :n] for k, n in enumerate(counts)])
+
+    def require_one_count(self, who):
+        """Exits with a message when the particle count changes during the
+        run: for scripts that compare frames particle by particle by index."""
+        if self.changing_count:
+            raise SystemExit("%s: %s: the particle count changes during this run (particle "
+                             "splitting); this script needs one count per run" % (who, self.path))
 
     def frame_times(self, name="position"):
         return self.file[PARTICLES][name]["time"][:]
@@ -125,7 +163,7 @@ class Result:
     def frame_fields(self):
         """Names of the per-frame fields the file holds."""
         return [k for k, g in self.file[PARTICLES].items()
-                if isinstance(g, h5py.Group) and "value" in g]
+                if isinstance(g, h5py.Group) and "value" in g and k != "count"]
 
     def spacing(self, body=0):
         """Lattice spacing of a body (m), from the stored scene."""
