@@ -453,6 +453,73 @@ START_TEST(test_field_stress)
 }
 END_TEST
 
+/* A file whose particle count changes (io/output/output.h: every field per
+ * frame, /particles/solid/count), made by hand: frame 0 has 2 of the 3
+ * columns, frame 1 all 3.  tres_field returns each frame's count of rows, ids
+ * included; a count beyond the dataset is an error, not a read past it. */
+static void write_dataset(hid_t f, const char *path, hid_t type, int rank, const hsize_t *dims,
+                          const void *data)
+{
+    hid_t lcpl = H5Pcreate(H5P_LINK_CREATE);
+    ck_assert(lcpl >= 0 && H5Pset_create_intermediate_group(lcpl, 1) >= 0);
+    hid_t sp = H5Screate_simple(rank, dims, NULL);
+    hid_t ds = H5Dcreate2(f, path, type, sp, lcpl, H5P_DEFAULT, H5P_DEFAULT);
+    ck_assert(sp >= 0 && ds >= 0);
+    ck_assert(H5Dwrite(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data) >= 0);
+    H5Dclose(ds);
+    H5Sclose(sp);
+    H5Pclose(lcpl);
+}
+
+static void changing_file(const char *path, int64_t count1)
+{
+    hid_t fapl = H5Pcreate(H5P_FILE_ACCESS);
+    ck_assert(H5Pset_libver_bounds(fapl, H5F_LIBVER_LATEST, H5F_LIBVER_LATEST) >= 0);
+    hid_t f = H5Fcreate(path, H5F_ACC_TRUNC, H5P_DEFAULT, fapl);
+    ck_assert(f >= 0);
+    const int64_t step[2] = {0, 10}, count[2] = {2, count1}, ids[2][3] = {{0, 1, -1}, {0, 2, 3}};
+    const double time[2] = {0.0, 1e-6};
+    const double pos[2][3][3] = {{{0, 0, 0}, {1, 0, 0}, {0, 0, 0}}, {{0, 0, 0}, {1, 1, 0}, {1, -1, 0}}};
+    const hsize_t d1[1] = {2}, d2[2] = {2, 3}, d3[3] = {2, 3, 3};
+    const char *names[] = {"position", "id", "count"};
+    for (int i = 0; i < 3; i++) {
+        char p[128];
+        snprintf(p, sizeof p, "/particles/solid/%s/step", names[i]);
+        write_dataset(f, p, H5T_NATIVE_INT64, 1, d1, step);
+        snprintf(p, sizeof p, "/particles/solid/%s/time", names[i]);
+        write_dataset(f, p, H5T_NATIVE_DOUBLE, 1, d1, time);
+    }
+    write_dataset(f, "/particles/solid/position/value", H5T_NATIVE_DOUBLE, 3, d3, pos);
+    write_dataset(f, "/particles/solid/id/value", H5T_NATIVE_INT64, 2, d2, ids);
+    write_dataset(f, "/particles/solid/count/value", H5T_NATIVE_INT64, 1, d1, count);
+    H5Fclose(f);
+    H5Pclose(fapl);
+}
+
+START_TEST(test_field_changing_count)
+{
+    setup_files(); /* the temporary directory */
+    char path[600], err[256];
+    snprintf(path, sizeof path, "%s/changing.h5", tmpdir);
+    changing_file(path, 3);
+    struct tres_field f;
+    ck_assert_int_eq(tres_field(path, "position", 0, &f, err, sizeof err), 0);
+    ck_assert_uint_eq(f.n_rows, 2);
+    ck_assert_int_eq(f.ncomp, 3);
+    ck_assert_double_eq(((double *)f.data)[3], 1.0);
+    tres_field_free(&f);
+    ck_assert_int_eq(tres_field(path, "id", -1, &f, err, sizeof err), 0);
+    ck_assert_uint_eq(f.n_rows, 3);
+    ck_assert_int_eq(((int64_t *)f.data)[2], 3);
+    ck_assert(f.time == 1e-6 && f.step == 10);
+    tres_field_free(&f);
+    changing_file(path, 4); /* a count beyond the datasets' 3 columns */
+    ck_assert_int_eq(tres_field(path, "position", 1, &f, err, sizeof err), -1);
+    ck_assert_msg(strstr(err, "count 4 outside") != NULL, "%s", err);
+    unlink(path);
+}
+END_TEST
+
 START_TEST(test_field_kinds)
 {
     char err[256] = "";
@@ -717,6 +784,7 @@ static Suite *results_suite(void)
     tcase_add_test(tc, test_series_reduce);
     tcase_add_test(tc, test_field_stress);
     tcase_add_test(tc, test_field_kinds);
+    tcase_add_test(tc, test_field_changing_count);
     tcase_add_test(tc, test_frames);
     tcase_add_test(tc, test_no_leaks);
     suite_add_tcase(s, tc);
