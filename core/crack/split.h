@@ -71,8 +71,9 @@
  * unchanged: a parent in a pressure group (its reference area vector cannot
  * be shared without the surface), virtual links (D_ij per pair is not
  * remapped yet) and a model with fibres (their particle lists are not
- * remapped yet).  The result file holds one count per run: after a split
- * tlsph_output_frame returns an error (io/output/output.h). */
+ * remapped yet).  The result file of a run that splits needs the layout for
+ * changing counts (io/output/output.h); one opened with one count per run
+ * refuses the next frame with an error. */
 #ifndef TLSPH_CRACK_SPLIT_H
 #define TLSPH_CRACK_SPLIT_H
 
