@@ -11,6 +11,9 @@ checks it against DIR/facts.json: usage  python3 output_count_check.py DIR
    m2 = m - m1, one rounding);
  - ids present in two frames have the same reference position X in both
    unless the particle was split (ids are stable);
+ - the layout against docs/output.md's field table (tests/support/h5_check.py's
+   check_fields and check_xmf, which know both layouts), and the file opens
+   with swmr=True as a reader during a run would;
  - result.xmf: one grid per frame, its NumberOfElements and every HyperSlab's
    count equal to the frame's count, the HDF dimensions equal to the
    datasets';
@@ -34,8 +37,24 @@ def fail(msg):
     sys.exit(1)
 
 
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "support"))
+import h5_check  # noqa: E402
+
+
 def main(d):
     facts = json.load(open(os.path.join(d, "facts.json")))
+    fields = h5_check.load_docs(os.path.join(HERE, "..", "..", "docs", "output.md"))[0]
+    try:
+        with h5py.File(os.path.join(d, "result.h5"), "r", libver="latest", swmr=True) as f:
+            F, N, _ = h5_check.check_fields(f, fields, live=True)
+        with h5py.File(os.path.join(d, "result.h5"), "r") as f:
+            F, N, _ = h5_check.check_fields(f, fields, live=False)
+            h5_check.check_xmf(os.path.join(d, "result.xmf"), f, F, N,
+                               f["particles/solid/position/time"][:])
+    except h5_check.CheckFailed as e:
+        fail("against docs/output.md: %s" % e)
+    print("docs/output.md: %d checks of the layout passed" % len(h5_check.CHECKS))
     counts = facts["counts"]
     with h5py.File(os.path.join(d, "result.h5"), "r") as f:
         solid = f["particles/solid"]
@@ -111,8 +130,7 @@ def main(d):
     if not pv:
         print("SKIP: pvbatch (Debian: paraview) not installed: no ParaView check")
         return 0
-    here = os.path.dirname(os.path.abspath(__file__))
-    cmd = [pv, os.path.join(here, "output_count_paraview.py"), os.path.join(d, "result.xmf")]
+    cmd = [pv, os.path.join(HERE, "output_count_paraview.py"), os.path.join(d, "result.xmf")]
     cmd += [str(c) for c in counts]
     xvfb = shutil.which("xvfb-run")
     if xvfb:

@@ -88,9 +88,12 @@ DTYPES = {"float64": np.float64, "float32": np.float32, "int64": np.int64, "int3
 # ------------------------------------------------------------------ the HDF5 checks
 
 def check_fields(f, fields, live):
-    """Checks /particles/solid against the documented fields; returns (F, N)."""
+    """Checks /particles/solid against the documented fields; returns (F, N,
+    step).  With a changing particle count (docs/output.md, "Changing particle
+    counts") every field is per frame and N is the particle extent Nmax."""
     solid = f["particles/solid"]
-    N = solid["id"].shape[0]
+    changing = "count" in solid
+    N = solid["id/value"].shape[1] if changing else solid["id"].shape[0]
     check(N > 0, "N = %d particles" % N)
     frame_step = None
     F = None
@@ -99,7 +102,7 @@ def check_fields(f, fields, live):
         if name not in solid:
             check(row["always"] != "yes", "documented field %s present" % name)
             continue
-        if row["kind"] == "reference":
+        if row["kind"] == "reference" and not changing:
             ds = solid[name]
             check(isinstance(ds, h5py.Dataset), "%s is a dataset" % name)
             want = shape_of(row["shape"], None, N, None)
@@ -126,6 +129,8 @@ def check_fields(f, fields, live):
                       "%s step/time/value have the common frame count %d" % (name, F))
             check(text(tm.attrs["units"]) == "s", "%s/time units s" % name)
             want = shape_of(row["shape"], nrows, N, None)
+            if row["kind"] == "reference":  # changing count: [N(, C)] per frame
+                want = (nrows,) + want
         check(ds.shape == want, "%s shape %s == documented %s" % (name, ds.shape, row["shape"]))
         check(ds.dtype == DTYPES[row["type"]], "%s dtype %s" % (name, row["type"]))
         check(text(ds.attrs.get("units", b"?")) == row["units"],
@@ -135,8 +140,16 @@ def check_fields(f, fields, live):
             check(text(ds.attrs.get("components", b"")) == row["components"],
                   "%s components %r" % (name, row["components"]))
     documented = {r["name"] for r in fields}
+    if changing:
+        c = solid["count"]["value"]
+        if live:
+            c.refresh()
+        check(c.dtype == np.int64 and c.shape[0] >= F, "count int64 with every frame")
+        check(np.all(c[:F] > 0) and np.all(c[:F] <= N), "every frame's count within 1..Nmax")
+        check(solid["count"]["step"].id == frame_step.id or
+              np.array_equal(solid["count"]["step"][:F], frame_step[:F]), "count on the frame steps")
     for name in solid:
-        if name != "box":
+        if name != "box" and not (changing and name == "count"):
             check(name in documented, "file field %s is documented" % name)
     return F, N, frame_step
 
@@ -253,9 +266,12 @@ def check_xmf(path, f, F, N, times):
     xtimes = [float(g.find("Time").get("Value")) for g in grids]
     check(np.allclose(xtimes, times, rtol=1e-12, atol=0), "result.xmf times equal position/time")
     paths = set()
+    solid = f["particles/solid"]
+    counts = solid["count/value"][:F] if "count" in solid else [N] * F
     for k, g in enumerate(grids):
         topo = g.find("Topology")
-        check(int(topo.get("NumberOfElements")) == N, "frame %d topology has N points" % k)
+        n = counts[k]
+        check(int(topo.get("NumberOfElements")) == n, "frame %d topology has its %d points" % (k, n))
         check(g.find("Geometry") is not None, "frame %d has geometry" % k)
         for item in g.iter("DataItem"):
             if item.get("Format") == "HDF":
@@ -271,8 +287,8 @@ def check_xmf(path, f, F, N, times):
                 nums = [int(v) for v in sel.text.split()]
                 r = len(nums) // 3
                 start, stride, count = nums[:r], nums[r:2 * r], nums[2 * r:]
-                check(start[0] == k and count[0] == 1 and count[1] == N and stride == [1] * r,
-                      "frame %d hyperslab selects frame %d of %d particles" % (k, k, N))
+                check(start[0] == k and count[0] == 1 and count[1] == n and stride == [1] * r,
+                      "frame %d hyperslab selects frame %d of %d particles" % (k, k, n))
                 check(tuple(int(d) for d in item.get("Dimensions").split()) == tuple(count[1:]),
                       "frame %d hyperslab dimensions" % k)
         for a in g.findall("Attribute"):
@@ -409,7 +425,8 @@ def final(docs, outdir, scene_path):
             check(math.isfinite(v) and 0 < v < 1, "/cost material_phase_share = %g" % v)
         else:
             check("material_phase_share" not in cost, "no /cost material_phase_share")
-        check(int(cost["particles"]) == N, "/cost particles == N")
+        last_n = f["particles/solid/count/value"][-1] if "count" in f["particles/solid"] else N
+        check(int(cost["particles"]) == last_n, "/cost particles == the last frame's count")
         check(int(cost["steps"]) >= steps[-1], "/cost steps >= last frame step")
         check(text(f["diagnostics"].attrs["status"]) == "successful", "/diagnostics status successful")
         nx = check_xmf(os.path.join(outdir, "result.xmf"), f, F, N, times)
