@@ -137,7 +137,9 @@ static int create_frame_field(struct tlsph_output *o, hid_t solid, const struct 
         .rank = f->ncomp > 1 ? 3 : 2,
         .tail = {o->n, ncomp},
         .chunk = {1, particles_per_chunk(o->n, f->ncomp, t.size), ncomp},
-        .compress = f->type != TLSPH_FLOAT64, /* float64 positions barely compress */
+        /* float64 positions barely compress; reference fields (per frame with a
+         * changing count) are compressed as when written once */
+        .compress = f->type != TLSPH_FLOAT64 || f->kind == TLSPH_FIELD_REFERENCE,
         .changing = o->changing,
         .units = f->units,
         .description = f->description,
