@@ -188,6 +188,67 @@ done:
 #define FRAME_VALUE "/particles/solid/position/value"
 #define FRAME_COUNT "/particles/solid/count/value" /* only with a changing count */
 
+/* The first nframes rows of the rank-1 dataset at path as mtype (esize
+ * bytes each), malloc'ed; NULL with err. */
+static void *read_frame_rows(hid_t f, const char *path, hsize_t nframes, hid_t mtype,
+                             size_t esize, const char *h5, char *err, size_t errsize)
+{
+    int rank;
+    hsize_t dims[3];
+    void *buf = NULL;
+    hid_t d = h5r_open_refreshed(f, path, &rank, dims, err, errsize);
+    if (d < 0)
+        return NULL;
+    if (rank != 1 || dims[0] < nframes)
+        errmsg_set(err, errsize, "%s: the frame datasets disagree", h5);
+    else if (!(buf = malloc((nframes ? nframes : 1) * esize)))
+        errmsg_set(err, errsize, "out of memory");
+    else if (nframes > 0 && h5r_read_rows(d, rank, dims, nframes, mtype, buf) < 0) {
+        h5r_error(err, errsize, "cannot read", path);
+        free(buf);
+        buf = NULL;
+    }
+    h5r_close(&d, H5Dclose);
+    return buf;
+}
+
+/* A file whose particle count changes (io/output/output.h): each frame's
+ * count into *counts (malloc'ed), checked against the particle extent n.
+ * 1, 0 when the file has one count per run (*counts NULL), -1 with err. */
+static int read_counts(hid_t f, hsize_t nframes, hsize_t n, size_t **counts, const char *h5,
+                       char *err, size_t errsize)
+{
+    *counts = NULL;
+    const int changing = h5r_path_exists(f, FRAME_COUNT);
+    if (changing <= 0) {
+        if (changing < 0)
+            h5r_error(err, errsize, "cannot look up", FRAME_COUNT);
+        return changing;
+    }
+    int64_t *c = read_frame_rows(f, FRAME_COUNT, nframes, H5T_NATIVE_INT64, sizeof *c, h5, err,
+                                 errsize);
+    if (!c)
+        return -1;
+    size_t *out = malloc((nframes ? nframes : 1) * sizeof *out);
+    int rc = out ? 1 : -1;
+    if (!out)
+        errmsg_set(err, errsize, "out of memory");
+    for (hsize_t k = 0; k < nframes && rc == 1; k++) {
+        if (c[k] < 0 || (hsize_t)c[k] > n) {
+            errmsg_set(err, errsize, "%s: frame %llu's count %lld is outside the datasets", h5,
+                       (unsigned long long)k, (long long)c[k]);
+            rc = -1;
+        } else
+            out[k] = (size_t)c[k];
+    }
+    free(c);
+    if (rc < 0)
+        free(out);
+    else
+        *counts = out;
+    return rc;
+}
+
 /* Rewrites xmf to list every complete frame of h5 (frames: len(step), the
  * writer's commit marker) with the fields the file holds, as the engine's
  * writer would at close.  Returns the frame count or -1 with err. */
@@ -203,66 +264,28 @@ static long rewrite_sidecar(const char *h5, const char *xmf, char *err, size_t e
     h5r_quiet(); /* error printing is per thread in a thread-safe HDF5 */
     long frames = -1;
     double *times = NULL;
-    int64_t *count64 = NULL;
-    size_t *counts = NULL; /* a changing count (io/output/output.h): each frame's */
+    size_t *counts = NULL; /* a changing count: each frame's */
     const struct tlsph_field **present = NULL;
-    hid_t f = h5r_open_file(h5, err, errsize), step = -1, time = -1, value = -1, cnt = -1;
+    hid_t f = h5r_open_file(h5, err, errsize), step = -1, value = -1;
     if (f < 0)
         return -1;
-    int srank, trank, vrank;
-    hsize_t sdims[3], tdims[3], vdims[3];
+    int srank, vrank;
+    hsize_t sdims[3], vdims[3];
     if ((step = h5r_open_refreshed(f, FRAME_STEP, &srank, sdims, err, errsize)) < 0 ||
-        (time = h5r_open_refreshed(f, FRAME_TIME, &trank, tdims, err, errsize)) < 0 ||
         (value = h5r_open_refreshed(f, FRAME_VALUE, &vrank, vdims, err, errsize)) < 0)
         goto done;
     const hsize_t nframes = sdims[0];
-    if (srank != 1 || trank != 1 || vrank != 3 || tdims[0] < nframes || vdims[0] < nframes) {
+    if (srank != 1 || vrank != 3 || vdims[0] < nframes) {
         errmsg_set(err, errsize, "%s: the frame datasets disagree", h5);
         goto done;
     }
-    times = malloc((nframes ? nframes : 1) * sizeof *times);
-    present = malloc((tlsph_nfields ? tlsph_nfields : 1) * sizeof *present);
-    if (!times || !present) {
+    if (!(times = read_frame_rows(f, FRAME_TIME, nframes, H5T_NATIVE_DOUBLE, sizeof *times, h5,
+                                  err, errsize)) ||
+        read_counts(f, nframes, vdims[1], &counts, h5, err, errsize) < 0)
+        goto done;
+    if (!(present = malloc((tlsph_nfields ? tlsph_nfields : 1) * sizeof *present))) {
         errmsg_set(err, errsize, "out of memory");
         goto done;
-    }
-    if (nframes > 0 && h5r_read_rows(time, trank, tdims, nframes, H5T_NATIVE_DOUBLE, times) < 0) {
-        h5r_error(err, errsize, "cannot read", FRAME_TIME);
-        goto done;
-    }
-    const int changing = h5r_path_exists(f, FRAME_COUNT);
-    if (changing < 0) {
-        h5r_error(err, errsize, "cannot look up", FRAME_COUNT);
-        goto done;
-    }
-    if (changing) {
-        int crank;
-        hsize_t cdims[3];
-        if ((cnt = h5r_open_refreshed(f, FRAME_COUNT, &crank, cdims, err, errsize)) < 0)
-            goto done;
-        if (crank != 1 || cdims[0] < nframes) {
-            errmsg_set(err, errsize, "%s: the frame datasets disagree", h5);
-            goto done;
-        }
-        count64 = malloc((nframes ? nframes : 1) * sizeof *count64);
-        counts = malloc((nframes ? nframes : 1) * sizeof *counts);
-        if (!count64 || !counts) {
-            errmsg_set(err, errsize, "out of memory");
-            goto done;
-        }
-        if (nframes > 0 &&
-            h5r_read_rows(cnt, crank, cdims, nframes, H5T_NATIVE_INT64, count64) < 0) {
-            h5r_error(err, errsize, "cannot read", FRAME_COUNT);
-            goto done;
-        }
-        for (hsize_t k = 0; k < nframes; k++) {
-            if (count64[k] < 0 || (hsize_t)count64[k] > vdims[1]) {
-                errmsg_set(err, errsize, "%s: frame %llu's count %lld is outside the datasets",
-                           h5, (unsigned long long)k, (long long)count64[k]);
-                goto done;
-            }
-            counts[k] = (size_t)count64[k];
-        }
     }
     size_t npresent = 0;
     for (size_t i = 0; i < tlsph_nfields; i++) {
@@ -284,13 +307,10 @@ static long rewrite_sidecar(const char *h5, const char *xmf, char *err, size_t e
     }
     frames = (long)nframes;
 done:
-    h5r_close(&cnt, H5Dclose);
     h5r_close(&value, H5Dclose);
-    h5r_close(&time, H5Dclose);
     h5r_close(&step, H5Dclose);
     h5r_close(&f, H5Fclose);
     free(times);
-    free(count64);
     free(counts);
     free(present);
     return frames;

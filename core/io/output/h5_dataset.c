@@ -63,8 +63,11 @@ void tlsph_h5_error_text(char buf[256])
         snprintf(buf, 256, "unknown HDF5 error");
 }
 
-hid_t tlsph_h5_chunked(hid_t loc, const char *name, hid_t ftype, int rank, const hsize_t *dims,
-                       const hsize_t *maxdims, const hsize_t *chunk, int compress)
+/* A chunked dataset; integer_fill != NULL: its fill value for integer file
+ * types (float types keep HDF5's default, 0). */
+static hid_t create_chunked(hid_t loc, const char *name, hid_t ftype, int rank,
+                            const hsize_t *dims, const hsize_t *maxdims, const hsize_t *chunk,
+                            int compress, const int64_t *integer_fill)
 {
     hid_t space = H5Screate_simple(rank, dims, maxdims);
     hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
@@ -72,6 +75,9 @@ hid_t tlsph_h5_chunked(hid_t loc, const char *name, hid_t ftype, int rank, const
     if (space < 0 || dcpl < 0)
         goto done;
     if (H5Pset_chunk(dcpl, rank, chunk) < 0)
+        goto done;
+    if (integer_fill && H5Tget_class(ftype) == H5T_INTEGER &&
+        H5Pset_fill_value(dcpl, H5T_NATIVE_INT64, integer_fill) < 0)
         goto done;
     if (compress && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, DEFLATE_LEVEL) < 0))
         goto done;
@@ -82,6 +88,12 @@ done:
     if (space >= 0)
         H5Sclose(space);
     return ds;
+}
+
+hid_t tlsph_h5_chunked(hid_t loc, const char *name, hid_t ftype, int rank, const hsize_t *dims,
+                       const hsize_t *maxdims, const hsize_t *chunk, int compress)
+{
+    return create_chunked(loc, name, ftype, rank, dims, maxdims, chunk, compress, NULL);
 }
 
 hid_t tlsph_h5_extendible(hid_t loc, const char *name, hid_t ftype, int rank, const hsize_t *tail,
@@ -96,30 +108,12 @@ hid_t tlsph_h5_extendible(hid_t loc, const char *name, hid_t ftype, int rank, co
 hid_t tlsph_h5_frames_dataset(hid_t loc, const char *name, hid_t ftype, int ncomp, size_t n0,
                               size_t nchunk, int compress)
 {
-    const int rank = ncomp > 1 ? 3 : 2;
     const hsize_t dims[3] = {0, n0, (hsize_t)ncomp};
     const hsize_t maxdims[3] = {H5S_UNLIMITED, H5S_UNLIMITED, (hsize_t)ncomp};
     const hsize_t chunk[3] = {1, nchunk, (hsize_t)ncomp};
     const int64_t none = -1; /* integer fields: no particle (ids and bodies are >= 0) */
-    hid_t space = H5Screate_simple(rank, dims, maxdims);
-    hid_t dcpl = H5Pcreate(H5P_DATASET_CREATE);
-    hid_t ds = H5I_INVALID_HID;
-    if (space < 0 || dcpl < 0)
-        goto done;
-    if (H5Pset_chunk(dcpl, rank, chunk) < 0)
-        goto done;
-    if (H5Tget_class(ftype) == H5T_INTEGER &&
-        H5Pset_fill_value(dcpl, H5T_NATIVE_INT64, &none) < 0)
-        goto done;
-    if (compress && (H5Pset_shuffle(dcpl) < 0 || H5Pset_deflate(dcpl, DEFLATE_LEVEL) < 0))
-        goto done;
-    ds = H5Dcreate2(loc, name, ftype, space, H5P_DEFAULT, dcpl, H5P_DEFAULT);
-done:
-    if (dcpl >= 0)
-        H5Pclose(dcpl);
-    if (space >= 0)
-        H5Sclose(space);
-    return ds;
+    return create_chunked(loc, name, ftype, ncomp > 1 ? 3 : 2, dims, maxdims, chunk, compress,
+                          &none);
 }
 
 int tlsph_h5_string_dataset(hid_t loc, const char *name, const char *text,
@@ -147,25 +141,17 @@ done:
     return rc;
 }
 
-int tlsph_h5_append_rows(hid_t ds, hid_t mtype, size_t have, size_t rows, hid_t mspace,
-                         const void *buf)
+/* Extends ds (rank 1..3) to dims and writes the block start .. start + count
+ * of buf (memory selection mspace, or contiguous when H5I_INVALID_HID), then
+ * flushes ds. */
+static int extend_and_write(hid_t ds, hid_t mtype, int rank, const hsize_t *dims,
+                            const hsize_t *start, const hsize_t *count, hid_t mspace,
+                            const void *buf)
 {
     int rc = -1;
-    hid_t fspace = H5Dget_space(ds), ms = H5I_INVALID_HID;
-    if (fspace < 0)
-        return -1;
-    hsize_t dims[3], start[3] = {have, 0, 0}, count[3];
-    int rank = H5Sget_simple_extent_ndims(fspace);
-    if (rank < 1 || rank > 3 || H5Sget_simple_extent_dims(fspace, dims, NULL) < 0)
-        goto done;
-    H5Sclose(fspace);
-    fspace = H5I_INVALID_HID;
-    dims[0] = have + rows;
+    hid_t fspace = H5I_INVALID_HID, ms = H5I_INVALID_HID;
     if (H5Dset_extent(ds, dims) < 0 || (fspace = H5Dget_space(ds)) < 0)
         goto done;
-    count[0] = rows;
-    for (int r = 1; r < rank; r++)
-        count[r] = dims[r];
     if (H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) < 0)
         goto done;
     if (mspace < 0 && (ms = H5Screate_simple(rank, count, NULL)) < 0)
@@ -183,38 +169,43 @@ done:
     return rc;
 }
 
-int tlsph_h5_append_frame(hid_t ds, hid_t mtype, size_t have, size_t n, const void *buf)
+/* The rank (lo..3) and current extent of ds; the rank, or -1. */
+static int extent(hid_t ds, int lo, hsize_t dims[3])
 {
-    int rc = -1;
-    hid_t fspace = H5Dget_space(ds), ms = H5I_INVALID_HID;
+    hid_t fspace = H5Dget_space(ds);
     if (fspace < 0)
         return -1;
-    hsize_t dims[3], start[3] = {have, 0, 0}, count[3] = {1, n, 0};
     int rank = H5Sget_simple_extent_ndims(fspace);
-    if (rank < 2 || rank > 3 || H5Sget_simple_extent_dims(fspace, dims, NULL) < 0)
-        goto done;
+    if (rank < lo || rank > 3 || H5Sget_simple_extent_dims(fspace, dims, NULL) < 0)
+        rank = -1;
     H5Sclose(fspace);
-    fspace = H5I_INVALID_HID;
+    return rank;
+}
+
+int tlsph_h5_append_rows(hid_t ds, hid_t mtype, size_t have, size_t rows, hid_t mspace,
+                         const void *buf)
+{
+    hsize_t dims[3], start[3] = {have, 0, 0}, count[3];
+    const int rank = extent(ds, 1, dims);
+    if (rank < 0)
+        return -1;
+    dims[0] = have + rows;
+    count[0] = rows;
+    for (int r = 1; r < rank; r++)
+        count[r] = dims[r];
+    return extend_and_write(ds, mtype, rank, dims, start, count, mspace, buf);
+}
+
+int tlsph_h5_append_frame(hid_t ds, hid_t mtype, size_t have, size_t n, const void *buf)
+{
+    hsize_t dims[3], start[3] = {have, 0, 0}, count[3] = {1, n, 0};
+    const int rank = extent(ds, 2, dims);
+    if (rank < 0)
+        return -1;
     dims[0] = have + 1;
     if (dims[1] < n)
         dims[1] = n;
     if (rank == 3)
         count[2] = dims[2];
-    if (H5Dset_extent(ds, dims) < 0 || (fspace = H5Dget_space(ds)) < 0)
-        goto done;
-    if (H5Sselect_hyperslab(fspace, H5S_SELECT_SET, start, NULL, count, NULL) < 0)
-        goto done;
-    if ((ms = H5Screate_simple(rank, count, NULL)) < 0)
-        goto done;
-    if (n && H5Dwrite(ds, mtype, ms, fspace, H5P_DEFAULT, buf) < 0)
-        goto done;
-    if (H5Dflush(ds) < 0)
-        goto done;
-    rc = 0;
-done:
-    if (ms >= 0)
-        H5Sclose(ms);
-    if (fspace >= 0)
-        H5Sclose(fspace);
-    return rc;
+    return extend_and_write(ds, mtype, rank, dims, start, count, H5I_INVALID_HID, buf);
 }
