@@ -9,7 +9,9 @@
 #     daemon before the job is final: downloaded through the API it opens with
 #     plain h5py (no swmr=True) and holds finite data for its complete frames,
 #     and its sidecar references complete frames only (killed_result.py);
-#     (and, where pvpython exists, ParaView's XDMF Reader reads it);
+#     (and, where pvpython exists, ParaView's XDMF Reader reads it); the
+#     same for a thin plate's file (the layout for changing particle counts:
+#     the repaired sidecar gives each frame its count);
 #     without h5clear (TLSPHD_H5CLEAR="") the job's message says so, and the
 #     next daemon repairs the file at start-up;
 #   - a bare tlsph-run killed with -9: `h5clear -s` (what HDF5's error message
@@ -117,6 +119,32 @@ if command -v h5clear >/dev/null; then
             bash -c "pvpython '$here/paraview_open.py' '$TMP/j3/result.xmf' >'$TMP/pv.log' 2>&1 || { cat '$TMP/pv.log'; false; }"
     else
         echo "# SKIP: pvpython (Debian: python3-paraview) missing: no ParaView check"
+    fi
+    # a thin plate (thickness_axis): its file has the layout for changing
+    # particle counts (docs/output.md); the repaired sidecar gives each frame
+    # its count from /particles/solid/count
+    "$PY" -c "import json; print(json.dumps({'inputs': {'scene': {'dimension': 3, 'time': {'end': 1e-3}, 'output': {'frames': 400},
+        'materials': {'s': {'density': 7850, 'youngs_modulus': 2.1e11, 'poisson_ratio': 0.3}},
+        'bodies': [{'name': 'plate', 'material': 's', 'spacing': 1e-3, 'thickness_axis': 'z',
+                    'geometry': {'box': {'min': [0, 0, 0], 'max': [0.03, 0.03, 0.003]}},
+                    'initial_velocity': ['0', '0', '10*sin(3.14159*x/0.03)']}]}}}))" >"$TMP/thin.json"
+    J6=$(submit "$E_URL" "$TMP/thin.json")
+    kill_engine_of "$E_URL" "$J6"
+    req GET "$E_URL/jobs/$J6/results/result.h5"
+    cp "$BODY" "$TMP/j6.h5"
+    req GET "$E_URL/jobs/$J6/results/result.xmf"
+    cp "$BODY" "$TMP/j6.xmf"
+    check "killed thin-plate job (changing-count layout): plain h5py, finite complete frames" \
+        killed_result "$TMP/j6.h5" "$TMP/j6.xmf"
+    check "  its sidecar gives every complete frame its count" "$PY" -c "
+import sys, h5py, xml.etree.ElementTree as ET
+c = h5py.File(sys.argv[1], 'r')['particles/solid/count/value'][:]
+g = [int(t.get('NumberOfElements')) for t in ET.parse(sys.argv[2]).getroot().iter('Topology')]
+sys.exit(not (len(g) >= 2 and g == list(c[:len(g)]) and len(g) == len(h5py.File(sys.argv[1], 'r')['particles/solid/position/step'])))" "$TMP/j6.h5" "$TMP/j6.xmf"
+    if command -v pvpython >/dev/null; then
+        mkdir -p "$TMP/j6" && cp "$TMP/j6.h5" "$TMP/j6/result.h5" && cp "$TMP/j6.xmf" "$TMP/j6/result.xmf"
+        check "  ParaView's XDMF Reader reads its frames (pvpython)" \
+            bash -c "pvpython '$here/paraview_open.py' '$TMP/j6/result.xmf' >'$TMP/pv6.log' 2>&1 || { cat '$TMP/pv6.log'; false; }"
     fi
 else
     echo "# SKIP: h5clear (hdf5-tools) missing: no repair checks"
