@@ -1,7 +1,8 @@
 /* The result file of a run whose particle count changes (io/output/output.h,
  * docs/output.md "Changing particle counts"): a free plate is stepped and
- * written, a fibre is split (crack/split.h, the library call: no crack driver
- * yet), it is stepped and written again, a second fibre is split, and so on.
+ * written, a fibre is split with the crack's facets up to it (crack/split.h,
+ * the library call: no crack driver yet), it is stepped and written again, a
+ * second fibre is split, and so on; every step passes the stability contract.
  * The file is then read back by an independent reader, h5py under the system
  * Python (tests/engine/output_count_check.py), against the facts this test
  * writes beside it (facts.json: each frame's count, each split's parent ids,
@@ -67,10 +68,27 @@ static size_t fibre_near(const struct tlsph_model *m, double x, double y, size_t
     return n;
 }
 
+/* n steps, each passing the stability contract (energy balance, det F,
+ * finite values): the split run stays a sane run */
 static void steps(struct tlsph_model *m, int n)
 {
-    for (int s = 0; s < n; s++)
+    struct tlsph_diagnostic d;
+    for (int s = 0; s < n; s++) {
         tlsph_model_step(m);
+        ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+    }
+}
+
+/* The crack as split e leaves it: the plane y = yt from 2 mm behind the
+ * first fibre to fibre e at x_e, through the thickness and beyond, as two
+ * triangles (the facets the crack driver would add). */
+static void grow_crack(struct tlsph_crack_surface *cs, double yt, double x_behind, double x_e)
+{
+    const double zlo = -0.001, zhi = 0.004;
+    const double lower[3][3] = {{x_behind, yt, zlo}, {x_e, yt, zlo}, {x_e, yt, zhi}};
+    const double upper[3][3] = {{x_behind, yt, zlo}, {x_e, yt, zhi}, {x_behind, yt, zhi}};
+    ck_assert_int_eq(tlsph_crack_surface_add(cs, lower), TLSPH_CRACK_OK);
+    ck_assert_int_eq(tlsph_crack_surface_add(cs, upper), TLSPH_CRACK_OK);
 }
 
 static void remove_dir(const char *dir)
@@ -117,13 +135,16 @@ START_TEST(changing_count_read_back)
     ck_assert_int_eq(tlsph_output_frame(o, m), 0);
     fprintf(facts, ", %zu", m->p.n);
     /* each event: the parents' ids and masses (before), the halves' ids (after) */
+    struct tlsph_crack_surface cs;
+    ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * 0.001), TLSPH_CRACK_OK);
     int64_t pid[EVENTS][MAXF], h1[EVENTS][MAXF], h2[EVENTS][MAXF];
     double pmass[EVENTS][MAXF];
     size_t kk[EVENTS];
     for (int e = 0; e < EVENTS; e++) {
         size_t parent[MAXF];
         /* the row at rest, y = 0.0045, from the left edge (lattice x = 0.0005) */
-        const size_t k = fibre_near(m, 0.0005 + 0.001 * e, 0.0045, parent);
+        const double xe = 0.0005 + 0.001 * e;
+        const size_t k = fibre_near(m, xe, 0.0045, parent);
         ck_assert_uint_eq(k, 3);
         kk[e] = k;
         for (size_t s = 0; s < k; s++) {
@@ -131,8 +152,10 @@ START_TEST(changing_count_read_back)
             pmass[e][s] = m->p.mass[parent[s]];
         }
         const size_t n0 = m->p.n, at = m->body_end[0];
+        const size_t first = cs.nfacets;
+        grow_crack(&cs, 0.0045, e ? xe - 0.001 : xe - 0.002, xe);
         struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
-        ck_assert_int_eq(tlsph_split_particles(m, &sp, NULL, 0, NULL, NULL, &err), 0);
+        ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, first, NULL, NULL, &err), 0);
         ck_assert_uint_eq(m->p.n, n0 + k);
         for (size_t s = 0; s < k; s++) {
             h1[e][s] = m->p.id[parent[s]]; /* half 1 keeps the index */
@@ -156,6 +179,7 @@ START_TEST(changing_count_read_back)
     struct tlsph_cost cost = {.particles = m->p.n, .steps = m->step, .threads = 1};
     ck_assert_int_eq(tlsph_output_close(o, m, &cost, "successful", NULL), 0);
     tlsph_errors_free(&err);
+    tlsph_crack_surface_release(&cs);
     ck_assert_int_eq(run_checker(dir), 0);
     remove_dir(dir);
     tlsph_model_free(m);
