@@ -2,6 +2,11 @@
 tests/engine/test_output_count.c) with h5py alone, as a user would, and
 checks it against DIR/facts.json: usage  python3 output_count_check.py DIR
 
+While the writer still holds the file (SWMR): output_count_check.py live DIR
+COUNT0 COUNT1 ... checks that a SWMR reader sees those frames' counts, each
+frame's ids unique and >= 0 and its masses > 0, the entries past the count
+the fill value.
+
  - /particles/solid/count/value holds each frame's count;
  - every field is per frame, [F, Nmax(, C)], Nmax the largest count; the
    entries past a frame's count hold the fill value (0; -1 for id and body);
@@ -142,5 +147,28 @@ def main(d):
     return 0
 
 
+def live(d, counts):
+    with h5py.File(os.path.join(d, "result.h5"), "r", libver="latest", swmr=True) as f:
+        solid = f["particles/solid"]
+        step, count = solid["position/step"], solid["count/value"]
+        ids, mass = solid["id/value"], solid["mass/value"]
+        for ds in (step, count, ids, mass):
+            ds.refresh()
+        F = step.shape[0]
+        got = [int(c) for c in count[:F]]
+        if got != counts:
+            fail("live: counts %s, expected %s" % (got, counts))
+        for k, n in enumerate(counts):
+            i, m = ids[k], mass[k]
+            if len(set(i[:n].tolist())) != n or i[:n].min() < 0 or not np.all(i[n:] == -1):
+                fail("live: frame %d ids" % k)
+            if not np.all(m[:n] > 0) or not np.all(m[n:] == 0):
+                fail("live: frame %d masses" % k)
+    print("live (SWMR, the writer still writing): %d frames, counts %s" % (F, counts))
+    return 0
+
+
 if __name__ == "__main__":
+    if sys.argv[1] == "live":
+        sys.exit(live(sys.argv[2], [int(c) for c in sys.argv[3:]]))
     sys.exit(main(sys.argv[1]))

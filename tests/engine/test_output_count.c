@@ -6,7 +6,8 @@
  * The file is then read back by an independent reader, h5py under the system
  * Python (tests/engine/output_count_check.py), against the facts this test
  * writes beside it (facts.json: each frame's count, each split's parent ids,
- * masses and the halves' new ids), and, where ParaView is installed, through
+ * masses and the halves' new ids), by a SWMR reader while the file is still
+ * being written (after the second split), and, where ParaView is installed, through
  * the XDMF sidecar with ParaView's "XDMF Reader" (every frame's number of
  * points and one field's range).  References: the counts and ids are exact;
  * the halves' masses sum to the parent's to one rounding (split.h: m2 = m -
@@ -102,16 +103,18 @@ static void remove_dir(const char *dir)
     ck_assert_int_eq(rmdir(dir), 0);
 }
 
-/* Runs the system Python's h5py check (and ParaView's, where installed) on dir. */
-static int run_checker(const char *dir)
+/* Runs the system Python's h5py check (and ParaView's, where installed) on
+ * dir; live: "live" and the counts written so far, while the writer holds the
+ * file (a SWMR reader). */
+static int run_checker(const char *dir, const char *live)
 {
     const char *py = getenv("SYSTEM_PYTHON");
     const char *top = getenv("top_srcdir");
     if (!py || !*py || strcmp(py, "no") == 0)
         py = "/usr/bin/python3";
     char cmd[1024];
-    snprintf(cmd, sizeof cmd, "'%s' '%s/tests/engine/output_count_check.py' '%s'", py,
-             top ? top : ".", dir);
+    snprintf(cmd, sizeof cmd, "'%s' '%s/tests/engine/output_count_check.py' %s '%s' %s", py,
+             top ? top : ".", live ? "live" : "", dir, live ? live : "");
     return system(cmd);
 }
 
@@ -129,11 +132,15 @@ START_TEST(changing_count_read_back)
     tlsph_errors_init(&err);
     struct tlsph_output *o = tlsph_output_open_with(dir, m, 1, &err);
     ck_assert_msg(o != NULL, "%s", err.count ? err.items[0].message : "");
+    char counts[256] = ""; /* the counts written so far, for the live reader */
+    size_t len = 0;
     fprintf(facts, "{\"counts\": [%zu", m->p.n);
     ck_assert_int_eq(tlsph_output_frame(o, m), 0);
+    len += (size_t)snprintf(counts + len, sizeof counts - len, "%zu", m->p.n);
     steps(m, 3);
     ck_assert_int_eq(tlsph_output_frame(o, m), 0);
     fprintf(facts, ", %zu", m->p.n);
+    len += (size_t)snprintf(counts + len, sizeof counts - len, " %zu", m->p.n);
     /* each event: the parents' ids and masses (before), the halves' ids (after) */
     struct tlsph_crack_surface cs;
     ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * 0.001), TLSPH_CRACK_OK);
@@ -164,6 +171,9 @@ START_TEST(changing_count_read_back)
         steps(m, 3);
         ck_assert_int_eq(tlsph_output_frame(o, m), 0);
         fprintf(facts, ", %zu", m->p.n);
+        len += (size_t)snprintf(counts + len, sizeof counts - len, " %zu", m->p.n);
+        if (e == 1) /* a reader while the run writes sees the grown frames */
+            ck_assert_int_eq(run_checker(dir, counts), 0);
     }
     /* a frame of the same count again: nothing new */
     steps(m, 2);
@@ -180,7 +190,7 @@ START_TEST(changing_count_read_back)
     ck_assert_int_eq(tlsph_output_close(o, m, &cost, "successful", NULL), 0);
     tlsph_errors_free(&err);
     tlsph_crack_surface_release(&cs);
-    ck_assert_int_eq(run_checker(dir), 0);
+    ck_assert_int_eq(run_checker(dir, NULL), 0);
     remove_dir(dir);
     tlsph_model_free(m);
 }
