@@ -6,7 +6,8 @@
  *  - the file uses the latest format (libver bounds LATEST, LATEST);
  *  - every group, dataset and attribute is created in tlsph_output_open (by
  *    layout.c), then H5Fstart_swmr_write; nothing is created afterwards.  The
- *    writer only extends datasets along their unlimited first axis and
+ *    writer only extends datasets along their unlimited axes (the first; with
+ *    a changing particle count also the particle axis, output.h) and
  *    overwrites existing values: /cost and /diagnostics attributes are
  *    pre-created with placeholder values of fixed size (fixed-length strings,
  *    fixed-size arrays; records.c) and rewritten in place at close (tested:
