@@ -284,6 +284,39 @@ FORCE_LOOPS(intact, TLSPH_APPROX_INTACT)
 FORCE_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
 FORCE_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
 FORCE_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
+/* The same per particle for a list of rows (tlsph_forces_rows): the rows'
+ * sums are those of the full pass bit for bit; the power is not wanted. */
+typedef void (*force_rows_loop)(struct tlsph_model *, const size_t *, size_t,
+                                const struct body_constants *);
+#define FORCE_ROWS_LOOP(NAME, HG, VISC, VARIANT)                                                  \
+    static void NAME(struct tlsph_model *m, const size_t *rows, size_t nrows,                     \
+                     const struct body_constants *bc)                                             \
+    {                                                                                             \
+        double hg = 0.0, visc = 0.0;                                                              \
+        _Pragma("omp parallel for schedule(static) reduction(+ : hg, visc) if (nrows >= TLSPH_PARALLEL_MIN_ITEMS)") \
+        for (size_t r = 0; r < nrows; r++)                                                        \
+            force_particle(m, rows[r], bc, HG, VISC, VARIANT, &hg, &visc);                        \
+        (void)hg;                                                                                 \
+        (void)visc;                                                                               \
+    }
+#define FORCE_ROWS_LOOPS(SUFFIX, VARIANT)                                                         \
+    FORCE_ROWS_LOOP(rows_00_##SUFFIX, 0, 0, VARIANT)                                              \
+    FORCE_ROWS_LOOP(rows_01_##SUFFIX, 0, 1, VARIANT)                                              \
+    FORCE_ROWS_LOOP(rows_10_##SUFFIX, 1, 0, VARIANT)                                              \
+    FORCE_ROWS_LOOP(rows_11_##SUFFIX, 1, 1, VARIANT)
+#define FORCE_ROWS_ROW(SUFFIX)                                                                    \
+    {{rows_00_##SUFFIX, rows_01_##SUFFIX}, {rows_10_##SUFFIX, rows_11_##SUFFIX}}
+FORCE_ROWS_LOOPS(intact, TLSPH_APPROX_INTACT)
+FORCE_ROWS_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
+FORCE_ROWS_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
+FORCE_ROWS_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
+static const force_rows_loop force_rows_loops[TLSPH_APPROX_COUNT][2][2] = {
+    [TLSPH_APPROX_INTACT] = FORCE_ROWS_ROW(intact),
+    [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROWS_ROW(damage_aware),
+    [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROWS_ROW(pseudo_spring),
+    [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROWS_ROW(virtual_links),
+};
+
 /* [crack treatment][hourglass][viscosity] */
 static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
     [TLSPH_APPROX_INTACT] = FORCE_ROW(intact),
@@ -292,20 +325,31 @@ static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
     [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(virtual_links),
 };
 
+static struct body_constants body_constants(const struct tlsph_scene *s, size_t b)
+{
+    const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
+    return (struct body_constants){
+        .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
+        .c = mat->wave_speed,
+        .rho0 = mat->density,
+        .beta1 = s->viscosity_linear,
+        .beta2 = s->viscosity_quadratic,
+    };
+}
+
+void tlsph_forces_rows(struct tlsph_model *m, size_t body, const size_t *rows, size_t nrows)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const struct body_constants bc = body_constants(s, body);
+    force_rows_loops[m->crack->variant][s->hourglass != 0][s->viscosity != 0](m, rows, nrows, &bc);
+}
+
 struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
 {
     struct tlsph_force_power pw = {0.0, 0.0};
     const struct tlsph_scene *s = &m->scene;
     for (size_t b = 0; b < s->nbodies; b++) {
-        const struct tlsph_body *body = &s->bodies[b];
-        const struct tlsph_material *mat = &s->materials[body->material];
-        const struct body_constants bc = {
-            .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
-            .c = mat->wave_speed,
-            .rho0 = mat->density,
-            .beta1 = s->viscosity_linear,
-            .beta2 = s->viscosity_quadratic,
-        };
+        const struct body_constants bc = body_constants(s, b);
         const size_t lo = m->body_begin[b], hi = m->body_end[b];
         force_loops[m->crack->variant][s->hourglass != 0][s->viscosity != 0](
             m, lo, hi, &bc, &pw.hourglass, &pw.viscous);
