@@ -27,27 +27,26 @@ int tlsph_split_forces_prepare(const struct tlsph_model *m, const struct tlsph_r
     const size_t k = plan->k;
     const int64_t *start = m->pairs.start;
     /* the affected rows that existed before (the halves are new), old indices,
-     * and their old partners */
+     * and their old partners: counted, then listed */
     size_t count = 0;
-    for (size_t r = 0; r < plan->nrows; r++) {
-        const size_t i = plan->rows[r];
-        if (i >= at && i < at + k)
-            continue;
-        const size_t o = i < at ? i : i - k;
-        count += 1 + (size_t)(start[o + 1] - start[o]);
+    for (int pass = 0; pass < 2; pass++) {
+        for (size_t r = 0; r < plan->nrows; r++) {
+            const size_t i = plan->rows[r];
+            if (i >= at && i < at + k)
+                continue;
+            const size_t o = i < at ? i : i - k;
+            if (pass == 0) {
+                count += 1 + (size_t)(start[o + 1] - start[o]);
+                continue;
+            }
+            sf->rows[sf->nrows++] = o;
+            for (int64_t e = start[o]; e < start[o + 1]; e++)
+                sf->rows[sf->nrows++] = (size_t)m->pairs.j[e];
+        }
+        if (pass == 0 && !(sf->rows = malloc((count + k) * sizeof *sf->rows)))
+            return -1;
     }
-    if (!(sf->rows = malloc((count + k) * sizeof *sf->rows)))
-        return -1;
-    size_t c = 0;
-    for (size_t r = 0; r < plan->nrows; r++) {
-        const size_t i = plan->rows[r];
-        if (i >= at && i < at + k)
-            continue;
-        const size_t o = i < at ? i : i - k;
-        sf->rows[c++] = o;
-        for (int64_t e = start[o]; e < start[o + 1]; e++)
-            sf->rows[c++] = (size_t)m->pairs.j[e];
-    }
+    const size_t c = sf->nrows;
     qsort(sf->rows, c, sizeof *sf->rows, cmp_size);
     size_t u = 0;
     for (size_t a = 0; a < c; a++)

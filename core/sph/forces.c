@@ -272,18 +272,6 @@ typedef void (*force_loop)(struct tlsph_model *, size_t, size_t, const struct bo
         *p_hg += hg;                                                                              \
         *p_visc += visc;                                                                          \
     }
-#define FORCE_LOOPS(SUFFIX, VARIANT)                                                              \
-    FORCE_LOOP(loop_00_##SUFFIX, 0, 0, VARIANT)                                                   \
-    FORCE_LOOP(loop_01_##SUFFIX, 0, 1, VARIANT)                                                   \
-    FORCE_LOOP(loop_10_##SUFFIX, 1, 0, VARIANT)                                                   \
-    FORCE_LOOP(loop_11_##SUFFIX, 1, 1, VARIANT)
-/* [hourglass][viscosity] of one treatment */
-#define FORCE_ROW(SUFFIX)                                                                         \
-    {{loop_00_##SUFFIX, loop_01_##SUFFIX}, {loop_10_##SUFFIX, loop_11_##SUFFIX}}
-FORCE_LOOPS(intact, TLSPH_APPROX_INTACT)
-FORCE_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
-FORCE_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
-FORCE_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
 /* The same per particle for a list of rows (tlsph_forces_rows): the rows'
  * sums are those of the full pass bit for bit; the power is not wanted. */
 typedef void (*force_rows_loop)(struct tlsph_model *, const size_t *, size_t,
@@ -299,31 +287,31 @@ typedef void (*force_rows_loop)(struct tlsph_model *, const size_t *, size_t,
         (void)hg;                                                                                 \
         (void)visc;                                                                               \
     }
-#define FORCE_ROWS_LOOPS(SUFFIX, VARIANT)                                                         \
-    FORCE_ROWS_LOOP(rows_00_##SUFFIX, 0, 0, VARIANT)                                              \
-    FORCE_ROWS_LOOP(rows_01_##SUFFIX, 0, 1, VARIANT)                                              \
-    FORCE_ROWS_LOOP(rows_10_##SUFFIX, 1, 0, VARIANT)                                              \
-    FORCE_ROWS_LOOP(rows_11_##SUFFIX, 1, 1, VARIANT)
-#define FORCE_ROWS_ROW(SUFFIX)                                                                    \
-    {{rows_00_##SUFFIX, rows_01_##SUFFIX}, {rows_10_##SUFFIX, rows_11_##SUFFIX}}
-FORCE_ROWS_LOOPS(intact, TLSPH_APPROX_INTACT)
-FORCE_ROWS_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
-FORCE_ROWS_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
-FORCE_ROWS_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
-static const force_rows_loop force_rows_loops[TLSPH_APPROX_COUNT][2][2] = {
-    [TLSPH_APPROX_INTACT] = FORCE_ROWS_ROW(intact),
-    [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROWS_ROW(damage_aware),
-    [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROWS_ROW(pseudo_spring),
-    [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROWS_ROW(virtual_links),
-};
-
-/* [crack treatment][hourglass][viscosity] */
-static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
-    [TLSPH_APPROX_INTACT] = FORCE_ROW(intact),
-    [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(damage_aware),
-    [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(pseudo_spring),
-    [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(virtual_links),
-};
+/* LOOP instantiated as P_<hg><visc>_<treatment> for every combination, and
+ * the [crack treatment][hourglass][viscosity] table of them */
+#define FORCE_LOOPS(LOOP, P, SUFFIX, VARIANT)                                                     \
+    LOOP(P##_00_##SUFFIX, 0, 0, VARIANT)                                                          \
+    LOOP(P##_01_##SUFFIX, 0, 1, VARIANT)                                                          \
+    LOOP(P##_10_##SUFFIX, 1, 0, VARIANT)                                                          \
+    LOOP(P##_11_##SUFFIX, 1, 1, VARIANT)
+#define FORCE_ALL(LOOP, P)                                                                        \
+    FORCE_LOOPS(LOOP, P, intact, TLSPH_APPROX_INTACT)                                             \
+    FORCE_LOOPS(LOOP, P, damage_aware, TLSPH_APPROX_DAMAGE_AWARE)                                 \
+    FORCE_LOOPS(LOOP, P, pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)                               \
+    FORCE_LOOPS(LOOP, P, virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
+/* [hourglass][viscosity] of one treatment */
+#define FORCE_ROW(P, SUFFIX) {{P##_00_##SUFFIX, P##_01_##SUFFIX}, {P##_10_##SUFFIX, P##_11_##SUFFIX}}
+#define FORCE_TABLE(P)                                                                            \
+    {                                                                                             \
+        [TLSPH_APPROX_INTACT] = FORCE_ROW(P, intact),                                             \
+        [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(P, damage_aware),                                 \
+        [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(P, pseudo_spring),                               \
+        [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(P, virtual_links),                               \
+    }
+FORCE_ALL(FORCE_LOOP, loop)
+FORCE_ALL(FORCE_ROWS_LOOP, rows)
+static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = FORCE_TABLE(loop);
+static const force_rows_loop force_rows_loops[TLSPH_APPROX_COUNT][2][2] = FORCE_TABLE(rows);
 
 static struct body_constants body_constants(const struct tlsph_scene *s, size_t b)
 {

@@ -563,6 +563,21 @@ static double verlet_term(const struct tlsph_model *m, double dt)
     return dt * dt / 8.0 * s;
 }
 
+/* The crack from outside the plate to the fibre nearest x = 5 mm (inits
+ * *cs), and that fibre split with a 45-degree turn (phi = 3pi/4 and 5pi/4);
+ * fills parent, returns the fibre's size. */
+static size_t split_turned(struct tlsph_model *m, struct tlsph_crack_surface *cs, size_t *parent)
+{
+    const size_t k = crack_to_fibre(m, cs, 0.005, parent);
+    const double s = sqrt(0.5);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {s, s, 0}, {-DELTA * s, DELTA * s, 0}};
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, cs, 0, NULL, NULL, &err), 0);
+    tlsph_errors_free(&err);
+    return k;
+}
+
 /* A free plate and block: 30 steps, a split of a fibre (with a 45-degree
  * turn: phi = 3pi/4 and 5pi/4), 60 more steps: momentum to 1e-12 of sum m|v|
  * over the whole run (check_momentum_kept's reference and tolerance), and the
@@ -577,13 +592,7 @@ START_TEST(momentum_after_split)
         tlsph_model_step(m);
     struct tlsph_crack_surface cs;
     size_t parent[MAXF];
-    const size_t k = crack_to_fibre(m, &cs, 0.005, parent);
-    const double s = sqrt(0.5);
-    struct tlsph_split sp = {parent, k, {1, 0, 0}, {s, s, 0}, {-DELTA * s, DELTA * s, 0}};
-    struct tlsph_errors err;
-    tlsph_errors_init(&err);
-    ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, 0, NULL, NULL, &err), 0);
-    tlsph_errors_free(&err);
+    const size_t k = split_turned(m, &cs, parent);
     ck_assert(fabs(m->p.mass[parent[0]] / (m->p.mass[parent[0]] + m->p.mass[m->body_end[0] - k]) -
                    0.375) < 1e-15);
     check_against_full(m, &cs);
@@ -631,13 +640,7 @@ START_TEST(split_forces_match_full_pass)
     (void)tlsph_forces(m);
     struct tlsph_crack_surface cs;
     size_t parent[MAXF];
-    const size_t k = crack_to_fibre(m, &cs, 0.005, parent);
-    const double s2 = sqrt(0.5);
-    struct tlsph_split sp = {parent, k, {1, 0, 0}, {s2, s2, 0}, {-DELTA * s2, DELTA * s2, 0}};
-    struct tlsph_errors err;
-    tlsph_errors_init(&err);
-    ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, 0, NULL, NULL, &err), 0);
-    tlsph_errors_free(&err);
+    (void)split_turned(m, &cs, parent);
     const size_t bytes = 3 * m->p.n * sizeof(double);
     double *local[3] = {malloc(bytes), malloc(bytes), malloc(bytes)};
     double *field[3] = {m->p.f, m->p.f_hourglass, m->p.f_viscous};
