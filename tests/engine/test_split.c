@@ -632,11 +632,15 @@ END_TEST
  * split; the free scene has no other force), in every stored field: p.f,
  * f_hourglass, f_viscous.  The plate is body 0, so the block's indices shift
  * by k and the unaffected rows must keep their forces through the move. */
-START_TEST(split_forces_match_full_pass)
+static void check_forces_after_split(const char *scene, int damaged)
 {
-    struct tlsph_model *m = build_model(free_scene);
+    struct tlsph_model *m = build_model(scene);
     for (int s = 0; s < 20; s++)
         tlsph_model_step(m);
+    double dmax = 0.0;
+    for (size_t i = 0; damaged && i < m->p.n; i++)
+        dmax = fmax(dmax, m->p.damage[i]);
+    ck_assert_msg(!damaged || dmax > 0.0, "no damage grew (max %g)", dmax);
     (void)tlsph_forces(m);
     struct tlsph_crack_surface cs;
     size_t parent[MAXF];
@@ -658,6 +662,36 @@ START_TEST(split_forces_match_full_pass)
     }
     tlsph_crack_surface_release(&cs);
     tlsph_model_free(m);
+}
+
+START_TEST(split_forces_match_full_pass)
+{
+    check_forces_after_split(free_scene, 0);
+}
+END_TEST
+
+/* The same with damage grown (Johnson-Cook, d1 = 3e-3: after 20 steps 90 of
+ * the 288 particles damaged, 87 of them failed) under the pseudo-spring
+ * treatment: the rows' loops of another crack treatment, with the damage
+ * weights and the failed rows that sum no pairs. */
+START_TEST(split_forces_match_full_pass_damaged)
+{
+    char scene[2048];
+    const char *at = strstr(free_scene, "\"poisson_ratio\":0.3}");
+    ck_assert_ptr_nonnull(at);
+    const int head = (int)(at - free_scene);
+    snprintf(scene, sizeof scene,
+             "%.*s\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
+             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},\"damage\":{\"type\":\"johnson_cook\","
+             "\"d1\":3e-3,\"d2\":0,\"d3\":0}}%s",
+             head, free_scene, at + strlen("\"poisson_ratio\":0.3}"));
+    char *disc = strstr(scene, "\"discretization\":{");
+    ck_assert_ptr_nonnull(disc);
+    char tail[2048];
+    snprintf(tail, sizeof tail, "%s", disc + strlen("\"discretization\":{"));
+    snprintf(disc, sizeof scene - (size_t)(disc - scene),
+             "\"discretization\":{\"damage\":{\"treatment\":\"pseudo_spring\"},%s", tail);
+    check_forces_after_split(scene, 1);
 }
 END_TEST
 
@@ -877,4 +911,4 @@ END_TEST
 
 TLSPH_CHECK_MAIN("split", 120, crack_grows_through_opening_plate, pressure_parent_refused, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
                  refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow,
-                 split_forces_match_full_pass)
+                 split_forces_match_full_pass, split_forces_match_full_pass_damaged)
