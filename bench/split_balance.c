@@ -22,47 +22,13 @@
 #include "crack/split.h"
 #include "run/integrate.h"
 #include "run/model.h"
+#include "support/split_plate.h"
 
 #define H 0.001
 #define DELTA 1e-5
 
 static const char *scene_format =
-    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000,\"cfl\":%g},"
-    "\"contact\":{\"enabled\":false},"
-    "\"discretization\":{\"hourglass\":{\"enabled\":true,\"coefficient\":1.0},"
-    "\"viscosity\":{\"enabled\":true,\"linear\":1.0,\"quadratic\":1.0}},"
-    "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},"
-    "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
-    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}},"
-    "\"initial_velocity\":[\"20*sin(500*x)+5\",\"30*cos(700*y*x*100)\",\"-10*x*y*1e5\"]},"
-    "{\"name\":\"block\",\"material\":\"m\",\"spacing\":0.001,"
-    "\"geometry\":{\"box\":{\"min\":[0.02,0,0],\"max\":[0.024,0.004,0.003]}},"
-    "\"initial_velocity\":[\"-3\",\"40*y*100\",\"0\"]}]}";
-
-/* The plate's lattice coordinate nearest v along axis. */
-static double lattice(const struct tlsph_model *m, int axis, double v)
-{
-    double best = INFINITY, at = 0.0;
-    for (size_t i = m->body_begin[0]; i < m->body_end[0]; i++) {
-        const double c = m->p.X[3 * i + axis];
-        if (fabs(c - v) < best) {
-            best = fabs(c - v);
-            at = c;
-        }
-    }
-    return at;
-}
-
-/* dt^2/8 sum_i |f_i|^2 / m_i, J */
-static double verlet_term(const struct tlsph_model *m, double dt)
-{
-    double s = 0.0;
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *f = m->p.f + 3 * i;
-        s += (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / m->p.mass[i];
-    }
-    return dt * dt / 8.0 * s;
-}
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000,\"cfl\":%g}," SPLIT_PLATE_AFTER_TIME;
 
 /* Adds the crack from x0 to x1 in the plane y = yt (through the thickness)
  * and splits the fibre at (x1, yt) with V2 = (c, s, 0), delta normal to it. */
@@ -115,11 +81,11 @@ int main(int argc, char **argv)
     struct tlsph_crack_surface cs;
     if (tlsph_crack_surface_init(&cs, 2.4 * H) != TLSPH_CRACK_OK)
         return 1;
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.005);
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, 0.005);
     const double r = sqrt(0.5);
     int rc = 0;
     if (which == 1) {
-        const double xb = lattice(m, 0, 0.004);
+        const double xb = split_plate_lattice(m, 0, 0.004);
         rc = split_at(m, &cs, yt, -H, xb, 1.0, 0.0);
         for (int s = 0; rc == 0 && s < 30; s++)
             tlsph_model_step(m);
@@ -131,20 +97,22 @@ int main(int argc, char **argv)
     if (rc != 0)
         return 1;
     const double dt0 = tlsph_next_dt(m);
-    printf("{\"cfl\":%g,\"split\":%d,\"case\":%d,\"dt\":%.4g,\"scale\":%.4g,\"verlet_term\":%.4g}\n",
-           cfl, split, which, dt0, m->energy.scale, verlet_term(m, dt0));
+    printf("{\"cfl\":%g,\"split\":%d,\"case\":%d,\"dt\":%.4g,\"scale\":%.4g,"
+           "\"verlet_term\":%.4g}\n",
+           cfl, split, which, dt0, m->energy.scale, split_plate_verlet_term(m, dt0));
     for (int s = 1; s <= steps; s++) {
         /* both half kicks of a step use its dt: the term of f_n at that dt */
-        const double term = verlet_term(m, tlsph_next_dt(m));
+        const double term = split_plate_verlet_term(m, tlsph_next_dt(m));
         const struct tlsph_energy a = m->energy;
         tlsph_model_step(m);
         const struct tlsph_energy *e = &m->energy;
-        const double next = verlet_term(m, m->dt);
+        const double next = split_plate_verlet_term(m, m->dt);
         const double moved = tlsph_energy_balance(e) - tlsph_energy_balance(&a);
         printf("{\"step\":%d,\"balance\":%.4g,\"kinetic\":%.4g,\"internal\":%.4g,"
                "\"hourglass\":%.4g,\"viscous\":%.4g,\"verlet_term\":%.4g,\"residual\":%.3g}\n",
                s, moved, e->kinetic - a.kinetic, e->internal - a.internal,
-               e->hourglass - a.hourglass, e->viscous - a.viscous, next - term, moved - (next - term));
+               e->hourglass - a.hourglass, e->viscous - a.viscous, next - term,
+               moved - (next - term));
     }
     tlsph_crack_surface_release(&cs);
     tlsph_model_free(m);

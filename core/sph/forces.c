@@ -300,7 +300,8 @@ typedef void (*force_rows_loop)(struct tlsph_model *, const size_t *, size_t,
     FORCE_LOOPS(LOOP, P, pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)                               \
     FORCE_LOOPS(LOOP, P, virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
 /* [hourglass][viscosity] of one treatment */
-#define FORCE_ROW(P, SUFFIX) {{P##_00_##SUFFIX, P##_01_##SUFFIX}, {P##_10_##SUFFIX, P##_11_##SUFFIX}}
+#define FORCE_ROW(P, SUFFIX)                                                                      \
+    {{P##_00_##SUFFIX, P##_01_##SUFFIX}, {P##_10_##SUFFIX, P##_11_##SUFFIX}}
 #define FORCE_TABLE(P)                                                                            \
     {                                                                                             \
         [TLSPH_APPROX_INTACT] = FORCE_ROW(P, intact),                                             \

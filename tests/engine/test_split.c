@@ -37,6 +37,7 @@
 #include "sph/neighbors.h"
 #include "support/check_main.h"
 #include "support/scene_builder.h"
+#include "support/split_plate.h"
 
 /* plate (body 0) and a block beside it (body 1: its indices shift by k) */
 static const char *plate_scene =
@@ -59,16 +60,7 @@ static const char *plate_scene =
 /* a free plate (momentum), every pair force on, beside a free block, at the
  * default time step (cfl 0.6) */
 static const char *free_scene =
-    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000},\"contact\":{\"enabled\":false},"
-    "\"discretization\":{\"hourglass\":{\"enabled\":true,\"coefficient\":1.0},"
-    "\"viscosity\":{\"enabled\":true,\"linear\":1.0,\"quadratic\":1.0}},"
-    "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},"
-    "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
-    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}},"
-    "\"initial_velocity\":[\"20*sin(500*x)+5\",\"30*cos(700*y*x*100)\",\"-10*x*y*1e5\"]},"
-    "{\"name\":\"block\",\"material\":\"m\",\"spacing\":0.001,"
-    "\"geometry\":{\"box\":{\"min\":[0.02,0,0],\"max\":[0.024,0.004,0.003]}},"
-    "\"initial_velocity\":[\"-3\",\"40*y*100\",\"0\"]}]}";
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000}," SPLIT_PLATE_AFTER_TIME;
 
 #define SPACING 0.001
 #define DELTA 1e-5
@@ -333,20 +325,6 @@ static struct event split_fibre(struct tlsph_model *m, struct tlsph_crack_surfac
     return ev;
 }
 
-/* Lattice coordinate nearest v on the plate's lattice (spacing SPACING). */
-static double lattice(const struct tlsph_model *m, int axis, double v)
-{
-    double best = INFINITY, at = 0.0;
-    for (size_t i = m->body_begin[0]; i < m->body_end[0]; i++) {
-        const double c = m->p.X[3 * i + axis];
-        if (fabs(c - v) < best) {
-            best = fabs(c - v);
-            at = c;
-        }
-    }
-    return at;
-}
-
 /* Momentum now against p0 (kg m/s), to 1e-12 of scale = sum m|v| at the start
  * (check_momentum_kept's tolerance). */
 static void check_momentum_since(const struct tlsph_model *m, const double p0[3], double scale)
@@ -364,7 +342,7 @@ static void check_momentum_since(const struct tlsph_model *m, const double p0[3]
 static size_t crack_to_fibre(struct tlsph_model *m, struct tlsph_crack_surface *cs, double x,
                              size_t *parent)
 {
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, x);
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, x);
     ck_assert_int_eq(tlsph_crack_surface_init(cs, 2.4 * SPACING), TLSPH_CRACK_OK);
     add_crack(cs, yt, -0.001, xa);
     return fibre(m, xa, yt, parent);
@@ -374,7 +352,8 @@ START_TEST(split_two_fibres)
 {
     struct tlsph_model *m = build_model(plate_scene);
     ck_assert_uint_eq(m->deficient_supports, 0);
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.0), xb = xa + SPACING;
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, 0.0);
+    const double xb = xa + SPACING;
     struct tlsph_crack_surface cs;
     ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
     /* group ids before: "hold" holds fibre A, "far" only block particles */
@@ -471,7 +450,7 @@ static unsigned long model_hash(struct tlsph_model *m)
 START_TEST(growth_failure_leaves_model)
 {
     struct tlsph_model *m = build_model(plate_scene);
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.0);
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, 0.0);
     struct tlsph_crack_surface cs;
     ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
     add_crack(&cs, yt, xa - 2 * SPACING, xa);
@@ -551,18 +530,6 @@ START_TEST(angles)
 }
 END_TEST
 
-/* dt^2/8 sum_i |f_i|^2 / m_i (J): the part of velocity Verlet's kinetic
- * energy at whole steps that no force's work books. */
-static double verlet_term(const struct tlsph_model *m, double dt)
-{
-    double s = 0.0;
-    for (size_t i = 0; i < m->p.n; i++) {
-        const double *f = m->p.f + 3 * i;
-        s += (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]) / m->p.mass[i];
-    }
-    return dt * dt / 8.0 * s;
-}
-
 /* The crack from outside the plate to the fibre nearest x = 5 mm (inits
  * *cs), and that fibre split with a 45-degree turn (phi = 3pi/4 and 5pi/4);
  * fills parent, returns the fibre's size. */
@@ -610,11 +577,11 @@ START_TEST(momentum_after_split)
      * halves' forces at the new faces raise sum |f|^2/m from 1.7e-3 to
      * 4.9e-3 J at dt^2/8 (docs/crack-growth.md). */
     const double dt = tlsph_next_dt(m);
-    const double s0 = verlet_term(m, dt), before = tlsph_energy_balance(&m->energy);
+    const double s0 = split_plate_verlet_term(m, dt), before = tlsph_energy_balance(&m->energy);
     tlsph_model_step(m);
     ck_assert(m->dt == dt);
     const double moved = tlsph_energy_balance(&m->energy) - before;
-    const double term = verlet_term(m, dt) - s0;
+    const double term = split_plate_verlet_term(m, dt) - s0;
     ck_assert_msg(fabs(moved - term) <= 1e-12 * m->energy.scale,
                   "balance moved %.6g J, the Verlet term %.6g J (scale %.3g J)", moved, term,
                   m->energy.scale);
@@ -682,7 +649,8 @@ START_TEST(split_forces_match_full_pass_damaged)
     const int head = (int)(at - free_scene);
     snprintf(scene, sizeof scene,
              "%.*s\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
-             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},\"damage\":{\"type\":\"johnson_cook\","
+             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
+             "\"damage\":{\"type\":\"johnson_cook\","
              "\"d1\":3e-3,\"d2\":0,\"d3\":0}}%s",
              head, free_scene, at + strlen("\"poisson_ratio\":0.3}"));
     char *disc = strstr(scene, "\"discretization\":{");
@@ -813,7 +781,7 @@ START_TEST(output_refuses_a_new_count)
     struct tlsph_output *o = tlsph_output_open(dir, m, &err);
     ck_assert_ptr_nonnull(o);
     ck_assert_int_eq(tlsph_output_frame(o, m), 0);
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.0);
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, 0.0);
     size_t parent[MAXF];
     const size_t k = fibre(m, xa, yt, parent);
     struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
@@ -842,7 +810,7 @@ START_TEST(pressure_parent_refused)
         "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}}}],"
         "\"boundary_conditions\":[{\"type\":\"pressure\",\"name\":\"top\","
         "\"select\":{\"expression\":\"z > 0.002\"},\"normal\":[0,0,1],\"pressure\":1e6}]}");
-    const double yt = lattice(m, 1, 0.004), xa = lattice(m, 0, 0.005);
+    const double yt = split_plate_lattice(m, 1, 0.004), xa = split_plate_lattice(m, 0, 0.005);
     size_t parent[MAXF];
     const size_t k = fibre(m, xa, yt, parent);
     struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
@@ -876,7 +844,8 @@ START_TEST(crack_grows_through_opening_plate)
     double p0[3];
     tlsph_model_momentum(m, p0);
     const double scale = momentum_scale(m);
-    const double yt = lattice(m, 1, 0.0045), x0 = lattice(m, 0, 0.0); /* the row at rest */
+    /* the row at rest */
+    const double yt = split_plate_lattice(m, 1, 0.0045), x0 = split_plate_lattice(m, 0, 0.0);
     ck_assert(fabs(yt - 0.0045) < 1e-12);
     struct tlsph_crack_surface cs;
     ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
