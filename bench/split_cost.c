@@ -4,7 +4,8 @@
  * grows a straight crack along y = the middle row from the left edge by
  * splitting EVENTS fibres one after the other (facets up to each), and prints
  * one JSON line: particles before and after, pairs, the mean and largest
- * CPU time of a split event (plan, growth, commit, the two force passes), and
+ * CPU time of a split event (plan, growth, commit, the force update of the
+ * affected rows and their partners), and
  * that of one full rebuild of the same final state (the reference search, the
  * crack filter and every correction matrix) and of one force pass.  Run
  * with OMP_NUM_THREADS=1. */
@@ -91,7 +92,7 @@ int main(int argc, char **argv)
         total += dt;
         worst = fmax(worst, dt);
     }
-    /* one force pass (a split makes two) */
+    /* one force pass over the body (the split's update covers a few rows) */
     const double tf = cpu_seconds();
     (void)tlsph_forces(m);
     const double force = cpu_seconds() - tf;

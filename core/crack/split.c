@@ -8,9 +8,9 @@
 #include <string.h>
 
 #include "crack/local_rebuild.h"
+#include "crack/split_forces.h"
 #include "crack/split_state.h"
 #include "io/measures.h"
-#include "sph/forces.h"
 
 static double dot3(const double a[3], const double b[3])
 {
@@ -252,28 +252,6 @@ static int validate(const struct tlsph_model *m, const struct tlsph_split *sp, d
     return 0;
 }
 
-/* The stored force minus the pair forces on the old supports (contact,
- * rigid, loads) into ext, laid out for n + k particles, the parents' rest
- * shared by mass with their halves (split.h).  Overwrites p.f and the stored
- * hourglass and viscous forces, which the end of the split recomputes. */
-static void rest_of_force(struct tlsph_model *m, const struct tlsph_split *sp, size_t at,
-                          double share, double *ext)
-{
-    const size_t n = m->p.n, k = sp->n;
-    memcpy(ext, m->p.f, 3 * n * sizeof *ext);
-    (void)tlsph_forces(m);
-    for (size_t q = 0; q < 3 * n; q++)
-        ext[q] -= m->p.f[q];
-    memmove(ext + 3 * (at + k), ext + 3 * at, 3 * (n - at) * sizeof *ext);
-    for (size_t s = 0; s < k; s++)
-        for (int c = 0; c < 3; c++) {
-            double *e1 = ext + 3 * sp->index[s] + c, *e2 = ext + 3 * (at + s) + c;
-            const double whole = *e1;
-            *e1 = whole * share;
-            *e2 = whole - *e1;
-        }
-}
-
 int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
                           const struct tlsph_crack_surface *cs, size_t first_new_facet,
                           tlsph_grow_alloc_fn alloc, void *ctx, struct tlsph_errors *err)
@@ -287,7 +265,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     struct lists lists = {0};
     struct tlsph_rebuild_plan plan = {0};
     struct tlsph_split_state state = {0};
-    double *ext = NULL; /* the forces that are not pair forces (contact, rigid, loads) [3(n+k)] */
+    struct tlsph_split_forces forces = {0};
     double *Xh = malloc(6 * k * sizeof *Xh); /* X1 [3k] then X2 [3k] */
     if (!Xh) {
         tlsph_errors_add(err, "", "split: out of memory");
@@ -303,7 +281,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
         prepare_lists(m, sp, &lists, err) != 0)
         goto fail;
     if (tlsph_split_state_prepare(m, k, &state) != 0 ||
-        !(ext = malloc(3 * (p->n + k) * sizeof *ext))) {
+        tlsph_split_forces_prepare(m, &plan, at, &forces) != 0) {
         tlsph_errors_add(err, "", "split: out of memory");
         goto fail;
     }
@@ -314,7 +292,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     /* commit: nothing fails from here */
     const size_t n = p->n;
     const double share = phi[0] / (phi[0] + phi[1]);
-    rest_of_force(m, sp, at, share, ext);
+    tlsph_split_forces_rest(m, b, &forces, sp->index, share);
     int64_t maxid = -1;
     for (size_t i = 0; i < p->n; i++)
         maxid = p->id[i] > maxid ? p->id[i] : maxid;
@@ -330,16 +308,14 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     }
     commit_lists(m, sp, at, &lists);
     tlsph_rebuild_commit(m, &plan);
-    (void)tlsph_forces(m); /* the pair forces on the new supports, plus the rest */
-    for (size_t q = 0; q < 3 * p->n; q++)
-        p->f[q] += ext[q];
+    tlsph_split_forces_finish(m, b, &forces, at); /* the new supports' pair forces + the rest */
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);
-    free(ext);
+    tlsph_split_forces_free(&forces);
     free(Xh);
     return 0;
 fail:
-    free(ext);
+    tlsph_split_forces_free(&forces);
     tlsph_split_state_free(&state);
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);

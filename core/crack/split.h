@@ -28,23 +28,21 @@
  *   v             eqs. 29-30: copied (momentum and kinetic energy conserved
  *                 to round-off: m1 v + m2 v = m v)
  *   f, f_hourglass, f_viscous
- *                 the pair forces (stress, hourglass, viscous) recomputed on
- *                 the new supports for every particle, plus the rest of the
- *                 last evaluation's force (contact, rigid bodies, loads: the
- *                 stored f minus the pair forces recomputed on the old
- *                 supports), the parent's rest shared by mass (f1 = f m1/m,
- *                 f2 = f - f1).  Eqs. 31-32 zero the halves' acceleration (a
- *                 central-difference code recomputes it before using it);
- *                 the velocity-Verlet step here starts with a half kick by
- *                 the stored force (run/integrate.h), which must be the one
- *                 the next energy update is conjugate to: with the old
- *                 supports' forces the balance jumps at the split (1.4e-3 J
- *                 of 1.41 J in tests/engine/test_split.c), with zero for the
- *                 halves momentum changes by dt/2 f_parent.  Pair forces stay
- *                 antisymmetric, so momentum is exact.  Cost: two force
- *                 passes per split.  With viscosity the recomputed viscous
- *                 forces see the velocities at t_n instead of t_(n-1/2) (a
- *                 difference of the order of dt that sums to zero)
+ *                 each the stored value minus the pair sums on the old
+ *                 supports plus those on the new (crack/split_forces.h),
+ *                 updated on the affected rows and their partners only; the
+ *                 rest (contact, rigid bodies, loads, and the viscous force's
+ *                 velocity lag: the stored one saw t_(n-1/2)) of a parent is
+ *                 shared by mass (f1 = f m1/m, f2 = f - f1).  Eqs. 31-32 zero
+ *                 the halves' acceleration (a central-difference code
+ *                 recomputes it before using it); the velocity-Verlet step
+ *                 here starts with a half kick by the stored force
+ *                 (run/integrate.h), which must be the one the next energy
+ *                 update is conjugate to, hourglass and viscous parts
+ *                 included (their trapezoidal power takes the stored ones);
+ *                 with zero for the halves momentum changes by dt/2
+ *                 f_parent.  The changed pairs lie between recomputed rows,
+ *                 so momentum is exact to round-off
  *   h, spacing    copied (the split cuts the support, it does not refine it)
  *   F, Fdot, sigma, e, eps_p, plastic_strain, eps_p_rate,
  *   yield_stress, hg_scale, T, damage, damage_init, void_*, crack_gradient
@@ -59,9 +57,11 @@
  *   body          the parent's
  * Energy account: kinetic and internal energy are unchanged by the split, no
  * term is booked.  P_tilde = P L^-T of the rebuilt rows is refolded with the
- * new L (local_rebuild.h) and the forces recomputed (above), so the next step
- * is conjugate again: its balance moves by -7.8e-5 J of 1.41 J in the test's
- * violent free plate (-3.2e-5 J for the same step without a split).
+ * new L (local_rebuild.h) and the forces updated (above), so the next step
+ * is conjugate again: its balance moves by velocity Verlet's dt^2/8 sum
+ * |f|^2/m term alone, as a step without a split does (to 1e-15 J of 1.41 J in
+ * tests/engine/test_split.c at the default step; the term is larger after a
+ * split, the halves' forces at the new faces: docs/crack-growth.md).
  *
  * Index-holding structures: pairs (rebuilt, local_rebuild.h), body ranges
  * (the body grows by k, later bodies shift by k), boundary groups,

@@ -272,40 +272,73 @@ typedef void (*force_loop)(struct tlsph_model *, size_t, size_t, const struct bo
         *p_hg += hg;                                                                              \
         *p_visc += visc;                                                                          \
     }
-#define FORCE_LOOPS(SUFFIX, VARIANT)                                                              \
-    FORCE_LOOP(loop_00_##SUFFIX, 0, 0, VARIANT)                                                   \
-    FORCE_LOOP(loop_01_##SUFFIX, 0, 1, VARIANT)                                                   \
-    FORCE_LOOP(loop_10_##SUFFIX, 1, 0, VARIANT)                                                   \
-    FORCE_LOOP(loop_11_##SUFFIX, 1, 1, VARIANT)
+/* The same per particle for a list of rows (tlsph_forces_rows): the rows'
+ * sums are those of the full pass bit for bit; the power is not wanted. */
+typedef void (*force_rows_loop)(struct tlsph_model *, const size_t *, size_t,
+                                const struct body_constants *);
+#define FORCE_ROWS_LOOP(NAME, HG, VISC, VARIANT)                                                  \
+    static void NAME(struct tlsph_model *m, const size_t *rows, size_t nrows,                     \
+                     const struct body_constants *bc)                                             \
+    {                                                                                             \
+        double hg = 0.0, visc = 0.0;                                                              \
+        _Pragma("omp parallel for schedule(static) reduction(+ : hg, visc) if (nrows >= TLSPH_PARALLEL_MIN_ITEMS)") \
+        for (size_t r = 0; r < nrows; r++)                                                        \
+            force_particle(m, rows[r], bc, HG, VISC, VARIANT, &hg, &visc);                        \
+        (void)hg;                                                                                 \
+        (void)visc;                                                                               \
+    }
+/* LOOP instantiated as P_<hg><visc>_<treatment> for every combination, and
+ * the [crack treatment][hourglass][viscosity] table of them */
+#define FORCE_LOOPS(LOOP, P, SUFFIX, VARIANT)                                                     \
+    LOOP(P##_00_##SUFFIX, 0, 0, VARIANT)                                                          \
+    LOOP(P##_01_##SUFFIX, 0, 1, VARIANT)                                                          \
+    LOOP(P##_10_##SUFFIX, 1, 0, VARIANT)                                                          \
+    LOOP(P##_11_##SUFFIX, 1, 1, VARIANT)
+#define FORCE_ALL(LOOP, P)                                                                        \
+    FORCE_LOOPS(LOOP, P, intact, TLSPH_APPROX_INTACT)                                             \
+    FORCE_LOOPS(LOOP, P, damage_aware, TLSPH_APPROX_DAMAGE_AWARE)                                 \
+    FORCE_LOOPS(LOOP, P, pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)                               \
+    FORCE_LOOPS(LOOP, P, virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
 /* [hourglass][viscosity] of one treatment */
-#define FORCE_ROW(SUFFIX)                                                                         \
-    {{loop_00_##SUFFIX, loop_01_##SUFFIX}, {loop_10_##SUFFIX, loop_11_##SUFFIX}}
-FORCE_LOOPS(intact, TLSPH_APPROX_INTACT)
-FORCE_LOOPS(damage_aware, TLSPH_APPROX_DAMAGE_AWARE)
-FORCE_LOOPS(pseudo_spring, TLSPH_APPROX_PSEUDO_SPRING)
-FORCE_LOOPS(virtual_links, TLSPH_APPROX_VIRTUAL_LINKS)
-/* [crack treatment][hourglass][viscosity] */
-static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = {
-    [TLSPH_APPROX_INTACT] = FORCE_ROW(intact),
-    [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(damage_aware),
-    [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(pseudo_spring),
-    [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(virtual_links),
-};
+#define FORCE_ROW(P, SUFFIX)                                                                      \
+    {{P##_00_##SUFFIX, P##_01_##SUFFIX}, {P##_10_##SUFFIX, P##_11_##SUFFIX}}
+#define FORCE_TABLE(P)                                                                            \
+    {                                                                                             \
+        [TLSPH_APPROX_INTACT] = FORCE_ROW(P, intact),                                             \
+        [TLSPH_APPROX_DAMAGE_AWARE] = FORCE_ROW(P, damage_aware),                                 \
+        [TLSPH_APPROX_PSEUDO_SPRING] = FORCE_ROW(P, pseudo_spring),                               \
+        [TLSPH_APPROX_VIRTUAL_LINKS] = FORCE_ROW(P, virtual_links),                               \
+    }
+FORCE_ALL(FORCE_LOOP, loop)
+FORCE_ALL(FORCE_ROWS_LOOP, rows)
+static const force_loop force_loops[TLSPH_APPROX_COUNT][2][2] = FORCE_TABLE(loop);
+static const force_rows_loop force_rows_loops[TLSPH_APPROX_COUNT][2][2] = FORCE_TABLE(rows);
+
+static struct body_constants body_constants(const struct tlsph_scene *s, size_t b)
+{
+    const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
+    return (struct body_constants){
+        .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
+        .c = mat->wave_speed,
+        .rho0 = mat->density,
+        .beta1 = s->viscosity_linear,
+        .beta2 = s->viscosity_quadratic,
+    };
+}
+
+void tlsph_forces_rows(struct tlsph_model *m, size_t body, const size_t *rows, size_t nrows)
+{
+    const struct tlsph_scene *s = &m->scene;
+    const struct body_constants bc = body_constants(s, body);
+    force_rows_loops[m->crack->variant][s->hourglass != 0][s->viscosity != 0](m, rows, nrows, &bc);
+}
 
 struct tlsph_force_power tlsph_forces(struct tlsph_model *m)
 {
     struct tlsph_force_power pw = {0.0, 0.0};
     const struct tlsph_scene *s = &m->scene;
     for (size_t b = 0; b < s->nbodies; b++) {
-        const struct tlsph_body *body = &s->bodies[b];
-        const struct tlsph_material *mat = &s->materials[body->material];
-        const struct body_constants bc = {
-            .hg_coeff = 0.5 * s->hourglass_coefficient * mat->youngs_modulus,
-            .c = mat->wave_speed,
-            .rho0 = mat->density,
-            .beta1 = s->viscosity_linear,
-            .beta2 = s->viscosity_quadratic,
-        };
+        const struct body_constants bc = body_constants(s, b);
         const size_t lo = m->body_begin[b], hi = m->body_end[b];
         force_loops[m->crack->variant][s->hourglass != 0][s->viscosity != 0](
             m, lo, hi, &bc, &pw.hourglass, &pw.viscous);

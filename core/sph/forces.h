@@ -21,4 +21,10 @@ struct tlsph_force_power {
  * previous and the new force (trapezoidal, like the kicks). */
 struct tlsph_force_power tlsph_forces(struct tlsph_model *m);
 
+/* tlsph_forces for the given rows of one body only (indices into the
+ * particles, all in body's range): overwrites their p.f and stored hourglass
+ * and viscous forces with the sums the full pass would give them, bit for bit;
+ * books no power.  For a local change of the pairs (crack/split_forces.h). */
+void tlsph_forces_rows(struct tlsph_model *m, size_t body, const size_t *rows, size_t nrows);
+
 #endif
