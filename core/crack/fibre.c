@@ -144,3 +144,74 @@ void tlsph_fibres_release(struct tlsph_fibres *f)
     free(f->centre);
     memset(f, 0, sizeof *f);
 }
+
+int tlsph_fibres_split_prepare(const struct tlsph_fibres *f, size_t k, struct tlsph_fibres *fresh)
+{
+    memset(fresh, 0, sizeof *fresh);
+    fresh->axis = f->axis;
+    const size_t count = f->n ? f->start[f->n] : 0;
+    fresh->start = malloc((f->n + k + 1) * sizeof *fresh->start);
+    fresh->particle = malloc((count + k) * sizeof *fresh->particle);
+    fresh->centre = malloc((f->n + k) * sizeof *fresh->centre);
+    if (!fresh->start || !fresh->particle || !fresh->centre) {
+        tlsph_fibres_release(fresh);
+        return -1;
+    }
+    return 0;
+}
+
+static void fibre_centre(struct tlsph_fibres *f, size_t j, const double *X)
+{
+    const double m = (double)(f->start[j + 1] - f->start[j]);
+    for (int a = 0; a < 3; a++)
+        f->centre[j][a] = 0.0;
+    for (size_t p = f->start[j]; p < f->start[j + 1]; p++)
+        for (int a = 0; a < 3; a++)
+            f->centre[j][a] += X[3 * f->particle[p] + a] / m;
+}
+
+/* The slot of i among the parents, or k. */
+static size_t parent_slot(const size_t *parent, size_t k, size_t i)
+{
+    size_t s = 0;
+    while (s < k && parent[s] != i)
+        s++;
+    return s;
+}
+
+size_t tlsph_fibres_split_commit(struct tlsph_fibres *f, struct tlsph_fibres *fresh,
+                                 const size_t *parent, size_t k, size_t at, const double *X)
+{
+    const size_t count = f->n ? f->start[f->n] : 0;
+    memcpy(fresh->start, f->start, (f->n + 1) * sizeof *f->start);
+    memcpy(fresh->particle, f->particle, count * sizeof *f->particle);
+    memcpy(fresh->centre, f->centre, f->n * sizeof *f->centre);
+    size_t nf = f->n, used = count;
+    for (size_t j = 0; j < f->n; j++) {
+        const size_t first = used;
+        for (size_t p = f->start[j]; p < f->start[j + 1]; p++) {
+            const size_t s = parent_slot(parent, k, f->particle[p]);
+            if (s < k)
+                fresh->particle[used++] = at + s;
+        }
+        if (used == first)
+            continue;
+        fresh->start[++nf] = used;
+        fibre_centre(fresh, j, X);
+        fibre_centre(fresh, nf - 1, X);
+    }
+    const size_t added = nf - f->n;
+    fresh->n = nf;
+    tlsph_fibres_release(f);
+    *f = *fresh;
+    memset(fresh, 0, sizeof *fresh);
+    return added;
+}
+
+void tlsph_fibres_shift(struct tlsph_fibres *f, size_t at, size_t k)
+{
+    const size_t count = f->n ? f->start[f->n] : 0;
+    for (size_t p = 0; p < count; p++)
+        if (f->particle[p] >= at)
+            f->particle[p] += k;
+}
