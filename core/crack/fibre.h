@@ -94,6 +94,19 @@ struct tlsph_tip_search {
 long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
                           const struct tlsph_tip_search *q);
 
+/* The same among the fibres cand[0..ncand-1] only (the crack driver's list of
+ * the fibres within R of a tip, so that a search each step costs that list,
+ * not the body); ties by the lowest index as above. */
+long tlsph_fibre_next_tip_among(const struct tlsph_fibres *f, const double *D,
+                                const struct tlsph_tip_search *q, const size_t *cand,
+                                size_t ncand);
+
+/* The fibres whose centre lies within radius (m) of point in the plane (the
+ * axis component dropped), ascending: the first max into out (may be NULL);
+ * returns how many there are. */
+size_t tlsph_fibres_within(const struct tlsph_fibres *f, const double point[3], double radius,
+                           size_t *out, size_t max);
+
 void tlsph_fibres_release(struct tlsph_fibres *f);
 
 /* Fibres through a particle split (crack/split.h).  Paper 003 §3.2: "the old

@@ -7,6 +7,7 @@
 
 #include "bc/kind.h"
 #include "contact/contact.h"
+#include "crack/crack_driver.h"
 #include "rigid/rigid.h"
 #include "sph/virtual_links.h"
 #include "util/mat3.h"
@@ -282,6 +283,22 @@ static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energ
 static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
 static void sv_damage_work(const struct tlsph_model *m, double *o) { o[0] = m->energy.damage_work; }
 static void sv_failed(const struct tlsph_model *m, double *o) { o[0] = (double)m->failed; }
+static int has_crack_growth(const struct tlsph_model *m)
+{
+    return m->crack_driver != NULL;
+}
+static void sv_crack_length(const struct tlsph_model *m, double *o)
+{
+    o[0] = tlsph_crack_driver_length(m);
+}
+static void sv_crack_advances(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)m->crack_driver->nevents;
+}
+static void sv_particle_count(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)m->p.n;
+}
 static void sv_broken_links(const struct tlsph_model *m, double *o)
 {
     o[0] = (double)m->links->broken;
@@ -371,6 +388,14 @@ const struct tlsph_series_column tlsph_global_series[] = {
      sv_contact_pairs},
     {"rigid_contacts", 1, "1", "number of particles in contact with a rigid body (overlapping)",
      has_rigid, sv_rigid_contacts},
+    {"crack_length", 1, "m",
+     "growing cracks: in-plane length of the crack surface added since the start, summed over "
+     "the tips (where the pairs are cut; docs/crack-growth.md)",
+     has_crack_growth, sv_crack_length},
+    {"crack_tip_advances", 1, "1", "growing cracks: tip advances so far, summed over the tips",
+     has_crack_growth, sv_crack_advances},
+    {"particle_count", 1, "1", "growing cracks: number of particles (splitting adds them)",
+     has_crack_growth, sv_particle_count},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
