@@ -157,14 +157,18 @@ int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err)
         return -1;
     }
     m->crack_driver = d;
-    if (!m->fibres || !m->crack_surface || !m->p.damage) {
-        tlsph_errors_add(err, "/crack_growth", "a growing crack needs a body with fibres, a "
-                         "pre-crack and a damage model");
+    if (!m->fibres || !m->crack_surface) {
+        tlsph_errors_add(err, "/crack_growth", "a growing crack needs a body with fibres and a "
+                         "pre-crack");
         return -1;
     }
     for (size_t j = 0; j < g->ntips; j++)
         if (setup_tip(m, j, &d->tip[j], err) != 0)
             return -1;
+    if (!m->p.damage) { /* setup_tip checked the tips' materials: cannot happen */
+        tlsph_errors_add(err, "/crack_growth", "no damage model: the crack cannot grow");
+        return -1;
+    }
     d->ntips = g->ntips;
     return 0;
 }
