@@ -95,6 +95,12 @@ static void emit_progress(const struct tlsph_model *m, int fd, double wall, long
     json_t *o = json_pack("{s:s, s:I, s:f, s:f, s:f, s:f, s:I}", "event", TLSPH_EVENT_PROGRESS, "step",
                           (json_int_t)m->step, "time", m->t, "end_time", m->scene.end_time,
                           "wall_seconds", wall, "eta_seconds", eta, "frames", (json_int_t)frames);
+    if (o && m->crack_driver) { /* the growth: the count changes (progress.schema.json) */
+        json_object_set_new(o, "particles", json_integer((json_int_t)m->p.n));
+        json_object_set_new(o, "crack_tip_advances",
+                            json_integer((json_int_t)m->crack_driver->nevents));
+        json_object_set_new(o, "crack_length", json_real(tlsph_crack_driver_length(m)));
+    }
     tlsph_progress_emit(fd, o);
     json_decref(o);
 }

@@ -10,7 +10,8 @@
  * bound below was measured.
  *
  * What must hold, and the references:
- *  - the tip advances (more than 5 advances) and straight ahead: every tip
+ *  - the tip advances (more than 5 advances; measured 14, through the right
+ *    edge at 1.075e-4 s) and straight ahead: every tip
  *    position within 1 spacing of the pre-crack's line y = 0 (a fibre row is
  *    half a spacing off it: the path may step to the row beside, no
  *    further), every advance forward (x grows), the last tip within 10
@@ -21,7 +22,9 @@
  *    differs by ~n eps = 1e-13 at most; measured: exact or 1 ulp);
  *  - the stability contract every step (finite values, det F, the engine's
  *    energy check) and the energy balance within 2e-3 of the largest energy
- *    term over the run (measured: see ENERGY_BOUND), no particle lost: the
+ *    term over the run, 1e-3 from the first split on (measured 1.44e-3 with
+ *    and without growth, the load's ramp; 3.9e-4 after the first split, the
+ *    plate without growth ends at 1.4e-4), no particle lost: the
  *    count = the initial one + the particles split, ids unique;
  *  - the series values: crack_length = the facets' in-plane lengths > 0,
  *    particle count after = before + split;
@@ -45,10 +48,14 @@
 #include "run/model.h"
 #include "support/check_main.h"
 #include "support/scene_builder.h"
+#include "util/clock.h"
 
 #define SPACING 0.001
-/* max |balance| / scale over the run, measured 0 (see the docs) */
+/* |balance| / scale (cfl 0.3): over the whole run 1.44e-3 with and without
+ * growth (the load's ramp, before any split); from the first split on
+ * 3.9e-4 (the plate without growth ends at 1.4e-4) */
 #define ENERGY_BOUND 2e-3
+#define ENERGY_BOUND_AFTER 1e-3
 
 static char *plate_json(int grow)
 {
@@ -110,9 +117,10 @@ START_TEST(mode_one_crack_grows_straight)
     ck_assert_ptr_nonnull(m->crack_driver);
     ck_assert(model_has_module(m, "crack:growth"));
     const size_t n0 = m->p.n;
-    double worst_balance = 0.0, worst_mass = 0.0, worst_vol = 0.0, worst_mom = 0.0;
+    double worst_balance = 0.0, worst_after = 0.0, worst_mass = 0.0, worst_vol = 0.0, worst_mom = 0.0;
     struct tlsph_errors err;
     tlsph_errors_init(&err);
+    const double wall0 = tlsph_monotonic_seconds();
     while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
         tlsph_model_step(m);
         const size_t before_events = m->crack_driver->nevents, before_n = m->p.n;
@@ -131,16 +139,21 @@ START_TEST(mode_one_crack_grows_straight)
         struct tlsph_diagnostic d;
         if (tlsph_model_check(m, &d) != 0)
             ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
-        worst_balance =
-            fmax(worst_balance, fabs(tlsph_energy_balance(&m->energy)) / m->energy.scale);
+        const double bal = fabs(tlsph_energy_balance(&m->energy)) / m->energy.scale;
+        worst_balance = fmax(worst_balance, bal);
+        if (m->crack_driver->particles_split)
+            worst_after = fmax(worst_after, bal);
     }
+    printf("final balance %.3e, worst after the first split %.3e of the scale\n",
+           tlsph_energy_balance(&m->energy) / m->energy.scale, worst_after);
+    const double wall = tlsph_monotonic_seconds() - wall0;
     const struct tlsph_crack_driver *cd = m->crack_driver;
     printf("crack growth: %ld steps, %zu advances, %zu particles split, %zu -> %zu particles, "
            "grown %.4g m; mass %.2e, volume %.2e, momentum %.2e; worst balance %.3e of the "
-           "scale; driver %.4f s\n",
+           "scale; driver %.4f s of %.3f s (%.2f %%)\n",
            m->step, cd->nevents, cd->particles_split, n0, m->p.n,
            tlsph_crack_driver_length(m), worst_mass, worst_vol, worst_mom, worst_balance,
-           cd->seconds);
+           cd->seconds, wall, 100.0 * cd->seconds / wall);
     for (size_t k = 0; k < cd->nevents; k++)
         printf("  step %ld t %.3e tip (%.4g, %.4g) mm fibre %ld split %zu\n", cd->event[k].step,
                cd->event[k].time, 1e3 * cd->event[k].position[0],
@@ -156,6 +169,7 @@ START_TEST(mode_one_crack_grows_straight)
     ck_assert(fabs(atan2(P[1], P[0])) <= 10.0 * M_PI / 180.0);
     ck_assert(worst_mass <= 1e-14 && worst_vol <= 1e-14 && worst_mom <= 1e-14);
     ck_assert(worst_balance <= ENERGY_BOUND);
+    ck_assert(worst_after <= ENERGY_BOUND_AFTER);
     ck_assert_uint_eq(m->p.n, n0 + cd->particles_split);
     ck_assert_double_gt(tlsph_crack_driver_length(m), 0.0);
     int64_t *ids = malloc(m->p.n * sizeof *ids);
@@ -176,7 +190,17 @@ START_TEST(no_growth_without_the_key)
     ck_assert_ptr_null(m->crack_driver);
     ck_assert(!model_has_module(m, "crack:growth"));
     const size_t n0 = m->p.n;
-    run_until(m, m->scene.end_time);
+    double worst_balance = 0.0;
+    while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
+        tlsph_model_step(m);
+        struct tlsph_diagnostic d;
+        if (tlsph_model_check(m, &d) != 0)
+            ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
+        worst_balance =
+            fmax(worst_balance, fabs(tlsph_energy_balance(&m->energy)) / m->energy.scale);
+    }
+    printf("no growth: %ld steps, worst balance %.3e, final %.3e of the scale\n", m->step,
+           worst_balance, tlsph_energy_balance(&m->energy) / m->energy.scale);
     ck_assert_uint_eq(m->p.n, n0);
     tlsph_model_free(m);
 }
