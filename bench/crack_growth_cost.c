@@ -1,6 +1,6 @@
 /* The cost of a growing crack in a run (docs/crack-growth.md "The crack
- * driver"): the mode-I plate of tests/physics/test_crack_growth.c scaled to
- * LX x LY mm in the plane (3 layers, 1 mm), run to END seconds with and
+ * driver"): the mode-I plate of tests/physics/test_crack_growth.c
+ * (tests/support/crack_plate.h) at LX x LY mm in the plane (3 layers, 1 mm), run to END seconds with and
  * without "crack_growth".  Prints steps, tip advances, particles before and
  * after, the CPU time of each run and the driver's share (its searches and
  * advances; CPU time of the process: run it with OMP_NUM_THREADS=1).
@@ -15,6 +15,7 @@
 #include "crack/crack_driver.h"
 #include "run/integrate.h"
 #include "run/model.h"
+#include "support/crack_plate.h"
 
 static double cpu_seconds(void)
 {
@@ -26,30 +27,7 @@ static double cpu_seconds(void)
 static int run(double lx, double ly, double end, int grow)
 {
     char text[4096];
-    const double x0 = -0.010, x1 = x0 + 1e-3 * lx, y1 = 0.5e-3 * ly;
-    snprintf(text, sizeof text,
-             "{\"dimension\":3,\"parameters\":{\"vmax\":5,\"tau\":5e-6},"
-             "\"time\":{\"end\":%g,\"cfl\":0.3},"
-             "\"discretization\":{\"hourglass\":{\"enabled\":true,\"coefficient\":1.0}},"
-             "\"contact\":{\"enabled\":false},"
-             "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
-             "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
-             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
-             "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}}},"
-             "\"bodies\":[{\"name\":\"plate\",\"material\":\"steel\",\"spacing\":0.001,"
-             "\"thickness_axis\":\"z\","
-             "\"geometry\":{\"box\":{\"min\":[%g,%g,0],\"max\":[%g,%g,0.003]}}}],"
-             "\"cracks\":[{\"polygon\":[[-0.011,0,-0.001],[0,0,-0.001],[0,0,0.004],"
-             "[-0.011,0,0.004]]}],%s"
-             "\"boundary_conditions\":["
-             "{\"type\":\"velocity\",\"name\":\"bottom\",\"select\":{\"box\":"
-             "{\"min\":[-1,-1,-1],\"max\":[1,%g,1]}},"
-             "\"velocity\":[null,\"-vmax*(1-exp(-t/tau))\",null]},"
-             "{\"type\":\"velocity\",\"name\":\"top\",\"select\":{\"box\":"
-             "{\"min\":[-1,%g,-1],\"max\":[1,1,1]}},"
-             "\"velocity\":[null,\"vmax*(1-exp(-t/tau))\",null]}]}",
-             end, x0, -y1, x1, y1, grow ? "\"crack_growth\":{\"tips\":[[0,0,0.0015]]}," : "",
-             -y1 + 1.5e-3, y1 - 1.5e-3);
+    crack_plate_scene(text, sizeof text, lx, ly, end, grow);
     struct tlsph_scene scene;
     struct tlsph_model *m = NULL;
     struct tlsph_errors err;

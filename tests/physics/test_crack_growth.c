@@ -47,6 +47,7 @@
 #include "run/integrate.h"
 #include "run/model.h"
 #include "support/check_main.h"
+#include "support/crack_plate.h"
 #include "support/scene_builder.h"
 #include "util/clock.h"
 
@@ -60,29 +61,7 @@
 static char *plate_json(int grow)
 {
     static char text[4096];
-    snprintf(text, sizeof text,
-             "{\"dimension\":3,\"parameters\":{\"vmax\":5,\"tau\":5e-6},"
-             "\"time\":{\"end\":1.1e-4,\"cfl\":0.3},"
-             "\"discretization\":{\"hourglass\":{\"enabled\":true,\"coefficient\":1.0}},"
-             "\"contact\":{\"enabled\":false},"
-             "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
-             "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
-             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
-             "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}}},"
-             "\"bodies\":[{\"name\":\"plate\",\"material\":\"steel\",\"spacing\":0.001,"
-             "\"thickness_axis\":\"z\","
-             "\"geometry\":{\"box\":{\"min\":[-0.010,-0.010,0],\"max\":[0.014,0.010,0.003]}}}],"
-             "\"cracks\":[{\"polygon\":[[-0.011,0,-0.001],[0,0,-0.001],[0,0,0.004],"
-             "[-0.011,0,0.004]]}],%s"
-             "\"boundary_conditions\":["
-             "{\"type\":\"velocity\",\"name\":\"bottom\",\"select\":{\"box\":"
-             "{\"min\":[-1,-1,-1],\"max\":[1,-0.0085,1]}},"
-             "\"velocity\":[null,\"-vmax*(1-exp(-t/tau))\",null]},"
-             "{\"type\":\"velocity\",\"name\":\"top\",\"select\":{\"box\":"
-             "{\"min\":[-1,0.0085,-1],\"max\":[1,1,1]}},"
-             "\"velocity\":[null,\"vmax*(1-exp(-t/tau))\",null]}]}",
-             grow ? "\"crack_growth\":{\"tips\":[[0,0,0.0015]]}," : "");
-    return text;
+    return crack_plate_scene(text, sizeof text, 24.0, 20.0, 1.1e-4, grow);
 }
 
 struct totals {
