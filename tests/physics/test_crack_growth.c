@@ -28,6 +28,9 @@
  *    count = the initial one + the particles split, ids unique;
  *  - the series values: crack_length = the facets' in-plane lengths > 0,
  *    particle count after = before + split;
+ *  - a centre crack (x from -2 to 6 mm) growing at both ends: each tip
+ *    advances (at least 3 times; measured 8 and 8) away from the other,
+ *    within 1 spacing of the crack's line;
  *  - the same plate without "crack_growth" splits nothing (the count and
  *    the modules unchanged).
  * And a unit test of the fibre remap (tlsph_split_particles on a model with
@@ -36,6 +39,7 @@
  * fibre's in-plane point, centres the mean of X), the halves 2 a new fibre,
  * the second body's fibres shifted with its particles. */
 #include <check.h>
+#include <jansson.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -163,6 +167,49 @@ START_TEST(mode_one_crack_grows_straight)
 }
 END_TEST
 
+/* A centre crack from x = -2 to 6 mm with both ends growing: each tip
+ * advances away from the other along the crack's line. */
+START_TEST(through_crack_grows_at_both_tips)
+{
+    char text[4096];
+    json_t *root = json_loads(crack_plate_scene(text, sizeof text, 24.0, 20.0, 1.1e-4, 1), 0, NULL);
+    ck_assert_ptr_nonnull(root);
+    json_object_set_new(root, "cracks",
+                        json_pack("[{s:[[f,i,f],[f,i,f],[f,i,f],[f,i,f]]}]", "polygon", -0.002, 0,
+                                  -0.001, 0.006, 0, -0.001, 0.006, 0, 0.004, -0.002, 0, 0.004));
+    json_object_set_new(json_object_get(root, "crack_growth"), "tips",
+                        json_pack("[[f,i,f],[f,i,f]]", -0.002, 0, 0.0015, 0.006, 0, 0.0015));
+    struct tlsph_model *m = build_model_json(root);
+    const size_t n0 = m->p.n;
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
+        tlsph_model_step(m);
+        ck_assert_int_eq(tlsph_crack_driver_step(m, NULL, &err), 0);
+        struct tlsph_diagnostic d;
+        if (tlsph_model_check(m, &d) != 0)
+            ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
+    }
+    const struct tlsph_crack_driver *cd = m->crack_driver;
+    double last[2] = {0.002, 0.002}; /* distance from the crack's centre x = 2 mm */
+    size_t count[2] = {0, 0};
+    for (size_t k = 0; k < cd->nevents; k++) {
+        const struct tlsph_crack_event *e = &cd->event[k];
+        const double r = fabs(e->position[0] - 0.002);
+        ck_assert(e->tip == 0 ? e->position[0] < -0.002 : e->position[0] > 0.006);
+        ck_assert(r > last[e->tip]);
+        ck_assert(fabs(e->position[1]) <= SPACING * (1.0 + 1e-9));
+        last[e->tip] = r;
+        count[e->tip]++;
+    }
+    printf("two tips: %zu and %zu advances, %zu -> %zu particles, grown %.4g m\n", count[0],
+           count[1], n0, m->p.n, tlsph_crack_driver_length(m));
+    ck_assert(count[0] >= 3 && count[1] >= 3);
+    tlsph_errors_free(&err);
+    tlsph_model_free(m);
+}
+END_TEST
+
 START_TEST(no_growth_without_the_key)
 {
     struct tlsph_model *m = build_model(plate_json(0));
@@ -282,4 +329,4 @@ START_TEST(fibres_follow_a_split)
 END_TEST
 
 TLSPH_CHECK_MAIN("crack_growth", 300, fibres_follow_a_split, no_growth_without_the_key,
-                 mode_one_crack_grows_straight)
+                 mode_one_crack_grows_straight, through_crack_grows_at_both_tips)
