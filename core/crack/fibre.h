@@ -38,8 +38,9 @@
  * largest D_J), then the nearest, then the lowest index: deterministic, and
  * the fibre the damage criterion ranks first.  Fibres behind the tip
  * (|theta| > theta_c/2) are never chosen, which rules out the crack turning
- * back, as the paper intends.  The search scans the fibres (O(fibres)); it
- * runs once per tip advance, not per step.
+ * back, as the paper intends.  tlsph_fibre_next_tip scans every fibre
+ * (O(fibres)); the crack driver, which searches after every step, asks
+ * tlsph_fibre_next_tip_among with the dozen fibres within R of its tip.
  *
  * Units: m, rad; damage dimensionless.  Ownership: the fibre set owns its
  * arrays; release frees them. */
