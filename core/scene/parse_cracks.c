@@ -293,6 +293,12 @@ int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct t
         tlsph_errors_add(err, "/crack_growth/tips", "required: the crack tips that grow");
         return -1;
     }
+    if (json_is_array(tips) &&
+        (json_array_size(tips) < 1 || json_array_size(tips) > TLSPH_MAX_GROWTH_TIPS)) {
+        tlsph_errors_add(err, "/crack_growth/tips", "must hold 1 to %d tips, got %zu",
+                         TLSPH_MAX_GROWTH_TIPS, json_array_size(tips));
+        return -1;
+    }
     struct tlsph_crack_spec pts = {0};
     if (read_points(tips, 1, TLSPH_MAX_GROWTH_TIPS, "/crack_growth/tips", &pts, err) != 0)
         return -1;
