@@ -459,6 +459,35 @@ static const struct tlsph_series_column probe_columns[] = {
     {"velocity", 3, "m/s", "velocity of that centre of mass (momentum / mass)", NULL, NULL},
 };
 
+/* Growing crack tips (crack_growth.tips, core/crack/crack_driver.h), named
+ * tip0, tip1, ... in the scene's order. */
+static const struct tlsph_series_column crack_tip_columns[] = {
+    {"position", 3, "m", "the tip (reference configuration): the pre-crack's end, then the "
+     "centre of the tip fibre", NULL, NULL},
+    {"advances", 1, "1", "tip advances so far", NULL, NULL},
+    {"length", 1, "m", "in-plane length of the crack surface this tip added", NULL, NULL},
+};
+
+static size_t crack_tip_count(const struct tlsph_model *m)
+{
+    return m->crack_driver ? m->crack_driver->ntips : 0;
+}
+static const char *crack_tip_item(const struct tlsph_model *m, size_t k)
+{
+    static const char *const names[TLSPH_MAX_GROWTH_TIPS] = {"tip0", "tip1", "tip2", "tip3",
+                                                             "tip4", "tip5", "tip6", "tip7"};
+    (void)m;
+    return k < TLSPH_MAX_GROWTH_TIPS ? names[k] : NULL;
+}
+static void crack_tip_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_crack_tip *t = &m->crack_driver->tip[k];
+    for (int c = 0; c < 3; c++)
+        out[c] = t->T[c];
+    out[3] = (double)t->advances;
+    out[4] = t->length;
+}
+
 static size_t probe_count(const struct tlsph_model *m) { return m->scene.nprobes; }
 static const char *probe_item(const struct tlsph_model *m, size_t k)
 {
@@ -575,6 +604,9 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_PROBES] = {"probes", 0, probe_columns,
                              sizeof probe_columns / sizeof *probe_columns, probe_count,
                              probe_item, tlsph_probe_values},
+    [TLSPH_FAMILY_CRACK_TIPS] = {"crack_tips", 0, crack_tip_columns,
+                                 sizeof crack_tip_columns / sizeof *crack_tip_columns,
+                                 crack_tip_count, crack_tip_item, crack_tip_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

@@ -48,6 +48,7 @@
 #include "crack/crack_driver.h"
 #include "crack/fibre.h"
 #include "crack/split.h"
+#include "io/fields.h"
 #include "run/integrate.h"
 #include "run/model.h"
 #include "support/check_main.h"
@@ -155,6 +156,15 @@ START_TEST(mode_one_crack_grows_straight)
     ck_assert(worst_after <= ENERGY_BOUND_AFTER);
     ck_assert_uint_eq(m->p.n, n0 + cd->particles_split);
     ck_assert_double_gt(tlsph_crack_driver_length(m), 0.0);
+    /* the series the result file gets: the crack_tips family and the globals */
+    const struct tlsph_series_family *fam = &tlsph_series_families[TLSPH_FAMILY_CRACK_TIPS];
+    ck_assert_uint_eq(fam->count(m), 1);
+    ck_assert_str_eq(fam->item(m, 0), "tip0");
+    double row[5];
+    fam->values(m, 0, row);
+    for (int c = 0; c < 3; c++)
+        ck_assert(row[c] == P[c]);
+    ck_assert(row[3] == (double)cd->nevents && row[4] == tlsph_crack_driver_length(m));
     int64_t *ids = malloc(m->p.n * sizeof *ids);
     ck_assert_ptr_nonnull(ids);
     memcpy(ids, m->p.id, m->p.n * sizeof *ids);
