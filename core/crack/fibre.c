@@ -100,8 +100,9 @@ double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *
     return sum;
 }
 
-long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
-                          const struct tlsph_tip_search *q)
+/* Eq. 20 over the fibres cand[0..ncand-1] (all when cand is NULL). */
+static long next_tip(const struct tlsph_fibres *f, const double *D, const struct tlsph_tip_search *q,
+                     const size_t *cand, size_t ncand)
 {
     int pa[2];
     plane_axes(f->axis, pa);
@@ -115,20 +116,23 @@ long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
     const double r_min = 1e-9 * q->radius;
     long best = -1;
     double best_D = 0.0, best_r = 0.0;
-    for (size_t j = 0; j < f->n; j++) {
+    const size_t n = cand ? ncand : f->n;
+    for (size_t c = 0; c < n; c++) {
+        const size_t j = cand ? cand[c] : c;
         const double v2[2] = {f->centre[j][pa[0]] - q->tip[pa[0]],
                               f->centre[j][pa[1]] - q->tip[pa[1]]};
         const double r = hypot(v2[0], v2[1]);
         if (!(r > r_min) || r > q->radius)
             continue;
-        const double c = (v1[0] * v2[0] + v1[1] * v2[1]) / (n1 * r);
+        const double c2 = (v1[0] * v2[0] + v1[1] * v2[1]) / (n1 * r);
         /* round-off may put a fibre exactly on the fan's edge a hair outside */
-        if (c < cos_half - 1e-12)
+        if (c2 < cos_half - 1e-12)
             continue;
         const double Dj = tlsph_fibre_damage(f, j, D);
         if (!(Dj >= q->D_c))
             continue;
-        if (best < 0 || Dj > best_D || (Dj == best_D && r < best_r)) {
+        if (best < 0 || Dj > best_D || (Dj == best_D && r < best_r) ||
+            (Dj == best_D && r == best_r && (long)j < best)) {
             best = (long)j;
             best_D = Dj;
             best_r = r;
@@ -137,10 +141,110 @@ long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
     return best;
 }
 
+long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
+                          const struct tlsph_tip_search *q)
+{
+    return next_tip(f, D, q, NULL, 0);
+}
+
+long tlsph_fibre_next_tip_among(const struct tlsph_fibres *f, const double *D,
+                                const struct tlsph_tip_search *q, const size_t *cand,
+                                size_t ncand)
+{
+    return next_tip(f, D, q, cand, ncand);
+}
+
+size_t tlsph_fibres_within(const struct tlsph_fibres *f, const double point[3], double radius,
+                           size_t *out, size_t max)
+{
+    int pa[2];
+    plane_axes(f->axis, pa);
+    size_t n = 0;
+    for (size_t j = 0; j < f->n; j++)
+        if (hypot(f->centre[j][pa[0]] - point[pa[0]], f->centre[j][pa[1]] - point[pa[1]]) <=
+            radius) {
+            if (out && n < max)
+                out[n] = j;
+            n++;
+        }
+    return n;
+}
+
 void tlsph_fibres_release(struct tlsph_fibres *f)
 {
     free(f->start);
     free(f->particle);
     free(f->centre);
     memset(f, 0, sizeof *f);
+}
+
+int tlsph_fibres_split_prepare(const struct tlsph_fibres *f, size_t k, struct tlsph_fibres *fresh)
+{
+    memset(fresh, 0, sizeof *fresh);
+    fresh->axis = f->axis;
+    const size_t count = f->n ? f->start[f->n] : 0;
+    fresh->start = malloc((f->n + k + 1) * sizeof *fresh->start);
+    fresh->particle = malloc((count + k) * sizeof *fresh->particle);
+    fresh->centre = malloc((f->n + k) * sizeof *fresh->centre);
+    if (!fresh->start || !fresh->particle || !fresh->centre) {
+        tlsph_fibres_release(fresh);
+        return -1;
+    }
+    return 0;
+}
+
+static void fibre_centre(struct tlsph_fibres *f, size_t j, const double *X)
+{
+    const double m = (double)(f->start[j + 1] - f->start[j]);
+    for (int a = 0; a < 3; a++)
+        f->centre[j][a] = 0.0;
+    for (size_t p = f->start[j]; p < f->start[j + 1]; p++)
+        for (int a = 0; a < 3; a++)
+            f->centre[j][a] += X[3 * f->particle[p] + a] / m;
+}
+
+/* The slot of i among the parents, or k. */
+static size_t parent_slot(const size_t *parent, size_t k, size_t i)
+{
+    size_t s = 0;
+    while (s < k && parent[s] != i)
+        s++;
+    return s;
+}
+
+size_t tlsph_fibres_split_commit(struct tlsph_fibres *f, struct tlsph_fibres *fresh,
+                                 const size_t *parent, size_t k, size_t at, const double *X)
+{
+    const size_t count = f->n ? f->start[f->n] : 0;
+    memcpy(fresh->start, f->start, (f->n + 1) * sizeof *f->start);
+    memcpy(fresh->particle, f->particle, count * sizeof *f->particle);
+    memcpy(fresh->centre, f->centre, f->n * sizeof *f->centre);
+    size_t nf = f->n, used = count;
+    for (size_t j = 0; j < f->n; j++) {
+        const size_t first = used;
+        for (size_t p = f->start[j]; p < f->start[j + 1]; p++) {
+            const size_t s = parent_slot(parent, k, f->particle[p]);
+            if (s < k)
+                fresh->particle[used++] = at + s;
+        }
+        if (used == first)
+            continue;
+        fresh->start[++nf] = used;
+        fibre_centre(fresh, j, X);
+        fibre_centre(fresh, nf - 1, X);
+    }
+    const size_t added = nf - f->n;
+    fresh->n = nf;
+    tlsph_fibres_release(f);
+    *f = *fresh;
+    memset(fresh, 0, sizeof *fresh);
+    return added;
+}
+
+void tlsph_fibres_shift(struct tlsph_fibres *f, size_t at, size_t k)
+{
+    const size_t count = f->n ? f->start[f->n] : 0;
+    for (size_t p = 0; p < count; p++)
+        if (f->particle[p] >= at)
+            f->particle[p] += k;
 }

@@ -38,8 +38,9 @@
  * largest D_J), then the nearest, then the lowest index: deterministic, and
  * the fibre the damage criterion ranks first.  Fibres behind the tip
  * (|theta| > theta_c/2) are never chosen, which rules out the crack turning
- * back, as the paper intends.  The search scans the fibres (O(fibres)); it
- * runs once per tip advance, not per step.
+ * back, as the paper intends.  tlsph_fibre_next_tip scans every fibre
+ * (O(fibres)); the crack driver, which searches after every step, asks
+ * tlsph_fibre_next_tip_among with the dozen fibres within R of its tip.
  *
  * Units: m, rad; damage dimensionless.  Ownership: the fibre set owns its
  * arrays; release frees them. */
@@ -94,7 +95,42 @@ struct tlsph_tip_search {
 long tlsph_fibre_next_tip(const struct tlsph_fibres *f, const double *D,
                           const struct tlsph_tip_search *q);
 
+/* The same among the fibres cand[0..ncand-1] only (the crack driver's list of
+ * the fibres within R of a tip, so that a search each step costs that list,
+ * not the body); ties by the lowest index as above. */
+long tlsph_fibre_next_tip_among(const struct tlsph_fibres *f, const double *D,
+                                const struct tlsph_tip_search *q, const size_t *cand,
+                                size_t ncand);
+
+/* The fibres whose centre lies within radius (m) of point in the plane (the
+ * axis component dropped), ascending: the first max into out (may be NULL);
+ * returns how many there are. */
+size_t tlsph_fibres_within(const struct tlsph_fibres *f, const double point[3], double radius,
+                           size_t *out, size_t max);
+
 void tlsph_fibres_release(struct tlsph_fibres *f);
+
+/* Fibres through a particle split (crack/split.h).  Paper 003 §3.2: "the old
+ * crack tip fiber will be split into two new fibers": the halves on the +delta
+ * side (half 1, the parents' indices) stay the parent fibre, the halves on the
+ * -delta side form a new fibre appended after the last one, so every fibre
+ * keeps its index (the crack driver holds the tip's) and each face of the
+ * crack has its own fibre, whose damage sum counts only its own particles
+ * (both halves in one fibre would count the damage twice and pass D_c at half
+ * the damage).  The halves keep their parents' coordinate along the axis
+ * (delta is in the plane), so the new list is in the parents' order, sorted.
+ *
+ * Prepare allocates the split body's new arrays (worst case: k new fibres);
+ * nothing is changed, -1 out of memory.  Commit cannot fail: for the split
+ * body (f) its particles keep their indices (they lie below `at`, the end of
+ * its range), the halves 2 (at + s for parent[s]) form the new fibres, and the
+ * centres of the fibres touched are recomputed from X (after the split).
+ * Returns the fibres added.  tlsph_fibres_shift maps another body's fibres
+ * (i -> i + k from at). */
+int tlsph_fibres_split_prepare(const struct tlsph_fibres *f, size_t k, struct tlsph_fibres *fresh);
+size_t tlsph_fibres_split_commit(struct tlsph_fibres *f, struct tlsph_fibres *fresh,
+                                 const size_t *parent, size_t k, size_t at, const double *X);
+void tlsph_fibres_shift(struct tlsph_fibres *f, size_t at, size_t k);
 
 /* fibre_model.c: for a scene where some body has a "thickness_axis",
  * m->fibres (one set per body, empty for the others) from the particles'

@@ -222,11 +222,6 @@ static int validate(const struct tlsph_model *m, const struct tlsph_split *sp, d
                          "not remapped)");
         return -1;
     }
-    if (m->fibres) {
-        tlsph_errors_add(err, "", "split: not yet in a body with fibres (thickness_axis: the "
-                         "fibres' particle lists are not remapped; the crack driver will)");
-        return -1;
-    }
     if (sp->n == 0 || !sp->index) {
         tlsph_errors_add(err, "", "split: no particle given");
         return -1;
@@ -280,7 +275,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     if (tlsph_rebuild_plan(&view, cs, first_new_facet, &plan, err) != 0 ||
         prepare_lists(m, sp, &lists, err) != 0)
         goto fail;
-    if (tlsph_split_state_prepare(m, k, &state) != 0 ||
+    if (tlsph_split_state_prepare(m, b, k, &state) != 0 ||
         tlsph_split_forces_prepare(m, &plan, at, &forces) != 0) {
         tlsph_errors_add(err, "", "split: out of memory");
         goto fail;
@@ -301,6 +296,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     for (size_t s = 0; s < k; s++)
         split_fields(p, sp->index[s], at + s, phi, sp->delta, maxid + 1 + 2 * (int64_t)s,
                      maxid + 2 + 2 * (int64_t)s);
+    tlsph_split_state_fibres(m, &state, at, sp->index, k);
     m->body_end[b] += k;
     for (size_t c = b + 1; c < m->scene.nbodies; c++) {
         m->body_begin[c] += k;
@@ -312,6 +308,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
     lists_free(&lists, m->scene.nbcs);
     tlsph_rebuild_plan_free(&plan);
     tlsph_split_forces_free(&forces);
+    tlsph_split_state_free(&state);
     free(Xh);
     return 0;
 fail:

@@ -66,14 +66,15 @@
  * Index-holding structures: pairs (rebuilt, local_rebuild.h), body ranges
  * (the body grows by k, later bodies shift by k), boundary groups,
  * sections and probes (indices shifted; a half joins every group, section and
- * probe of its parent), the contact phase's and the rigid bodies' per-particle arrays and
+ * probe of its parent), fibres, the contact phase's and the rigid bodies' per-particle arrays and
  * candidate lists (crack/split_state.h).  Refused with an error, the model
  * unchanged: a parent in a pressure group (its reference area vector cannot
- * be shared without the surface), virtual links (D_ij per pair is not
- * remapped yet) and a model with fibres (their particle lists are not
- * remapped yet).  The result file of a run that splits needs the layout for
- * changing counts (io/output/output.h); one opened with one count per run
- * refuses the next frame with an error. */
+ * be shared without the surface) and virtual links (D_ij per pair is not
+ * remapped yet).  Fibres (m->fibres) follow the split: the halves 2 form a
+ * new fibre beside their parents' (crack/fibre.h tlsph_fibres_split_commit).
+ * The result file of a run that splits needs the layout for changing counts
+ * (io/output/output.h); one opened with one count per run refuses the next
+ * frame with an error. */
 #ifndef TLSPH_CRACK_SPLIT_H
 #define TLSPH_CRACK_SPLIT_H
 

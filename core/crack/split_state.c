@@ -50,12 +50,18 @@ void tlsph_split_state_free(struct tlsph_split_state *st)
     for (size_t q = 0; q < st->count; q++)
         free(st->fresh[q]);
     free(st->contact_start);
+    tlsph_fibres_release(&st->fibres);
     memset(st, 0, sizeof *st);
 }
 
-int tlsph_split_state_prepare(struct tlsph_model *m, size_t k, struct tlsph_split_state *st)
+int tlsph_split_state_prepare(struct tlsph_model *m, size_t body, size_t k,
+                              struct tlsph_split_state *st)
 {
     memset(st, 0, sizeof *st);
+    st->body = body;
+    if (m->fibres && m->fibres[body].n &&
+        tlsph_fibres_split_prepare(&m->fibres[body], k, &st->fibres) != 0)
+        return -1;
     struct side_array a[TLSPH_SPLIT_STATE_MAX];
     const size_t count = side_arrays(m, a), n = m->p.n + k;
     for (size_t q = 0; q < count; q++, st->count++)
@@ -137,4 +143,23 @@ void tlsph_split_state_commit(struct tlsph_model *m, struct tlsph_split_state *s
     if (r)
         map_list(r->cand, (size_t)r->start[r->nb], at, k);
     st->count = 0;
+}
+
+void tlsph_split_state_fibres(struct tlsph_model *m, struct tlsph_split_state *st, size_t at,
+                              const size_t *parent, size_t k)
+{
+    if (!m->fibres)
+        return;
+    for (size_t b = 0; b < m->scene.nbodies; b++) {
+        struct tlsph_fibres *f = &m->fibres[b];
+        if (!f->n)
+            continue;
+        if (b != st->body) {
+            tlsph_fibres_shift(f, at, k);
+            continue;
+        }
+        const size_t added = tlsph_fibres_split_commit(f, &st->fibres, parent, k, at, m->p.X);
+        m->bytes_allocated += k * sizeof *f->particle +
+                              added * (sizeof *f->start + sizeof *f->centre);
+    }
 }

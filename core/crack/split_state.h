@@ -21,6 +21,7 @@
 
 #include <stddef.h>
 
+#include "crack/fibre.h"
 #include "run/model.h"
 
 #define TLSPH_SPLIT_STATE_MAX 12
@@ -29,13 +30,24 @@ struct tlsph_split_state {
     void *fresh[TLSPH_SPLIT_STATE_MAX]; /* the new arrays, in the order of the table */
     size_t count;
     int64_t *contact_start;             /* [n + k + 1] */
+    struct tlsph_fibres fibres;          /* the split body's fibres after it (crack/fibre.h) */
+    size_t body;
 };
 
-int tlsph_split_state_prepare(struct tlsph_model *m, size_t k, struct tlsph_split_state *st);
+/* body: the body of the parents. */
+int tlsph_split_state_prepare(struct tlsph_model *m, size_t body, size_t k,
+                              struct tlsph_split_state *st);
 
 /* n: the particle count before the split; share: m1/m of the halves. */
 void tlsph_split_state_commit(struct tlsph_model *m, struct tlsph_split_state *st, size_t n,
                               size_t at, const size_t *parent, size_t k, double share);
+
+/* The fibres (m->fibres) across the split: the split body's halves 2 form new
+ * fibres (tlsph_fibres_split_commit), later bodies' indices shift by k.  Call
+ * after the halves' X are set (the centres are recomputed from them).  Cannot
+ * fail. */
+void tlsph_split_state_fibres(struct tlsph_model *m, struct tlsph_split_state *st, size_t at,
+                              const size_t *parent, size_t k);
 
 void tlsph_split_state_free(struct tlsph_split_state *st);
 

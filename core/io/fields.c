@@ -7,6 +7,7 @@
 
 #include "bc/kind.h"
 #include "contact/contact.h"
+#include "crack/crack_driver.h"
 #include "rigid/rigid.h"
 #include "sph/virtual_links.h"
 #include "util/mat3.h"
@@ -282,6 +283,22 @@ static void sv_viscous(const struct tlsph_model *m, double *o) { o[0] = m->energ
 static void sv_plastic(const struct tlsph_model *m, double *o) { o[0] = m->energy.plastic_work; }
 static void sv_damage_work(const struct tlsph_model *m, double *o) { o[0] = m->energy.damage_work; }
 static void sv_failed(const struct tlsph_model *m, double *o) { o[0] = (double)m->failed; }
+static int has_crack_growth(const struct tlsph_model *m)
+{
+    return m->crack_driver != NULL;
+}
+static void sv_crack_length(const struct tlsph_model *m, double *o)
+{
+    o[0] = tlsph_crack_driver_length(m);
+}
+static void sv_crack_advances(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)m->crack_driver->nevents;
+}
+static void sv_particle_count(const struct tlsph_model *m, double *o)
+{
+    o[0] = (double)m->p.n;
+}
 static void sv_broken_links(const struct tlsph_model *m, double *o)
 {
     o[0] = (double)m->links->broken;
@@ -371,6 +388,14 @@ const struct tlsph_series_column tlsph_global_series[] = {
      sv_contact_pairs},
     {"rigid_contacts", 1, "1", "number of particles in contact with a rigid body (overlapping)",
      has_rigid, sv_rigid_contacts},
+    {"crack_length", 1, "m",
+     "growing cracks: in-plane length of the crack surface added since the start, summed over "
+     "the tips (where the pairs are cut; docs/crack-growth.md)",
+     has_crack_growth, sv_crack_length},
+    {"crack_tip_advances", 1, "1", "growing cracks: tip advances so far, summed over the tips",
+     has_crack_growth, sv_crack_advances},
+    {"particle_count", 1, "1", "growing cracks: number of particles (splitting adds them)",
+     has_crack_growth, sv_particle_count},
 };
 const size_t tlsph_nglobal_series = sizeof tlsph_global_series / sizeof *tlsph_global_series;
 
@@ -433,6 +458,35 @@ static const struct tlsph_series_column probe_columns[] = {
      NULL, NULL},
     {"velocity", 3, "m/s", "velocity of that centre of mass (momentum / mass)", NULL, NULL},
 };
+
+/* Growing crack tips (crack_growth.tips, core/crack/crack_driver.h), named
+ * tip0, tip1, ... in the scene's order. */
+static const struct tlsph_series_column crack_tip_columns[] = {
+    {"position", 3, "m", "the tip (reference configuration): the pre-crack's end, then the "
+     "centre of the tip fibre", NULL, NULL},
+    {"advances", 1, "1", "tip advances so far", NULL, NULL},
+    {"length", 1, "m", "in-plane length of the crack surface this tip added", NULL, NULL},
+};
+
+static size_t crack_tip_count(const struct tlsph_model *m)
+{
+    return m->crack_driver ? m->crack_driver->ntips : 0;
+}
+static const char *crack_tip_item(const struct tlsph_model *m, size_t k)
+{
+    static const char *const names[TLSPH_MAX_GROWTH_TIPS] = {"tip0", "tip1", "tip2", "tip3",
+                                                             "tip4", "tip5", "tip6", "tip7"};
+    (void)m;
+    return k < TLSPH_MAX_GROWTH_TIPS ? names[k] : NULL;
+}
+static void crack_tip_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_crack_tip *t = &m->crack_driver->tip[k];
+    for (int c = 0; c < 3; c++)
+        out[c] = t->T[c];
+    out[3] = (double)t->advances;
+    out[4] = t->length;
+}
 
 static size_t probe_count(const struct tlsph_model *m) { return m->scene.nprobes; }
 static const char *probe_item(const struct tlsph_model *m, size_t k)
@@ -550,6 +604,9 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_PROBES] = {"probes", 0, probe_columns,
                              sizeof probe_columns / sizeof *probe_columns, probe_count,
                              probe_item, tlsph_probe_values},
+    [TLSPH_FAMILY_CRACK_TIPS] = {"crack_tips", 0, crack_tip_columns,
+                                 sizeof crack_tip_columns / sizeof *crack_tip_columns,
+                                 crack_tip_count, crack_tip_item, crack_tip_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

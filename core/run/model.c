@@ -10,6 +10,7 @@
 #include "bc/boundary.h"
 #include "contact/contact.h"
 #include "crack/fibre.h"
+#include "crack/crack_driver.h"
 #include "crack/precrack.h"
 #include "rigid/rigid.h"
 #include "material/constitutive.h"
@@ -83,6 +84,7 @@ void tlsph_model_free(struct tlsph_model *m)
     tlsph_rigid_free(m);
     if (m->crack && m->crack->release)
         m->crack->release(m);
+    tlsph_crack_driver_release(m);
     tlsph_precrack_release(m);
     tlsph_model_fibres_release(m);
     tlsph_measures_free(&m->measures);
@@ -110,6 +112,8 @@ static void select_modules(struct tlsph_model *m)
         add_module(m, "crack:precrack");
     if (m->fibres)
         add_module(m, "crack:fibres");
+    if (m->crack_driver)
+        add_module(m, "crack:growth");
     int plastic = 0, rate = 0, softening = 0, heating = 0, damage = 0, evolution = 0;
     for (size_t b = 0; b < s->nbodies; b++) {
         const struct tlsph_material *mat = &s->materials[s->bodies[b].material];
@@ -387,6 +391,8 @@ int tlsph_model_create(struct tlsph_scene *scene, struct tlsph_model **out,
     m->pairs.npairs = (size_t)m->pairs.start[m->p.n];
     m->bytes_allocated += (m->p.n + 1) * sizeof(int64_t) + m->pairs.npairs * sizeof(int32_t);
     if (m->scene.ncracks && tlsph_precrack_setup(m, err) != 0) /* cuts the pairs */
+        goto fail;
+    if (m->scene.crack_growth.on && tlsph_crack_driver_setup(m, err) != 0)
         goto fail;
     if (m->crack->setup && m->crack->setup(m, err) != 0) /* may narrow the pairs */
         goto fail;

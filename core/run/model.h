@@ -24,6 +24,7 @@ struct tlsph_rigid;       /* rigid/state.h: the rigid bodies' state */
 struct tlsph_links;       /* sph/virtual_links.h: the virtual links' state */
 struct tlsph_crack_surface; /* crack/crack_surface.h: crack facets */
 struct tlsph_fibres;        /* crack/fibre.h: a thin body's fibres */
+struct tlsph_crack_driver;  /* crack/crack_driver.h: growing cracks */
 
 struct tlsph_particles {
     size_t n;
@@ -159,6 +160,9 @@ struct tlsph_model {
     struct tlsph_fibres *fibres;    /* [nbodies]: each thin body's fibres (crack/fibre.h;
                                        empty for the others), owned; NULL when no body
                                        has a "thickness_axis" */
+    struct tlsph_crack_driver *crack_driver; /* growing cracks (crack/crack_driver.h),
+                                       owned; NULL without "crack_growth": nothing
+                                       allocated or run */
 
     /* run state */
     long step;

@@ -7,6 +7,7 @@
 
 #include "bc/boundary.h"
 #include "contact/contact.h"
+#include "crack/crack_driver.h"
 #include "rigid/rigid.h"
 #include "io/output/output.h"
 #include "run/integrate.h"
@@ -94,6 +95,12 @@ static void emit_progress(const struct tlsph_model *m, int fd, double wall, long
     json_t *o = json_pack("{s:s, s:I, s:f, s:f, s:f, s:f, s:I}", "event", TLSPH_EVENT_PROGRESS, "step",
                           (json_int_t)m->step, "time", m->t, "end_time", m->scene.end_time,
                           "wall_seconds", wall, "eta_seconds", eta, "frames", (json_int_t)frames);
+    if (o && m->crack_driver) { /* the growth: the count changes (progress.schema.json) */
+        json_object_set_new(o, "particles", json_integer((json_int_t)m->p.n));
+        json_object_set_new(o, "crack_tip_advances",
+                            json_integer((json_int_t)m->crack_driver->nevents));
+        json_object_set_new(o, "crack_length", json_real(tlsph_crack_driver_length(m)));
+    }
     tlsph_progress_emit(fd, o);
     json_decref(o);
 }
@@ -113,6 +120,26 @@ static void emit_finished(const struct tlsph_model *m, int fd, enum tlsph_exit c
     }
     tlsph_progress_emit(fd, o);
     json_decref(o);
+}
+
+/* The crack driver after a step (crack/crack_driver.h); a growth that
+ * cannot go on (a split refused, out of memory) stops the run on a
+ * diagnostic, since the pairs would no longer match the crack surface. */
+static int grow_cracks(struct tlsph_model *m, FILE *log, struct tlsph_diagnostic *d)
+{
+    struct tlsph_errors e;
+    tlsph_errors_init(&e);
+    const int rc = tlsph_crack_driver_step(m, log, &e);
+    if (rc != 0) {
+        memset(d, 0, sizeof *d);
+        d->step = m->step;
+        d->time = m->t;
+        snprintf(d->quantity, sizeof d->quantity, "crack_growth");
+        snprintf(d->message, sizeof d->message, "crack growth stopped the run: %s",
+                 e.count ? e.items[0].message : "out of memory");
+    }
+    tlsph_errors_free(&e);
+    return rc;
 }
 
 /* What writing a frame or a sample came to; STOPPED: the run stops on the
@@ -220,6 +247,10 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
             break;
         }
         tlsph_model_step(m);
+        if (m->crack_driver && grow_cracks(m, o->log, d) != 0) {
+            have_diag = 1;
+            break;
+        }
         const int frame_due = m->t >= (double)next_frame * frame_dt * (1.0 - 1e-12) &&
                               m->t < s->end_time * (1.0 - 1e-12);
         if (frame_due || m->step % s->check_every == 0) {
@@ -282,6 +313,14 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 cc.phase_seconds,
                 cost.wall_seconds > 0 ? 100.0 * cc.phase_seconds / cost.wall_seconds : 0.0,
                 tlsph_contact_candidates(m) / 2);
+    }
+    if (o->log && m->crack_driver) {
+        const struct tlsph_crack_driver *cd = m->crack_driver;
+        fprintf(o->log,
+                "tlsph: crack growth: %zu tip advances, %zu particles split, %zu particles "
+                "now, grown %g m, driver %.3f s (%.2f %% of the run)\n",
+                cd->nevents, cd->particles_split, m->p.n, tlsph_crack_driver_length(m),
+                cd->seconds, cost.wall_seconds > 0 ? 100.0 * cd->seconds / cost.wall_seconds : 0.0);
     }
     if (o->log && m->rigid) {
         const struct tlsph_rigid_cost rc = tlsph_rigid_cost(m);

@@ -17,6 +17,7 @@
 #define TLSPH_MAX_RIGID_BODIES   32        /* items of "rigid_bodies" */
 #define TLSPH_MAX_CRACKS         32        /* items of "cracks" */
 #define TLSPH_MAX_CRACK_CORNERS  64        /* corners of one crack polygon */
+#define TLSPH_MAX_GROWTH_TIPS    8         /* crack_growth.tips */
 #define TLSPH_GEOMETRY_MAX_DEPTH 16        /* nesting of union / difference */
 /* Objects (primitives, unions, differences) in one body's geometry: bounds the
  * lattice walk at (lattice points in the bounding box) x (objects) box tests */

@@ -336,7 +336,10 @@ int tlsph_scene_parse(const char *text, size_t len, struct tlsph_scene *scene,
     if (!bodies_bad)
         bad |= tlsph_parse_contact(root, s, err) != 0;
     bad |= tlsph_parse_rigid_bodies(root, s, err) != 0;
-    bad |= tlsph_parse_cracks(root, s, err) != 0;
+    const int cracks_bad = tlsph_parse_cracks(root, s, err) != 0;
+    bad |= cracks_bad;
+    if (!bodies_bad && !cracks_bad)
+        bad |= tlsph_parse_crack_growth(root, s, err) != 0;
     const int bcs_bad = tlsph_parse_bcs(root, s, err) != 0;
     bad |= bcs_bad;
     if (!bcs_bad)

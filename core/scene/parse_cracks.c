@@ -31,6 +31,42 @@ const struct tlsph_key_table tlsph_crack_keys = {
     .path = "/cracks/*", .keys = crack_keys, .nkeys = sizeof crack_keys / sizeof *crack_keys,
     .one_of = 1};
 
+/* "crack_growth" (core/crack/crack_driver.h).  Defaults: D_c = 0.1 is the
+ * paper's for the Johnson-Cook damage of §5.3 (the engine's D); the paper
+ * gives no fan angle or radius, so theta_c = 120 degrees (the lattice
+ * neighbours at +-45 degrees ahead inside, the sideways ones at 90 outside)
+ * and R = 1.5 spacings (the eight lattice neighbours of a fibre).  R below
+ * 2 spacings: a hop of 2 along a lattice row or diagonal passes through the
+ * fibre between, whose particles would lie on the new facets and lose every
+ * neighbour. */
+/* clang-format off */
+static const struct tlsph_key growth_keys[] = {
+    {.name = "tips", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
+     .unit = "m", .description = "the crack tips that grow, each [x, y, z]: an end of a crack's "
+     "trace in the plane of a body with fibres (thickness_axis)"},
+    {.name = "critical_damage", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
+     .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "1", .def = 0.1,
+     .offset = offsetof(struct tlsph_scene, crack_growth.critical_damage),
+     .description = "D_c of eq. 20: a fibre becomes the tip when the sum of its particles' "
+     "damage reaches it"},
+    {.name = "fan_angle", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
+     .range = {0.0, 360.0, JC_OPEN, JC_CLOSED}, .unit = "deg", .def = 120.0,
+     .offset = offsetof(struct tlsph_scene, crack_growth.fan_angle),
+     .description = "theta_c of eq. 20: the new tip lies within +-theta_c/2 of the crack's "
+     "direction"},
+    {.name = "search_radius", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
+     .range = {1.0, 2.0, JC_CLOSED, JC_OPEN}, .unit = "1", .said = "(spacings)", .def = 1.5,
+     .offset = offsetof(struct tlsph_scene, crack_growth.search_radius),
+     .above_max = "a hop of 2 spacings passes through the fibre between, which the new facets "
+     "would cut off from every neighbour",
+     .description = "R of eq. 20, in spacings of the tip's body: the new tip lies within R of "
+     "the old"},
+};
+/* clang-format on */
+const struct tlsph_key_table tlsph_crack_growth_keys = {
+    .path = "/crack_growth", .keys = growth_keys,
+    .nkeys = sizeof growth_keys / sizeof *growth_keys};
+
 /* Planarity and convexity tolerances, relative to the polygon's diameter: the
  * corners are typed by people, to a few digits. */
 #define PLANAR_TOL 1e-6
@@ -237,4 +273,55 @@ int tlsph_parse_cracks(const json_t *root, struct tlsph_scene *s, struct tlsph_e
         bad |= parse_crack(json_array_get(arr, k), s->dimension, &s->cracks[k], P, err) != 0;
     }
     return bad ? -1 : 0;
+}
+
+int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
+{
+    const json_t *g = json_object_get(root, "crack_growth");
+    if (!g)
+        return 0;
+    const char *P = "/crack_growth";
+    if (!json_is_object(g)) {
+        tlsph_errors_add(err, P, "'crack_growth' must be an object, got %s", jc_type_name(g));
+        return -1;
+    }
+    if (tlsph_keys_read(g, &tlsph_crack_growth_keys, P, &(struct tlsph_key_target){.base = s},
+                        err) != 0)
+        return -1;
+    const json_t *tips = json_object_get(g, "tips");
+    if (!tips) {
+        tlsph_errors_add(err, "/crack_growth/tips", "required: the crack tips that grow");
+        return -1;
+    }
+    if (json_is_array(tips) &&
+        (json_array_size(tips) < 1 || json_array_size(tips) > TLSPH_MAX_GROWTH_TIPS)) {
+        tlsph_errors_add(err, "/crack_growth/tips", "must hold 1 to %d tips, got %zu",
+                         TLSPH_MAX_GROWTH_TIPS, json_array_size(tips));
+        return -1;
+    }
+    struct tlsph_crack_spec pts = {0};
+    if (read_points(tips, 1, TLSPH_MAX_GROWTH_TIPS, "/crack_growth/tips", &pts, err) != 0)
+        return -1;
+    for (int k = 0; k < pts.ncorners; k++)
+        memcpy(s->crack_growth.tip[k], pts.corner[k], sizeof pts.corner[k]);
+    s->crack_growth.ntips = (size_t)pts.ncorners;
+    if (s->dimension != 3) {
+        tlsph_errors_add(err, P, "cracks grow through the thickness of a plate (fibres): a 3-D "
+                         "scene only");
+        return -1;
+    }
+    if (s->ncracks == 0) {
+        tlsph_errors_add(err, P, "a crack grows from a pre-crack: the scene has no \"cracks\"");
+        return -1;
+    }
+    int thin = 0;
+    for (size_t b = 0; b < s->nbodies; b++)
+        thin |= s->bodies[b].thickness_axis >= 0;
+    if (!thin) {
+        tlsph_errors_add(err, P, "a crack grows from fibre to fibre: no body has a "
+                         "\"thickness_axis\" (give the plate's body one)");
+        return -1;
+    }
+    s->crack_growth.on = 1;
+    return 0;
 }

@@ -70,7 +70,10 @@ int tlsph_parse_rigid_bodies(const json_t *root, struct tlsph_scene *s, struct t
 
 /* parse_cracks.c: fills s->cracks ("cracks"; the dimension already read). */
 extern const struct tlsph_key_table tlsph_crack_keys; /* "/cracks/<i>" */
+extern const struct tlsph_key_table tlsph_crack_growth_keys; /* "/crack_growth" */
 int tlsph_parse_cracks(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
+/* "crack_growth" (after the bodies and cracks). */
+int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);
 
 /* parse_bcs.c: fills s->bcs (bodies already parsed). */
 int tlsph_parse_bcs(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err);

@@ -214,6 +214,19 @@ struct tlsph_crack_spec {
     double corner[TLSPH_MAX_CRACK_CORNERS][3]; /* m */
 };
 
+/* How cracks grow ("crack_growth", core/scene/parse_cracks.c;
+ * core/crack/crack_driver.h): the tips that grow, each the end of a crack's
+ * trace in a body with fibres, and eq. 20's constants.  on = 0: no crack grows
+ * (nothing allocated or run). */
+struct tlsph_crack_growth {
+    int on;
+    double tip[TLSPH_MAX_GROWTH_TIPS][3]; /* m */
+    size_t ntips;
+    double critical_damage; /* D_c: the fibre's summed damage, 1 */
+    double fan_angle;       /* theta_c, degrees */
+    double search_radius;   /* R, in spacings of the tip's body */
+};
+
 /* A probe: the centre of mass of the particles a selector picks (by reference
  * position, once at setup), followed through the run: its displacement and
  * velocity, the point measurements a test reads from a dial gauge or a laser
@@ -288,6 +301,7 @@ struct tlsph_scene {
     struct tlsph_contact_settings contact;
     struct tlsph_rigid_spec *rigid; size_t nrigid; /* "rigid_bodies" (core/rigid/) */
     struct tlsph_crack_spec *cracks; size_t ncracks; /* "cracks": initial cracks */
+    struct tlsph_crack_growth crack_growth;
 
     char *json_text;              /* the scene as submitted, compact JSON, for the output file */
 };

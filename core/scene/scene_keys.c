@@ -377,6 +377,10 @@ static const struct tlsph_key scene_keys[] = {
     {.name = "cracks", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_crack_keys,
      .description = "initial cracks: reference pairs whose sight line crosses one are not "
                     "created"},
+    {.name = "crack_growth", .kind = TLSPH_KEY_OBJECT, .flags = CALLER,
+     .table = &tlsph_crack_growth_keys,
+     .description = "cracks that grow from fibre to fibre (paper 003 eq. 20); absent = none "
+                    "grows"},
 };
 const struct tlsph_key_table tlsph_scene_keys = TLSPH_KEY_TABLE("", NULL, scene_keys);
 

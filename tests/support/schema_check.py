@@ -25,6 +25,10 @@ SEMANTIC_ONLY = {
     "crack_misses_body",      # needs the particles
     "thickness_axis_2d",      # fibres: 3-D uniform lattices only
     "thickness_axis_refined",
+    "crack_growth_no_fibres",  # crack growth: a body with fibres, a pre-crack,
+    "crack_growth_no_crack",   # a damage model, a tip at a crack's end
+    "crack_growth_no_damage",
+    "crack_growth_tip_off_crack",
     # JSON-level: Python's json module accepts these, jansson does not
     "duplicate_key",          # JSON_REJECT_DUPLICATES
     "huge_number",            # 1e400 overflows a double

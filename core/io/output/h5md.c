@@ -262,7 +262,7 @@ static void discard_output(struct tlsph_output *o, int created, struct tlsph_err
 
 int tlsph_output_count_may_change(const struct tlsph_model *m)
 {
-    return m->fibres != NULL;
+    return m->crack_driver != NULL;
 }
 
 struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model *m,

@@ -80,8 +80,10 @@ struct tlsph_output *tlsph_output_open(const char *dir, const struct tlsph_model
  * layout for changing counts, 0 for one count per run. */
 struct tlsph_output *tlsph_output_open_with(const char *dir, const struct tlsph_model *m,
                                             int changing_count, struct tlsph_errors *err);
-/* 1 when m's particle count may change during its run: a model with fibres
- * (crack/fibre.h), the thin bodies whose crack-tip fibres are split; else 0. */
+/* 1 when m's particle count may change during its run: a model with growing
+ * cracks (crack/crack_driver.h), whose tip fibres are split; else 0 (fibres
+ * alone split nothing; a library caller that splits opens with
+ * tlsph_output_open_with). */
 int tlsph_output_count_may_change(const struct tlsph_model *m);
 /* Appends one frame of every present frame field, then flushes; rewrites the .xmf
  * (via a temporary file and rename) when the last rewrite is more than 2 s old;

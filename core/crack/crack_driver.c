@@ -1,0 +1,383 @@
+/* The crack driver (crack_driver.h). */
+#include "crack/crack_driver.h"
+
+#include <math.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "crack/crack_surface.h"
+#include "crack/fibre.h"
+#include "crack/split.h"
+#include "util/clock.h"
+
+/* The two in-plane axes of a thickness direction (as crack/fibre.c). */
+static void plane_axes(int axis, int out[2])
+{
+    out[0] = axis == 0 ? 1 : 0;
+    out[1] = axis == 2 ? 1 : 2;
+}
+
+static double plane_distance(int axis, const double a[3], const double b[3])
+{
+    int pa[2];
+    plane_axes(axis, pa);
+    return hypot(a[pa[0]] - b[pa[0]], a[pa[1]] - b[pa[1]]);
+}
+
+static double body_spacing(const struct tlsph_model *m, size_t b)
+{
+    return m->scene.bodies[b].spacing;
+}
+
+/* The fibres a tip's search looks at: those within R (all when more than the
+ * list holds: ncand = SIZE_MAX). */
+static void refresh_candidates(const struct tlsph_model *m, struct tlsph_crack_tip *t)
+{
+    const struct tlsph_fibres *f = &m->fibres[t->body];
+    const double R = m->scene.crack_growth.search_radius * body_spacing(m, t->body);
+    const size_t n = tlsph_fibres_within(f, t->T, R * (1.0 + 1e-9), t->cand, TLSPH_CRACK_MAX_CAND);
+    t->ncand = n <= TLSPH_CRACK_MAX_CAND ? n : SIZE_MAX;
+}
+
+/* ---------------------------------------------------------------- setup */
+
+/* The ends A, B of crack c's trace in the plane of `axis` (the two corners
+ * farthest apart there); 0, or -1 when the trace is no segment (a corner off
+ * the line A-B by more than 1e-6 of its length: the crack is not through the
+ * thickness) or has no length. */
+static int trace_ends(const struct tlsph_crack_spec *c, int axis, double A[3], double B[3])
+{
+    int pa[2];
+    plane_axes(axis, pa);
+    double best = -1.0;
+    int ia = 0, ib = 0;
+    for (int a = 0; a < c->ncorners; a++)
+        for (int b = a + 1; b < c->ncorners; b++) {
+            const double d = plane_distance(axis, c->corner[a], c->corner[b]);
+            if (d > best) {
+                best = d;
+                ia = a;
+                ib = b;
+            }
+        }
+    if (!(best > 0.0))
+        return -1;
+    memcpy(A, c->corner[ia], 3 * sizeof *A);
+    memcpy(B, c->corner[ib], 3 * sizeof *B);
+    const double ux = (B[pa[0]] - A[pa[0]]) / best, uy = (B[pa[1]] - A[pa[1]]) / best;
+    for (int k = 0; k < c->ncorners; k++) {
+        const double px = c->corner[k][pa[0]] - A[pa[0]], py = c->corner[k][pa[1]] - A[pa[1]];
+        if (fabs(px * uy - py * ux) > 1e-6 * best)
+            return -1;
+    }
+    return 0;
+}
+
+/* The thin body whose fibres' in-plane box (plus half a spacing) holds P, or
+ * nbodies. */
+static size_t body_of(const struct tlsph_model *m, const double P[3])
+{
+    for (size_t b = 0; b < m->scene.nbodies; b++) {
+        const struct tlsph_fibres *f = &m->fibres[b];
+        if (!f->n)
+            continue;
+        int pa[2];
+        plane_axes(f->axis, pa);
+        const double half = 0.5 * body_spacing(m, b);
+        int inside = 1;
+        for (int a = 0; a < 2; a++) {
+            double lo = INFINITY, hi = -INFINITY;
+            for (size_t j = 0; j < f->n; j++) {
+                lo = fmin(lo, f->centre[j][pa[a]]);
+                hi = fmax(hi, f->centre[j][pa[a]]);
+            }
+            inside &= P[pa[a]] >= lo - half && P[pa[a]] <= hi + half;
+        }
+        if (inside)
+            return b;
+    }
+    return m->scene.nbodies;
+}
+
+static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
+                     struct tlsph_errors *err)
+{
+    const double *P = m->scene.crack_growth.tip[j];
+    char p[TLSPH_POINTER_MAX];
+    tlsph_pointer_index(p, sizeof p, "/crack_growth/tips", j);
+    const size_t b = body_of(m, P);
+    if (b == m->scene.nbodies) {
+        tlsph_errors_add(err, p, "the tip (%g, %g, %g) m is in no body with fibres "
+                         "(\"thickness_axis\"): a crack grows from fibre to fibre",
+                         P[0], P[1], P[2]);
+        return -1;
+    }
+    const struct tlsph_body *body = &m->scene.bodies[b];
+    if (!m->scene.materials[body->material].damage.model) {
+        tlsph_errors_add(err, p, "body '%s' has no damage model: its fibres' damage stays 0 "
+                         "and the crack cannot grow", body->name);
+        return -1;
+    }
+    const int axis = m->fibres[b].axis;
+    for (size_t c = 0; c < m->scene.ncracks; c++) {
+        double A[3], B[3];
+        if (trace_ends(&m->scene.cracks[c], axis, A, B) != 0)
+            continue;
+        const double len = plane_distance(axis, A, B);
+        const double *end = plane_distance(axis, P, A) <= 1e-6 * len   ? A
+                            : plane_distance(axis, P, B) <= 1e-6 * len ? B
+                                                                       : NULL;
+        if (!end)
+            continue;
+        const double *other = end == A ? B : A;
+        t->body = b;
+        t->fibre = -1;
+        for (int k = 0; k < 3; k++) {
+            t->T[k] = t->end[k] = P[k];
+            t->V1[k] = k == axis ? 0.0 : end[k] - other[k];
+        }
+        refresh_candidates(m, t);
+        return 0;
+    }
+    tlsph_errors_add(err, p, "the tip (%g, %g, %g) m is no end of a through-thickness crack's "
+                     "trace in the plane of body '%s' (a crack polygon containing the "
+                     "thickness direction, ending there)", P[0], P[1], P[2], body->name);
+    return -1;
+}
+
+int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err)
+{
+    const struct tlsph_crack_growth *g = &m->scene.crack_growth;
+    if (!g->on)
+        return 0;
+    struct tlsph_crack_driver *d = calloc(1, sizeof *d);
+    if (!d) {
+        tlsph_errors_add(err, "/crack_growth", "out of memory");
+        return -1;
+    }
+    m->crack_driver = d;
+    if (!m->fibres || !m->crack_surface) {
+        tlsph_errors_add(err, "/crack_growth", "a growing crack needs a body with fibres and a "
+                         "pre-crack");
+        return -1;
+    }
+    for (size_t j = 0; j < g->ntips; j++)
+        if (setup_tip(m, j, &d->tip[j], err) != 0)
+            return -1;
+    if (!m->p.damage) { /* setup_tip checked the tips' materials: cannot happen */
+        tlsph_errors_add(err, "/crack_growth", "no damage model: the crack cannot grow");
+        return -1;
+    }
+    d->ntips = g->ntips;
+    return 0;
+}
+
+/* ---------------------------------------------------------------- advance */
+
+/* Adds the rectangle over the in-plane segment P-Q spanning [lo, hi] along
+ * the axis (two triangles); *length += its in-plane length.  0 or -1. */
+static int add_rect(struct tlsph_model *m, int axis, const double P[3], const double Q[3],
+                    double lo, double hi, double spacing, double *length,
+                    struct tlsph_errors *err)
+{
+    const double l = plane_distance(axis, P, Q);
+    if (!(l > 1e-9 * spacing))
+        return 0;
+    double c[4][3];
+    memcpy(c[0], P, sizeof c[0]);
+    memcpy(c[1], Q, sizeof c[1]);
+    memcpy(c[2], Q, sizeof c[2]);
+    memcpy(c[3], P, sizeof c[3]);
+    c[0][axis] = c[1][axis] = lo;
+    c[2][axis] = c[3][axis] = hi;
+    const double T1[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[1][0], c[1][1], c[1][2]},
+                             {c[2][0], c[2][1], c[2][2]}};
+    const double T2[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[2][0], c[2][1], c[2][2]},
+                             {c[3][0], c[3][1], c[3][2]}};
+    if (tlsph_crack_surface_add(m->crack_surface, T1) != TLSPH_CRACK_OK ||
+        tlsph_crack_surface_add(m->crack_surface, T2) != TLSPH_CRACK_OK) {
+        tlsph_errors_add(err, "", "crack growth: cannot add a facet (out of memory or out of "
+                         "the surface's grid)");
+        return -1;
+    }
+    *length += l;
+    return 0;
+}
+
+/* Widens [lo, hi] by fibre k's particles along the axis. */
+static void fibre_span(const struct tlsph_model *m, const struct tlsph_fibres *f, size_t k,
+                       double *lo, double *hi)
+{
+    for (size_t p = f->start[k]; p < f->start[k + 1]; p++) {
+        const double z = m->p.X[3 * f->particle[p] + f->axis];
+        *lo = fmin(*lo, z);
+        *hi = fmax(*hi, z);
+    }
+}
+
+/* Splits fibre k of body b (copied list: the split reallocates the fibres). */
+static int split_fibre(struct tlsph_model *m, size_t b, size_t k, const double V1[3],
+                       const double V2[3], const double delta[3], size_t first_facet,
+                       size_t *count, struct tlsph_errors *err)
+{
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const size_t n = f->start[k + 1] - f->start[k];
+    size_t *index = malloc((n ? n : 1) * sizeof *index);
+    if (!index) {
+        tlsph_errors_add(err, "", "crack growth: out of memory");
+        return -1;
+    }
+    memcpy(index, f->particle + f->start[k], n * sizeof *index);
+    struct tlsph_split sp = {.index = index, .n = n};
+    memcpy(sp.V1, V1, sizeof sp.V1);
+    memcpy(sp.V2, V2, sizeof sp.V2);
+    memcpy(sp.delta, delta, sizeof sp.delta);
+    const int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
+    free(index);
+    *count += n;
+    return rc;
+}
+
+/* Is fibre k at the body's edge (fewer than 8 fibres within 1.5 spacings)? */
+static int at_edge(const struct tlsph_fibres *f, size_t k, double spacing)
+{
+    return tlsph_fibres_within(f, f->centre[k], 1.5 * spacing * (1.0 + 1e-9), NULL, 0) < 9;
+}
+
+static int record(struct tlsph_crack_driver *d, const struct tlsph_model *m, size_t tip,
+                  size_t split, struct tlsph_errors *err)
+{
+    if (d->nevents == d->event_cap) {
+        const size_t cap = d->event_cap ? 2 * d->event_cap : 16;
+        struct tlsph_crack_event *e = realloc(d->event, cap * sizeof *e);
+        if (!e) {
+            tlsph_errors_add(err, "", "crack growth: out of memory");
+            return -1;
+        }
+        d->event = e;
+        d->event_cap = cap;
+    }
+    const struct tlsph_crack_tip *t = &d->tip[tip];
+    struct tlsph_crack_event *e = &d->event[d->nevents++];
+    *e = (struct tlsph_crack_event){.step = m->step, .time = m->t, .tip = tip,
+                                    .fibre = t->fibre, .split = split, .particles = m->p.n};
+    memcpy(e->position, t->T, sizeof e->position);
+    return 0;
+}
+
+static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
+                   struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    struct tlsph_crack_tip *t = &d->tip[tip];
+    const size_t b = t->body;
+    const int axis = m->fibres[b].axis;
+    const double s = body_spacing(m, b);
+    double CJ[3], V2[3], u2[3], delta[3], n2[3] = {0, 0, 0};
+    memcpy(CJ, m->fibres[b].centre[J], sizeof CJ);
+    for (int k = 0; k < 3; k++)
+        V2[k] = k == axis ? 0.0 : CJ[k] - t->T[k];
+    const double L2 = sqrt(V2[0] * V2[0] + V2[1] * V2[1] + V2[2] * V2[2]);
+    for (int k = 0; k < 3; k++)
+        u2[k] = V2[k] / L2;
+    /* n2 = e_axis x u2: in the plane, normal to V2 */
+    n2[(axis + 1) % 3] = -u2[(axis + 2) % 3];
+    n2[(axis + 2) % 3] = u2[(axis + 1) % 3];
+    const double dm = TLSPH_CRACK_DELTA * s;
+    for (int k = 0; k < 3; k++)
+        delta[k] = dm * n2[k];
+    double lo = INFINITY, hi = -INFINITY;
+    fibre_span(m, &m->fibres[b], J, &lo, &hi);
+    if (t->fibre >= 0)
+        fibre_span(m, &m->fibres[b], (size_t)t->fibre, &lo, &hi);
+    lo -= 0.5 * s;
+    hi += 0.5 * s;
+    const int edge = at_edge(&m->fibres[b], J, s);
+    size_t split = 0;
+    if (t->fibre >= 0) {
+        double CI[3], stop[3];
+        memcpy(CI, m->fibres[b].centre[t->fibre], sizeof CI);
+        for (int k = 0; k < 3; k++)
+            stop[k] = CJ[k] - dm * u2[k];
+        const size_t first = m->crack_surface->nfacets;
+        if (add_rect(m, axis, t->end, CI, lo, hi, s, &t->length, err) != 0 ||
+            add_rect(m, axis, CI, stop, lo, hi, s, &t->length, err) != 0 ||
+            split_fibre(m, b, (size_t)t->fibre, t->V1, V2, delta, first, &split, err) != 0)
+            return -1;
+        memcpy(t->end, stop, sizeof stop);
+    }
+    memcpy(t->T, CJ, sizeof CJ);
+    memcpy(t->V1, V2, sizeof V2);
+    t->fibre = (long)J;
+    t->advances++;
+    if (edge) { /* through the edge: split the edge fibre straight, facets past it */
+        double past[3];
+        for (int k = 0; k < 3; k++)
+            past[k] = CJ[k] + s * u2[k];
+        const size_t first = m->crack_surface->nfacets;
+        if (add_rect(m, axis, t->end, past, lo, hi, s, &t->length, err) != 0 ||
+            split_fibre(m, b, J, u2, u2, delta, first, &split, err) != 0)
+            return -1;
+        memcpy(t->end, past, sizeof past);
+        t->stopped = 1;
+    }
+    d->particles_split += split;
+    if (record(d, m, tip, split, err) != 0)
+        return -1;
+    for (size_t q = 0; q < d->ntips; q++)
+        refresh_candidates(m, &d->tip[q]);
+    if (log)
+        fprintf(log,
+                "tlsph: crack tip %zu -> fibre %ld at (%g, %g, %g) m, step %ld, t = %g s: %zu "
+                "particles split, %zu particles, grown %g m%s\n",
+                tip, t->fibre, CJ[0], CJ[1], CJ[2], m->step, m->t, split, m->p.n, t->length,
+                t->stopped ? ", through the edge" : "");
+    return 0;
+}
+
+int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    if (!d)
+        return 0;
+    const double t0 = tlsph_monotonic_seconds();
+    const struct tlsph_crack_growth *g = &m->scene.crack_growth;
+    int rc = 0;
+    for (size_t k = 0; k < d->ntips && rc == 0; k++) {
+        struct tlsph_crack_tip *t = &d->tip[k];
+        if (t->stopped)
+            continue;
+        const struct tlsph_fibres *f = &m->fibres[t->body];
+        struct tlsph_tip_search q = {.radius = g->search_radius * body_spacing(m, t->body),
+                                     .theta_c = g->fan_angle * M_PI / 180.0,
+                                     .D_c = g->critical_damage};
+        memcpy(q.tip, t->T, sizeof q.tip);
+        memcpy(q.direction, t->V1, sizeof q.direction);
+        const long J = t->ncand == SIZE_MAX
+                           ? tlsph_fibre_next_tip(f, m->p.damage, &q)
+                           : tlsph_fibre_next_tip_among(f, m->p.damage, &q, t->cand, t->ncand);
+        if (J >= 0)
+            rc = advance(m, k, (size_t)J, log, err);
+    }
+    d->seconds += tlsph_monotonic_seconds() - t0;
+    return rc;
+}
+
+double tlsph_crack_driver_length(const struct tlsph_model *m)
+{
+    const struct tlsph_crack_driver *d = m->crack_driver;
+    double sum = 0.0;
+    for (size_t k = 0; d && k < d->ntips; k++)
+        sum += d->tip[k].length;
+    return sum;
+}
+
+void tlsph_crack_driver_release(struct tlsph_model *m)
+{
+    if (!m->crack_driver)
+        return;
+    free(m->crack_driver->event);
+    free(m->crack_driver);
+    m->crack_driver = NULL;
+}

@@ -1,0 +1,111 @@
+/* The crack driver (paper 003 §3): grows the scene's cracks during a run, from
+ * fibre to fibre, by the tip search of eq. 20, particle splitting (eqs. 21-32)
+ * and new facets of the crack surface (§3.3).
+ *
+ * A growing tip (scene "crack_growth": tips, each the end of a pre-crack's
+ * trace in the plane of a body with fibres) holds
+ *   T      the tip (m, reference): the pre-crack's end, then a fibre's centre;
+ *   V1     the crack's direction (previous tip -> T, in the plane);
+ *   fibre  the tip fibre (an index of m->fibres[body], -1 while T is the
+ *          pre-crack's end, which is no fibre);
+ *   end    where the crack surface ends (m): the cut front.
+ * After each step (after the damage update), per tip: eq. 20 among the fibres
+ * within R of T (a list kept per tip, refreshed after an advance: a search
+ * each step costs that list, a dozen fibres, not the body; each step, because
+ * a tip that qualifies between two searches would wait with its damage
+ * growing past D_c, and the search is cheaper than a force pass by orders of
+ * magnitude).  When fibre J qualifies, with V2 = C_J - T:
+ *   - the old tip fibre I (when T is one) is split (crack/split.h), its halves
+ *     at +-delta, delta = TLSPH_CRACK_DELTA spacings normal to V2 in the plane
+ *     ("|delta| << 1" in the paper: here 1 % of the spacing, far below the
+ *     support and far above the visibility test's round-off), with the sector
+ *     angles of V1 and V2;
+ *   - facets spanning the thickness (the fibres' extent along the axis plus
+ *     half a spacing each side, the plate's faces) are added along end -> C_I
+ *     and C_I -> C_J - eta V2/|V2|, eta = |delta|: the surface runs through
+ *     the split fibre (the paper's facets join the crack-tip fibres the crack
+ *     has passed) and stops just short of the new tip, whose particles would
+ *     otherwise lie on the facets' edge and be cut from every neighbour (a
+ *     point on a facet's side is "blocked", eq. 42); the split's local rebuild
+ *     cuts the pairs crossing them (first_new_facet);
+ *   - T = C_J, V1 = V2, fibre = J.
+ * The first advance from a pre-crack's end moves the tip to J without a split
+ * or facet: the end is no fibre, there is nothing to split, and the local
+ * rebuild grows its region from split particles; its facets (end -> C_J) come
+ * with J's split at the next advance.
+ * At the body's edge (the new tip fibre has fewer than 8 fibres within 1.5
+ * spacings: a lattice fibre inside has 8 neighbours, more after splits beside
+ * it) the crack goes through: the edge fibre is split too (straight, V1 = V2)
+ * and the facets run past the edge by a spacing; the tip stops growing.
+ * One advance per tip and step: the damage field answers the cut before the
+ * next search.
+ *
+ * Energy: splitting books nothing (split.h); cutting pairs releases the
+ * stored energy of the cut pairs into the next steps' kinetic and internal
+ * energy through the forces, which the account follows.
+ *
+ * Ownership: the driver owns its tips and event list (m->crack_driver,
+ * released with the model).  Units: m, s; damage dimensionless. */
+#ifndef TLSPH_CRACK_DRIVER_H
+#define TLSPH_CRACK_DRIVER_H
+
+#include <stddef.h>
+#include <stdio.h>
+
+#include "run/model.h"
+#include "util/errors.h"
+
+#define TLSPH_CRACK_DELTA 0.01  /* |delta|, spacings */
+#define TLSPH_CRACK_MAX_CAND 64 /* fibres within R of a tip (R < 2 spacings: <= 16 lattice
+                                   fibres, plus split halves) */
+
+/* One tip advance. */
+struct tlsph_crack_event {
+    long step;
+    double time;             /* s */
+    size_t tip;              /* index in crack_growth.tips */
+    double position[3];      /* the new tip (fibre centre, reference), m */
+    long fibre;              /* the new tip fibre */
+    size_t split;            /* particles split by this advance (0 or the fibre's, twice at an edge) */
+    size_t particles;        /* particle count after it */
+};
+
+struct tlsph_crack_tip {
+    size_t body;
+    double T[3], V1[3], end[3];
+    long fibre;
+    int stopped;             /* reached the body's edge */
+    double length;           /* in-plane length of the facets added (the cut's growth), m */
+    size_t advances;
+    size_t cand[TLSPH_CRACK_MAX_CAND], ncand;
+};
+
+struct tlsph_crack_driver {
+    struct tlsph_crack_tip tip[TLSPH_MAX_GROWTH_TIPS];
+    size_t ntips;
+    struct tlsph_crack_event *event;
+    size_t nevents, event_cap;
+    size_t particles_split;  /* over the run */
+    double seconds;          /* wall time in the driver (searches and advances), s */
+};
+
+/* For a scene with "crack_growth": m->crack_driver, each tip matched to a
+ * body with fibres (its in-plane position inside the body's) and to the end
+ * of a crack's trace in that body's plane (the crack must be through the
+ * thickness: its corners on one line in the plane), V1 outwards along the
+ * trace.  Refused at /crack_growth/tips/<j> otherwise, and at /crack_growth
+ * when the body's material has no damage model (D stays 0).  Call after the
+ * fibres and the pre-cracks are set up.  0, or -1 with err. */
+int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err);
+
+/* The search and any advances after a step.  log (may be NULL) gets a line per
+ * advance.  0, or -1 with err (a split refused or out of memory: the run
+ * cannot go on with a crack surface its pairs do not match). */
+int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
+
+/* Sum of the tips' grown lengths, m; 0 without a driver. */
+double tlsph_crack_driver_length(const struct tlsph_model *m);
+
+void tlsph_crack_driver_release(struct tlsph_model *m);
+
+#endif
