@@ -121,11 +121,13 @@ double tlsph_contact_forces(struct tlsph_model *m, double dt)
     struct tlsph_contact *c = m->contact;
     const double t0 = tlsph_monotonic_seconds();
     /* particles failed since the last evaluation: their pairs are candidates now */
-    const int fresh = c->touch && tlsph_contact_watch(m, c) > 0;
+    const int fresh = c->touch && (tlsph_contact_watch(m, c) > 0 || c->settle_pending);
     if (tlsph_contact_search(m, c, fresh) != 0)
         c->failed = 1;
-    else if (fresh)
+    else if (fresh) {
         tlsph_contact_settle(m, c);
+        c->settle_pending = 0;
+    }
     const struct contact_sums s = loops[c->variant](m, c, dt > 0.0 ? 1.0 / dt : INFINITY);
     c->active = s.active / 2;
     c->max_overlap = s.overlap > c->max_overlap ? s.overlap : c->max_overlap;

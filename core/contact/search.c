@@ -27,7 +27,7 @@
  * (only with a damage model or virtual links, touch != NULL) when both are
  * flagged as able to touch and the pair is not a continuum
  * (tlsph_contact_same_body_pair or tlsph_contact_cut_pair, or _links with
- * virtual links). */
+ * virtual links) and not the two halves of a split particle. */
 static inline int contact_candidate(const struct tlsph_model *m, const uint8_t *touch, size_t i,
                                     size_t j)
 {
@@ -39,8 +39,10 @@ static inline int contact_candidate(const struct tlsph_model *m, const uint8_t *
     /* a pre-crack's faces (crack/precrack.h): their pairs were cut at setup,
      * so they touch like parts the reference neighbourhood never linked (with
      * virtual links the cut pairs are simply not linked) */
-    return m->links ? tlsph_contact_same_body_pair_links(m, i, j)
-                    : tlsph_contact_same_body_pair(p, i, j) || tlsph_contact_cut_pair(m, i, j);
+    if (m->links)
+        return tlsph_contact_same_body_pair_links(m, i, j);
+    return (tlsph_contact_same_body_pair(p, i, j) || tlsph_contact_cut_pair(m, i, j)) &&
+           !tlsph_contact_split_halves(p, i, j);
 }
 
 /* Is i in the grid: every particle with more than one body, else only those

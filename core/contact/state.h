@@ -40,6 +40,9 @@ struct tlsph_contact {
      * that no motion caused). */
     double *reach;
     size_t touching; /* particles flagged */
+    /* a split (crack/split.h) flagged its halves anew: the next evaluation
+     * settles them after its search, as for particles that failed */
+    int settle_pending;
     int all_particles;
 
     /* Candidates: the pairs of i are j[start[i] .. start[i+1]-1], every pair
@@ -136,6 +139,21 @@ static inline int tlsph_contact_cut_pair(const struct tlsph_model *m, size_t i, 
 {
     return m->crack_surface &&
            tlsph_crack_surface_cuts_pair(m->crack_surface, m->p.X + 3 * i, i, m->p.X + 3 * j, j);
+}
+
+/* Are i and j (same body) the two halves of one split particle (crack/split.h:
+ * X +- delta, |delta| a small share of the spacing)?  They are one material
+ * point on the two faces of the crack, never a contact pair: their distance
+ * is no approach, and as a candidate it would lower both reach factors to it
+ * and leave the faces without contact.  No two particles of a lattice, graded
+ * or conforming body sit closer than half of h_i + h_j otherwise. */
+static inline int tlsph_contact_split_halves(const struct tlsph_particles *p, size_t i, size_t j)
+{
+    const double *X = p->X;
+    const double dx = X[3 * j] - X[3 * i], dy = X[3 * j + 1] - X[3 * i + 1],
+                 dz = X[3 * j + 2] - X[3 * i + 2];
+    const double rc = 0.25 * (p->h[i] + p->h[j]);
+    return dx * dx + dy * dy + dz * dz < rc * rc;
 }
 
 /* The same with virtual links (sph/virtual_links.h), where the continuum is

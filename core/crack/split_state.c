@@ -135,9 +135,18 @@ void tlsph_split_state_commit(struct tlsph_model *m, struct tlsph_split_state *s
         c->start = start;
         st->contact_start = NULL;
         m->bytes_allocated += k * sizeof *start;
-        if (c->touch)
-            for (size_t s = 0; s < k; s++)
-                c->touching += c->touch[at + s] != 0;
+        if (c->touch) {
+            /* both halves are crack-face particles now: flagged anew, so the
+             * next search takes their pairs across the faces and settles
+             * their reach (contact/touch.c) */
+            for (size_t s = 0; s < k; s++) {
+                c->touching += c->touch[parent[s]] == 0;
+                c->touch[parent[s]] |= TLSPH_TOUCH_SURFACE | TLSPH_TOUCH_NEW;
+                c->touch[at + s] |= TLSPH_TOUCH_SURFACE | TLSPH_TOUCH_NEW;
+                c->touching++;
+            }
+            c->settle_pending = 1;
+        }
     }
     struct tlsph_rigid *r = m->rigid;
     if (r)

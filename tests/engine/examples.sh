@@ -16,7 +16,7 @@ for f in "$top_srcdir"/examples/*.json; do
     echo "FAIL: $name does not validate"; cat "$tmp/$name.validate"; fail=1
   fi
 done
-for name in elastic-strip oscillating-plate; do
+for name in elastic-strip oscillating-plate crack-growth-plate; do
   if "$top_builddir/tlsph-run" "$top_srcdir/examples/$name.json" -o "$tmp/$name" --quiet &&
      [ -s "$tmp/$name/result.h5" ] && [ -s "$tmp/$name/result.xmf" ]; then
     echo "ok: $name runs"
