@@ -10,7 +10,7 @@
 #     plain h5py (no swmr=True) and holds finite data for its complete frames,
 #     and its sidecar references complete frames only (killed_result.py);
 #     (and, where pvpython exists, ParaView's XDMF Reader reads it); the
-#     same for a thin plate's file (the layout for changing particle counts:
+#     same for a thin plate whose crack may grow (the layout for changing particle counts:
 #     the repaired sidecar gives each frame its count);
 #     without h5clear (TLSPHD_H5CLEAR="") the job's message says so, and the
 #     next daemon repairs the file at start-up;
@@ -120,14 +120,18 @@ if command -v h5clear >/dev/null; then
     else
         echo "# SKIP: pvpython (Debian: python3-paraview) missing: no ParaView check"
     fi
-    # a thin plate (thickness_axis): its file has the layout for changing
-    # particle counts (docs/output.md); the repaired sidecar gives each frame
-    # its count from /particles/solid/count
+    # a thin plate whose crack may grow (crack_growth): its file has the
+    # layout for changing particle counts (docs/output.md); the repaired
+    # sidecar gives each frame its count from /particles/solid/count
     "$PY" -c "import json; print(json.dumps({'inputs': {'scene': {'dimension': 3, 'time': {'end': 1e-3}, 'output': {'frames': 400},
-        'materials': {'s': {'density': 7850, 'youngs_modulus': 2.1e11, 'poisson_ratio': 0.3}},
+        'materials': {'s': {'density': 7850, 'youngs_modulus': 2.1e11, 'poisson_ratio': 0.3,
+                            'strength': {'type': 'linear_hardening', 'yield_stress': 3e8, 'hardening_modulus': 5e8},
+                            'damage': {'type': 'johnson_cook', 'd1': 0.08, 'd2': 0, 'd3': 0}}},
         'bodies': [{'name': 'plate', 'material': 's', 'spacing': 1e-3, 'thickness_axis': 'z',
                     'geometry': {'box': {'min': [0, 0, 0], 'max': [0.03, 0.03, 0.003]}},
-                    'initial_velocity': ['0', '0', '10*sin(3.14159*x/0.03)']}]}}}))" >"$TMP/thin.json"
+                    'initial_velocity': ['0', '0', '10*sin(3.14159*x/0.03)']}],
+        'cracks': [{'polygon': [[-0.001, 0.015, -0.001], [0.01, 0.015, -0.001], [0.01, 0.015, 0.004], [-0.001, 0.015, 0.004]]}],
+        'crack_growth': {'tips': [[0.01, 0.015, 0.0015]]}}}}))" >"$TMP/thin.json"
     J6=$(submit "$E_URL" "$TMP/thin.json")
     kill_engine_of "$E_URL" "$J6"
     req GET "$E_URL/jobs/$J6/results/result.h5"
