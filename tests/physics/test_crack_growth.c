@@ -96,6 +96,16 @@ static int cmp_i64(const void *a, const void *b)
     return x < y ? -1 : x > y;
 }
 
+/* One step, the driver after it, and the stability contract. */
+static void step_grow_check(struct tlsph_model *m, struct tlsph_errors *err)
+{
+    tlsph_model_step(m);
+    ck_assert_int_eq(tlsph_crack_driver_step(m, NULL, err), 0);
+    struct tlsph_diagnostic d;
+    if (tlsph_model_check(m, &d) != 0)
+        ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
+}
+
 START_TEST(mode_one_crack_grows_straight)
 {
     struct tlsph_model *m = build_model(plate_json(1));
@@ -195,11 +205,7 @@ START_TEST(through_crack_grows_at_both_tips)
     struct tlsph_errors err;
     tlsph_errors_init(&err);
     while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
-        tlsph_model_step(m);
-        ck_assert_int_eq(tlsph_crack_driver_step(m, NULL, &err), 0);
-        struct tlsph_diagnostic d;
-        if (tlsph_model_check(m, &d) != 0)
-            ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
+        step_grow_check(m, &err);
     }
     const struct tlsph_crack_driver *cd = m->crack_driver;
     double last[2] = {0.002, 0.002}; /* distance from the crack's centre x = 2 mm */
@@ -362,11 +368,7 @@ START_TEST(faces_take_part_in_contact)
     double worst_balance = 0.0;
     size_t half_pairs = 0, face_pairs = 0;
     while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
-        tlsph_model_step(m);
-        ck_assert_int_eq(tlsph_crack_driver_step(m, NULL, &err), 0);
-        struct tlsph_diagnostic d;
-        if (tlsph_model_check(m, &d) != 0)
-            ck_abort_msg("unstable at step %ld: %s", m->step, d.message);
+        step_grow_check(m, &err);
         worst_balance = fmax(worst_balance, fabs(tlsph_energy_balance(&m->energy)) / m->energy.scale);
         const struct tlsph_contact *c = m->contact;
         for (size_t i = 0; i < m->p.n; i++)
