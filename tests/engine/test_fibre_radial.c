@@ -230,6 +230,22 @@ START_TEST(the_fan_in_the_tangent_plane)
 }
 END_TEST
 
+/* The wall of the test below as a conforming tube; key: extra body keys. */
+static struct tlsph_model *conforming_tube(const char *key)
+{
+    char json[1024];
+    snprintf(json, sizeof json,
+             "{\"dimension\":3,\"time\":{\"end\":1e-6},\"materials\":{\"steel\":{"
+             "\"density\":7830,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},\"bodies\":[{"
+             "\"name\":\"wall\",\"material\":\"steel\",\"spacing\":0.013333333333333333,"
+             "\"placement\":\"conforming\",\"geometry\":{\"difference\":[{\"cylinder\":{"
+             "\"base\":[0,0,0],\"axis\":[0,0,1],\"radius\":0.246,\"length\":0.17}},"
+             "{\"cylinder\":{\"base\":[0,0,-0.01],\"axis\":[0,0,1],\"radius\":0.206,"
+             "\"length\":0.19}}]}%s}]}",
+             key);
+    return build_model(json);
+}
+
 /* A conforming tube (the capped cylinder's wall of paper 003 §6.3 at 1/4 of
  * its length): outer radius 0.246 m, inner 0.206 m, length 0.17 m, spacing
  * 0.04/3 m, "thickness_axis": "radial": round(0.246/S) = 18 shells of t =
@@ -240,16 +256,7 @@ END_TEST
  * no stacks). */
 START_TEST(a_conforming_tube_has_radial_fibres)
 {
-    const char *fmt =
-        "{\"dimension\":3,\"time\":{\"end\":1e-6},\"materials\":{\"steel\":{\"density\":7830,"
-        "\"youngs_modulus\":2e11,\"poisson_ratio\":0.3}},\"bodies\":[{\"name\":\"wall\","
-        "\"material\":\"steel\",\"spacing\":0.013333333333333333,\"placement\":\"conforming\","
-        "\"geometry\":{\"difference\":[{\"cylinder\":{\"base\":[0,0,0],\"axis\":[0,0,1],"
-        "\"radius\":0.246,\"length\":0.17}},{\"cylinder\":{\"base\":[0,0,-0.01],"
-        "\"axis\":[0,0,1],\"radius\":0.206,\"length\":0.19}}]}%s}]}";
-    char json[1024];
-    snprintf(json, sizeof json, fmt, ",\"thickness_axis\":\"radial\"");
-    struct tlsph_model *m = build_model(json);
+    struct tlsph_model *m = conforming_tube(",\"thickness_axis\":\"radial\"");
     ck_assert_ptr_nonnull(m->fibres);
     const struct tlsph_fibres *f = &m->fibres[0];
     ck_assert_int_eq(f->axis, TLSPH_FIBRE_RADIAL);
@@ -263,8 +270,7 @@ START_TEST(a_conforming_tube_has_radial_fibres)
                                     r[p - f->start[k]] * 0.246 / 18.0, 1e-12);
     }
     tlsph_model_free(m);
-    snprintf(json, sizeof json, fmt, "");
-    m = build_model(json);
+    m = conforming_tube("");
     ck_assert_ptr_null(m->fibres);
     ck_assert_uint_eq(m->p.n, 13 * (100 + 108 + 112));
     tlsph_model_free(m);
