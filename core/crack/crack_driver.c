@@ -44,16 +44,14 @@ static void tangent(const struct tlsph_fibres *f, const double P[3], const doubl
         out[k] = v[k] - vn * n[k];
 }
 
-/* P moved along the thickness to depth (m): a plate's axis coordinate; on a
- * shell along the radial direction at A (the split fibre's centre) by depth
- * minus P's radius.  One direction for a whole rectangle keeps it planar:
- * the radial lines at the two ends of a diagonal segment are skew, and the
- * two triangles of a quad over them would fold by about a spacing times the
- * angle between them (4 % of a spacing on the wall of §6.3), several times
- * delta, putting split halves on the wrong side of one triangle.  Along A's
- * direction the rectangle holds the split fibre's ray exactly. */
-static void at_depth(const struct tlsph_fibres *f, const double P[3], const double A[3],
-                     double depth, double out[3])
+/* P moved along the thickness to depth (m): a plate's axis coordinate, a
+ * shell's radius on P's ray.  The radial lines at the two ends of a diagonal
+ * segment are skew, so a rectangle over them folds along its diagonal (two
+ * planar triangles): its side at each end stays on that end's ray, the split
+ * fibre's ray exactly, and the next rectangle starts on the same line, so the
+ * surface is continuous. */
+static void at_depth(const struct tlsph_fibres *f, const double P[3], double depth,
+                     double out[3])
 {
     memcpy(out, P, 3 * sizeof *out);
     if (f->axis != TLSPH_FIBRE_RADIAL) {
@@ -61,7 +59,7 @@ static void at_depth(const struct tlsph_fibres *f, const double P[3], const doub
         return;
     }
     double n[3];
-    tlsph_fibres_normal(f, A, n);
+    tlsph_fibres_normal(f, P, n);
     const double r = tlsph_fibres_depth(f, P);
     for (int k = 0; k < 3; k++)
         out[k] += (depth - r) * n[k];
@@ -229,20 +227,20 @@ int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err)
 /* ---------------------------------------------------------------- advance */
 
 /* Adds the rectangle over the in-plane segment P-Q spanning [lo, hi] along
- * the axis (a shell: along the radial direction at A, at_depth) as two
- * triangles; *length += its in-plane length.  0 or -1. */
+ * the axis (a shell: along the radius, at_depth) as two triangles; *length
+ * += its in-plane length.  0 or -1. */
 static int add_rect(struct tlsph_model *m, const struct tlsph_fibres *f, const double P[3],
-                    const double Q[3], const double A[3], double lo, double hi, double spacing,
-                    double *length, struct tlsph_errors *err)
+                    const double Q[3], double lo, double hi, double spacing, double *length,
+                    struct tlsph_errors *err)
 {
     const double l = plane_distance(f, P, Q);
     if (!(l > 1e-9 * spacing))
         return 0;
     double c[4][3];
-    at_depth(f, P, A, lo, c[0]);
-    at_depth(f, Q, A, lo, c[1]);
-    at_depth(f, Q, A, hi, c[2]);
-    at_depth(f, P, A, hi, c[3]);
+    at_depth(f, P, lo, c[0]);
+    at_depth(f, Q, lo, c[1]);
+    at_depth(f, Q, hi, c[2]);
+    at_depth(f, P, hi, c[3]);
     const double T1[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[1][0], c[1][1], c[1][2]},
                              {c[2][0], c[2][1], c[2][2]}};
     const double T2[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[2][0], c[2][1], c[2][2]},
@@ -367,8 +365,8 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
         memcpy(V1, t->V1, sizeof V1);
         if (axis == TLSPH_FIBRE_RADIAL)
             tangent(f, t->T, t->V1, V1);
-        if (add_rect(m, f, t->end, CI, CI, lo, hi, s, &t->length, err) != 0 ||
-            add_rect(m, f, CI, stop, CI, lo, hi, s, &t->length, err) != 0 ||
+        if (add_rect(m, f, t->end, CI, lo, hi, s, &t->length, err) != 0 ||
+            add_rect(m, f, CI, stop, lo, hi, s, &t->length, err) != 0 ||
             split_fibre(m, b, (size_t)t->fibre, V1, V2, delta, first, &split, err) != 0)
             return -1;
         memcpy(t->end, stop, sizeof stop);
@@ -382,7 +380,7 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
         for (int k = 0; k < 3; k++)
             past[k] = CJ[k] + s * u2[k];
         const size_t first = m->crack_surface->nfacets;
-        if (add_rect(m, f, t->end, past, CJ, lo, hi, s, &t->length, err) != 0 ||
+        if (add_rect(m, f, t->end, past, lo, hi, s, &t->length, err) != 0 ||
             split_fibre(m, b, J, u2, u2, delta, first, &split, err) != 0)
             return -1;
         memcpy(t->end, past, sizeof past);
