@@ -7,8 +7,8 @@ after `tlsph-run examples/cracked-cylinder.json -o DIR` (RESULT.h5 = DIR/result.
 Three frames of the wall around the crack, unrolled: hoop arc r_m theta
 (theta the current azimuth, r_m = 0.226 m the reference mean radius, so an
 opening crack is a gap) against the current z, every particle of the window
-coloured by its damage (0 white-blue to 1 red), the crack tips of the driver
-marked; and a plot of the crack length grown (the driver's facets, both
+coloured by its damage (0 blue to 1 red), the halves of the split particles
+(new ids: the grown crack's faces) ringed in black; and a plot of the crack length grown (the driver's facets, both
 tips) and the crack's opening at mid-length (the current distance of the two
 middle-shell particles facing each other across the pre-crack at z = 0.34 m,
 less their reference distance) against time.  Every frame is read with its
@@ -32,7 +32,8 @@ def frame(f, k):
     x = g["position/value"][k, :n]
     X = g["reference_position/value"][k, :n]
     D = g["damage/value"][k, :n]
-    return g["position/time"][k], x, X, D
+    split = g["id/value"][k, :n] >= int(g["count/value"][0])  # both halves get new ids
+    return g["position/time"][k], x, X, D, split
 
 
 def colour(d):
@@ -44,7 +45,7 @@ def colour(d):
 
 
 def panel(out, f, k, ox, oy, title):
-    t, x, X, D = frame(f, k)
+    t, x, X, D, split = frame(f, k)
     th = np.arctan2(x[:, 1], x[:, 0])
     z = x[:, 2]
     keep = (np.abs(th) < THETA) & (z > Z0) & (z < Z1)
@@ -56,6 +57,9 @@ def panel(out, f, k, ox, oy, title):
     for i in np.flatnonzero(keep)[order]:
         out.append('<circle cx="%.1f" cy="%.1f" r="1.6" fill="%s"/>'
                    % (sx(RM * th[i]), sz(z[i]), colour(D[i])))
+    for i in np.flatnonzero(keep & split):  # the split fibres' halves: the grown crack
+        out.append('<circle cx="%.1f" cy="%.1f" r="3.2" fill="none" stroke="black"/>'
+                   % (sx(RM * th[i]), sz(z[i])))
     out.append('<text x="%g" y="%g" font-size="12">%s, t = %.0f µs</text>'
                % (ox, oy - 6, title, t * 1e6))
     out.append('<text x="%g" y="%g" font-size="10">hoop arc r_m θ (±%.0f mm)</text>'
@@ -106,8 +110,10 @@ def plot(out, f, ox, oy):
         pts = " ".join("%.1f,%.1f" % (sx(a * 1e6), oy + H - b * 1e3 / wmax * H)
                        for a, b in zip(*op))
         out.append('<polyline points="%s" fill="none" stroke="#06c" stroke-width="1.5"/>' % pts)
-    out.append('<text x="%g" y="%g" font-size="12">crack grown (red, 0-%.0f mm), '
-               'opening at mid-length (blue, 0-%.1f mm)</text>' % (ox - 60, oy - 6, lmax, wmax))
+    out.append('<text x="%g" y="%g" font-size="11">crack grown (red, 0-%.0f mm)</text>'
+               % (ox, oy - 20, lmax))
+    out.append('<text x="%g" y="%g" font-size="11">opening at mid-length (blue, 0-%.0f mm)</text>'
+               % (ox, oy - 6, wmax))
     out.append('<text x="%g" y="%g" font-size="10">t, 0-%.0f µs</text>'
                % (ox + W / 2 - 30, oy + H + 14, tmax))
     return t, L, op
@@ -118,12 +124,12 @@ def main():
     nf = f["particles/solid/count/value"].shape[0]
     ks = [nf // 2, (3 * nf) // 4, nf - 1]
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif">'
-           % (4 * (W + 40) + 40, H + 60)]
+           % (4 * (W + 40) + 60, H + 70)]
     out.append('<rect width="100%" height="100%" fill="white"/>')
     for j, k in enumerate(ks):
-        t, n, dmax = panel(out, f, k, 30 + j * (W + 40), 30, "frame %d" % k)
+        t, n, dmax = panel(out, f, k, 30 + j * (W + 40), 40, "frame %d" % k)
         print("frame %d: t = %.1f us, %d particles in the window, max damage %.3f" % (k, t * 1e6, n, dmax))
-    t, L, op = plot(out, f, 30 + 3 * (W + 40) + 20, 30)
+    t, L, op = plot(out, f, 30 + 3 * (W + 40) + 20, 40)
     out.append("</svg>")
     with open(sys.argv[2], "w") as o:
         o.write("\n".join(out) + "\n")
