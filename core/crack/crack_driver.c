@@ -31,14 +31,14 @@ static double plane_distance(const struct tlsph_fibres *f, const double a[3], co
 static void tangent(const struct tlsph_fibres *f, const double P[3], const double v[3],
                     double out[3])
 {
-    double n[3];
-    if (tlsph_fibres_normal(f, P, n) != 0)
-        n[0] = n[1] = n[2] = 0.0;
     if (f->axis != TLSPH_FIBRE_RADIAL) {
         for (int k = 0; k < 3; k++)
             out[k] = k == f->axis ? 0.0 : v[k];
         return;
     }
+    double n[3];
+    if (tlsph_fibres_normal(f, P, n) != 0) /* on the axis: no thickness direction */
+        n[0] = n[1] = n[2] = 0.0;
     const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
     for (int k = 0; k < 3; k++)
         out[k] = v[k] - vn * n[k];
