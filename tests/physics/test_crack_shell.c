@@ -94,15 +94,13 @@ struct totals {
 static struct totals totals(const struct tlsph_model *m)
 {
     struct totals t = {0};
-    for (size_t i = 0; i < m->p.n; i++) {
-        t.mass += m->p.mass[i];
+    for (size_t i = 0; i < m->p.n; i++) { /* mass, volume, momentum and sum m|v| */
+        const double mi = m->p.mass[i], *v = m->p.v + 3 * i;
+        t.mass += mi;
         t.vol += m->p.vol0[i];
-        double v2 = 0.0;
-        for (int c = 0; c < 3; c++) {
-            t.mom[c] += m->p.mass[i] * m->p.v[3 * i + c];
-            v2 += m->p.v[3 * i + c] * m->p.v[3 * i + c];
-        }
-        t.scale += m->p.mass[i] * sqrt(v2);
+        t.scale += mi * sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        for (int c = 0; c < 3; c++)
+            t.mom[c] += mi * v[c];
     }
     const struct tlsph_group *g = &m->groups[0];
     t.group = g->n;
