@@ -18,11 +18,51 @@ static void plane_axes(int axis, int out[2])
     out[1] = axis == 2 ? 1 : 2;
 }
 
-static double plane_distance(int axis, const double a[3], const double b[3])
+/* |a - b| in the plane (a plate's, or a shell's tangent plane at a). */
+static double plane_distance(const struct tlsph_fibres *f, const double a[3], const double b[3])
 {
-    int pa[2];
-    plane_axes(axis, pa);
-    return hypot(a[pa[0]] - b[pa[0]], a[pa[1]] - b[pa[1]]);
+    const double d[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+    double v[2];
+    tlsph_fibres_local(f, a, d, v);
+    return hypot(v[0], v[1]);
+}
+
+/* v without its part along the thickness at P (a shell's tangent plane). */
+static void tangent(const struct tlsph_fibres *f, const double P[3], const double v[3],
+                    double out[3])
+{
+    if (f->axis != TLSPH_FIBRE_RADIAL) {
+        for (int k = 0; k < 3; k++)
+            out[k] = k == f->axis ? 0.0 : v[k];
+        return;
+    }
+    double n[3];
+    if (tlsph_fibres_normal(f, P, n) != 0) /* on the axis: no thickness direction */
+        n[0] = n[1] = n[2] = 0.0;
+    const double vn = v[0] * n[0] + v[1] * n[1] + v[2] * n[2];
+    for (int k = 0; k < 3; k++)
+        out[k] = v[k] - vn * n[k];
+}
+
+/* P moved along the thickness to depth (m): a plate's axis coordinate, a
+ * shell's radius on P's ray.  The radial lines at the two ends of a diagonal
+ * segment are skew, so a rectangle over them folds along its diagonal (two
+ * planar triangles): its side at each end stays on that end's ray, the split
+ * fibre's ray exactly, and the next rectangle starts on the same line, so the
+ * surface is continuous. */
+static void at_depth(const struct tlsph_fibres *f, const double P[3], double depth,
+                     double out[3])
+{
+    memcpy(out, P, 3 * sizeof *out);
+    if (f->axis != TLSPH_FIBRE_RADIAL) {
+        out[f->axis] = depth;
+        return;
+    }
+    double n[3];
+    tlsph_fibres_normal(f, P, n);
+    const double r = tlsph_fibres_depth(f, P);
+    for (int k = 0; k < 3; k++)
+        out[k] += (depth - r) * n[k];
 }
 
 static double body_spacing(const struct tlsph_model *m, size_t b)
@@ -46,15 +86,14 @@ static void refresh_candidates(const struct tlsph_model *m, struct tlsph_crack_t
  * farthest apart there); 0, or -1 when the trace is no segment (a corner off
  * the line A-B by more than 1e-6 of its length: the crack is not through the
  * thickness) or has no length. */
-static int trace_ends(const struct tlsph_crack_spec *c, int axis, double A[3], double B[3])
+static int trace_ends(const struct tlsph_crack_spec *c, const struct tlsph_fibres *f, double A[3],
+                      double B[3])
 {
-    int pa[2];
-    plane_axes(axis, pa);
     double best = -1.0;
     int ia = 0, ib = 0;
     for (int a = 0; a < c->ncorners; a++)
         for (int b = a + 1; b < c->ncorners; b++) {
-            const double d = plane_distance(axis, c->corner[a], c->corner[b]);
+            const double d = plane_distance(f, c->corner[a], c->corner[b]);
             if (d > best) {
                 best = d;
                 ia = a;
@@ -65,9 +104,16 @@ static int trace_ends(const struct tlsph_crack_spec *c, int axis, double A[3], d
         return -1;
     memcpy(A, c->corner[ia], 3 * sizeof *A);
     memcpy(B, c->corner[ib], 3 * sizeof *B);
-    const double ux = (B[pa[0]] - A[pa[0]]) / best, uy = (B[pa[1]] - A[pa[1]]) / best;
+    const double AB[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+    double u[2];
+    tlsph_fibres_local(f, A, AB, u);
+    const double ux = u[0] / best, uy = u[1] / best;
     for (int k = 0; k < c->ncorners; k++) {
-        const double px = c->corner[k][pa[0]] - A[pa[0]], py = c->corner[k][pa[1]] - A[pa[1]];
+        const double AP[3] = {c->corner[k][0] - A[0], c->corner[k][1] - A[1],
+                              c->corner[k][2] - A[2]};
+        double pp[2];
+        tlsph_fibres_local(f, A, AP, pp);
+        const double px = pp[0], py = pp[1];
         if (fabs(px * uy - py * ux) > 1e-6 * best)
             return -1;
     }
@@ -82,6 +128,11 @@ static size_t body_of(const struct tlsph_model *m, const double P[3])
         const struct tlsph_fibres *f = &m->fibres[b];
         if (!f->n)
             continue;
+        if (f->axis == TLSPH_FIBRE_RADIAL) { /* a shell: a fibre within a spacing of P */
+            if (tlsph_fibres_within(f, P, body_spacing(m, b), NULL, 0) > 0)
+                return b;
+            continue;
+        }
         int pa[2];
         plane_axes(f->axis, pa);
         const double half = 0.5 * body_spacing(m, b);
@@ -119,24 +170,24 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                          "and the crack cannot grow", body->name);
         return -1;
     }
-    const int axis = m->fibres[b].axis;
+    const struct tlsph_fibres *f = &m->fibres[b];
     for (size_t c = 0; c < m->scene.ncracks; c++) {
         double A[3], B[3];
-        if (trace_ends(&m->scene.cracks[c], axis, A, B) != 0)
+        if (trace_ends(&m->scene.cracks[c], f, A, B) != 0)
             continue;
-        const double len = plane_distance(axis, A, B);
-        const double *end = plane_distance(axis, P, A) <= 1e-6 * len   ? A
-                            : plane_distance(axis, P, B) <= 1e-6 * len ? B
-                                                                       : NULL;
+        const double len = plane_distance(f, A, B);
+        const double *end = plane_distance(f, P, A) <= 1e-6 * len   ? A
+                            : plane_distance(f, P, B) <= 1e-6 * len ? B
+                                                                    : NULL;
         if (!end)
             continue;
         const double *other = end == A ? B : A;
         t->body = b;
         t->fibre = -1;
-        for (int k = 0; k < 3; k++) {
+        const double V[3] = {end[0] - other[0], end[1] - other[1], end[2] - other[2]};
+        tangent(f, end, V, t->V1);
+        for (int k = 0; k < 3; k++)
             t->T[k] = t->end[k] = P[k];
-            t->V1[k] = k == axis ? 0.0 : end[k] - other[k];
-        }
         refresh_candidates(m, t);
         return 0;
     }
@@ -176,21 +227,20 @@ int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err)
 /* ---------------------------------------------------------------- advance */
 
 /* Adds the rectangle over the in-plane segment P-Q spanning [lo, hi] along
- * the axis (two triangles); *length += its in-plane length.  0 or -1. */
-static int add_rect(struct tlsph_model *m, int axis, const double P[3], const double Q[3],
-                    double lo, double hi, double spacing, double *length,
+ * the axis (a shell: along the radius, at_depth) as two triangles; *length
+ * += its in-plane length.  0 or -1. */
+static int add_rect(struct tlsph_model *m, const struct tlsph_fibres *f, const double P[3],
+                    const double Q[3], double lo, double hi, double spacing, double *length,
                     struct tlsph_errors *err)
 {
-    const double l = plane_distance(axis, P, Q);
+    const double l = plane_distance(f, P, Q);
     if (!(l > 1e-9 * spacing))
         return 0;
     double c[4][3];
-    memcpy(c[0], P, sizeof c[0]);
-    memcpy(c[1], Q, sizeof c[1]);
-    memcpy(c[2], Q, sizeof c[2]);
-    memcpy(c[3], P, sizeof c[3]);
-    c[0][axis] = c[1][axis] = lo;
-    c[2][axis] = c[3][axis] = hi;
+    at_depth(f, P, lo, c[0]);
+    at_depth(f, Q, lo, c[1]);
+    at_depth(f, Q, hi, c[2]);
+    at_depth(f, P, hi, c[3]);
     const double T1[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[1][0], c[1][1], c[1][2]},
                              {c[2][0], c[2][1], c[2][2]}};
     const double T2[3][3] = {{c[0][0], c[0][1], c[0][2]}, {c[2][0], c[2][1], c[2][2]},
@@ -210,7 +260,7 @@ static void fibre_span(const struct tlsph_model *m, const struct tlsph_fibres *f
                        double *lo, double *hi)
 {
     for (size_t p = f->start[k]; p < f->start[k + 1]; p++) {
-        const double z = m->p.X[3 * f->particle[p] + f->axis];
+        const double z = tlsph_fibres_depth(f, m->p.X + 3 * f->particle[p]);
         *lo = fmin(*lo, z);
         *hi = fmax(*hi, z);
     }
@@ -272,18 +322,28 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
     struct tlsph_crack_driver *d = m->crack_driver;
     struct tlsph_crack_tip *t = &d->tip[tip];
     const size_t b = t->body;
-    const int axis = m->fibres[b].axis;
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const int axis = f->axis;
     const double s = body_spacing(m, b);
     double CJ[3], V2[3], u2[3], delta[3], n2[3] = {0, 0, 0};
-    memcpy(CJ, m->fibres[b].centre[J], sizeof CJ);
-    for (int k = 0; k < 3; k++)
-        V2[k] = k == axis ? 0.0 : CJ[k] - t->T[k];
+    memcpy(CJ, f->centre[J], sizeof CJ);
+    const double TJ[3] = {CJ[0] - t->T[0], CJ[1] - t->T[1], CJ[2] - t->T[2]};
+    tangent(f, t->T, TJ, V2);
     const double L2 = sqrt(V2[0] * V2[0] + V2[1] * V2[1] + V2[2] * V2[2]);
     for (int k = 0; k < 3; k++)
         u2[k] = V2[k] / L2;
-    /* n2 = e_axis x u2: in the plane, normal to V2 */
-    n2[(axis + 1) % 3] = -u2[(axis + 2) % 3];
-    n2[(axis + 2) % 3] = u2[(axis + 1) % 3];
+    /* n2 = e_axis x u2: in the plane, normal to V2 (a shell: the radial
+     * direction at the tip for e_axis, the tangent plane there) */
+    if (axis == TLSPH_FIBRE_RADIAL) {
+        double nt[3];
+        tlsph_fibres_normal(f, t->T, nt);
+        n2[0] = nt[1] * u2[2] - nt[2] * u2[1];
+        n2[1] = nt[2] * u2[0] - nt[0] * u2[2];
+        n2[2] = nt[0] * u2[1] - nt[1] * u2[0];
+    } else {
+        n2[(axis + 1) % 3] = -u2[(axis + 2) % 3];
+        n2[(axis + 2) % 3] = u2[(axis + 1) % 3];
+    }
     const double dm = TLSPH_CRACK_DELTA * s;
     for (int k = 0; k < 3; k++)
         delta[k] = dm * n2[k];
@@ -301,9 +361,13 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
         for (int k = 0; k < 3; k++)
             stop[k] = CJ[k] - dm * u2[k];
         const size_t first = m->crack_surface->nfacets;
-        if (add_rect(m, axis, t->end, CI, lo, hi, s, &t->length, err) != 0 ||
-            add_rect(m, axis, CI, stop, lo, hi, s, &t->length, err) != 0 ||
-            split_fibre(m, b, (size_t)t->fibre, t->V1, V2, delta, first, &split, err) != 0)
+        double V1[3]; /* a shell: the old direction in the tangent plane at the tip */
+        memcpy(V1, t->V1, sizeof V1);
+        if (axis == TLSPH_FIBRE_RADIAL)
+            tangent(f, t->T, t->V1, V1);
+        if (add_rect(m, f, t->end, CI, lo, hi, s, &t->length, err) != 0 ||
+            add_rect(m, f, CI, stop, lo, hi, s, &t->length, err) != 0 ||
+            split_fibre(m, b, (size_t)t->fibre, V1, V2, delta, first, &split, err) != 0)
             return -1;
         memcpy(t->end, stop, sizeof stop);
     }
@@ -316,7 +380,7 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
         for (int k = 0; k < 3; k++)
             past[k] = CJ[k] + s * u2[k];
         const size_t first = m->crack_surface->nfacets;
-        if (add_rect(m, axis, t->end, past, lo, hi, s, &t->length, err) != 0 ||
+        if (add_rect(m, f, t->end, past, lo, hi, s, &t->length, err) != 0 ||
             split_fibre(m, b, J, u2, u2, delta, first, &split, err) != 0)
             return -1;
         memcpy(t->end, past, sizeof past);

@@ -39,6 +39,10 @@
  * and the facets run past the edge by a spacing; the tip stops growing.
  * One advance per tip and step: the damage field answers the cut before the
  * next search.
+ * On a curved shell (radial fibres, crack/fibre.h) "the plane" is the shell's
+ * tangent plane at the point in question: V1 and V2 are projected on it, V1
+ * once more at the tip before a split, delta is normal to V2 in it, and the
+ * facets span the thickness along the radial lines at their ends.
  *
  * Energy: splitting books nothing (split.h); cutting pairs releases the
  * stored energy of the cut pairs into the next steps' kinetic and internal

@@ -22,6 +22,9 @@ static int cmp_item(const void *a, const void *b)
     return x->index < y->index ? -1 : (x->index > y->index);
 }
 
+static enum tlsph_fibre_status stack(struct tlsph_fibres *f, struct item *it, size_t count,
+                                     const double *X);
+
 /* The two in-plane axes of a thickness direction. */
 static void plane_axes(int axis, int out[2])
 {
@@ -62,6 +65,14 @@ enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double 
         it[k].along = x[axis];
         it[k].index = index[k];
     }
+    return stack(f, it, count, X);
+}
+
+/* The fibres of items it[0..count-1] (their cells set, along the coordinate
+ * through the thickness): sorted, grouped by cell, centres; frees it. */
+static enum tlsph_fibre_status stack(struct tlsph_fibres *f, struct item *it, size_t count,
+                                     const double *X)
+{
     qsort(it, count, sizeof *it, cmp_item);
     size_t nf = 0;
     for (size_t k = 0; k < count; k++)
@@ -92,6 +103,196 @@ enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double 
     return TLSPH_FIBRE_OK;
 }
 
+/* ---------------------------------------------------------------- shells */
+
+static double dot3(const double a[3], const double b[3])
+{
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+}
+
+/* c = a x b, component k from the two others cyclically. */
+static void cross3(const double a[3], const double b[3], double c[3])
+{
+    for (int k = 0; k < 3; k++)
+        c[k] = a[(k + 1) % 3] * b[(k + 2) % 3] - a[(k + 2) % 3] * b[(k + 1) % 3];
+}
+
+/* P's offset from the shell's axis, normal to it (m), and its axial
+ * coordinate (m). */
+static double radial_offset(const struct tlsph_fibres *f, const double P[3], double rho[3])
+{
+    const double d[3] = {P[0] - f->base[0], P[1] - f->base[1], P[2] - f->base[2]};
+    const double z = dot3(d, f->dir);
+    for (int a = 0; a < 3; a++)
+        rho[a] = d[a] - z * f->dir[a];
+    return z;
+}
+
+int tlsph_fibres_normal(const struct tlsph_fibres *f, const double P[3], double n[3])
+{
+    if (f->axis != TLSPH_FIBRE_RADIAL) {
+        for (int a = 0; a < 3; a++)
+            n[a] = a == f->axis;
+        return 0;
+    }
+    radial_offset(f, P, n);
+    const double r = sqrt(dot3(n, n));
+    if (!(r > 0.0))
+        return -1;
+    for (int a = 0; a < 3; a++)
+        n[a] /= r;
+    return 0;
+}
+
+void tlsph_fibres_local(const struct tlsph_fibres *f, const double P[3], const double v[3],
+                        double out[2])
+{
+    if (f->axis != TLSPH_FIBRE_RADIAL) {
+        int pa[2];
+        plane_axes(f->axis, pa);
+        out[0] = v[pa[0]];
+        out[1] = v[pa[1]];
+        return;
+    }
+    double n[3], t[3];
+    if (tlsph_fibres_normal(f, P, n) != 0) {
+        out[0] = out[1] = 0.0;
+        return;
+    }
+    cross3(f->dir, n, t);
+    out[0] = dot3(v, t);
+    out[1] = dot3(v, f->dir);
+}
+
+double tlsph_fibres_depth(const struct tlsph_fibres *f, const double X[3])
+{
+    if (f->axis != TLSPH_FIBRE_RADIAL)
+        return X[f->axis];
+    double rho[3];
+    radial_offset(f, X, rho);
+    return sqrt(dot3(rho, rho));
+}
+
+/* d (a fibre centre's offset from P) in the plane at P, into v, and its
+ * length there: a plate's in-plane length; a shell's chord |d| (the arc
+ * along the surface to second order in |d| / r), not the tangent
+ * projection's, which would bring the far side of the tube to the tip. */
+static double plane_vector(const struct tlsph_fibres *f, const double P[3], const double d[3],
+                           double v[2])
+{
+    tlsph_fibres_local(f, P, d, v);
+    return f->axis == TLSPH_FIBRE_RADIAL ? sqrt(dot3(d, d)) : hypot(v[0], v[1]);
+}
+
+struct ray {
+    double z, theta, r;
+    size_t index;
+};
+
+static int cmp_double(double a, double b)
+{
+    return a < b ? -1 : a > b;
+}
+
+static int cmp_ray_z(const void *a, const void *b)
+{
+    const struct ray *x = a, *y = b;
+    const int c = cmp_double(x->z, y->z);
+    return c ? c : (x->index > y->index) - (x->index < y->index);
+}
+
+enum tlsph_fibre_status tlsph_fibres_build_radial(struct tlsph_fibres *f, const double *X,
+                                                  const size_t *index, size_t count,
+                                                  double spacing, const double base[3],
+                                                  const double dir[3], size_t *bad)
+{
+    memset(f, 0, sizeof *f);
+    f->axis = TLSPH_FIBRE_RADIAL;
+    const double ld = sqrt(dot3(dir, dir));
+    if (!(spacing > 0.0) || !isfinite(spacing) || count == 0 || !(ld > 0.0) || !isfinite(ld))
+        return TLSPH_FIBRE_BAD_INPUT;
+    for (int a = 0; a < 3; a++) {
+        f->base[a] = base[a];
+        f->dir[a] = dir[a] / ld;
+    }
+    /* u: the coordinate axis least along dir, made normal to it; w = dir x u */
+    int e = 0;
+    for (int k = 1; k < 3; k++)
+        if (fabs(f->dir[k]) < fabs(f->dir[e]))
+            e = k;
+    double u[3] = {0, 0, 0}, w[3];
+    u[e] = 1.0;
+    const double ue = f->dir[e];
+    for (int a = 0; a < 3; a++)
+        u[a] -= ue * f->dir[a];
+    const double un = sqrt(dot3(u, u));
+    for (int a = 0; a < 3; a++)
+        u[a] /= un;
+    cross3(f->dir, u, w);
+    const double tol = TLSPH_FIBRE_OFFSET_TOL * spacing;
+    struct ray *ry = malloc(count * sizeof *ry);
+    struct item *it = malloc(count * sizeof *it);
+    if (!ry || !it) {
+        free(ry);
+        free(it);
+        return TLSPH_FIBRE_NO_MEMORY;
+    }
+    for (size_t k = 0; k < count; k++) {
+        double rho[3];
+        ry[k].z = radial_offset(f, X + 3 * index[k], rho);
+        ry[k].r = sqrt(dot3(rho, rho));
+        ry[k].index = index[k];
+        if (!(ry[k].r > tol) || !isfinite(ry[k].r) || !isfinite(ry[k].z)) {
+            if (bad)
+                *bad = index[k];
+            free(ry);
+            free(it);
+            return TLSPH_FIBRE_BAD_INPUT;
+        }
+        double th = atan2(dot3(rho, w), dot3(rho, u));
+        if (th > M_PI - tol / ry[k].r) /* a ray at -pi to round-off: one side only */
+            th -= 2.0 * M_PI;
+        ry[k].theta = th;
+    }
+    /* layers: runs of z within tol; then rays: runs of theta within tol / r */
+    qsort(ry, count, sizeof *ry, cmp_ray_z);
+    long layer = 0;
+    for (size_t k = 0; k < count; k++) {
+        layer += k > 0 && ry[k].z - ry[k - 1].z > tol;
+        it[k] = (struct item){.c = {0, layer}, .along = ry[k].theta, .index = k};
+    }
+    qsort(it, count, sizeof *it, cmp_item); /* by layer, then theta */
+    long cell = 0;
+    for (size_t k = 0; k < count; k++) { /* it[k].index: a ray until the second pass */
+        const struct ray *a = &ry[it[k].index], *b = k ? &ry[it[k - 1].index] : a;
+        cell += k > 0 && (it[k].c[1] != it[k - 1].c[1] ||
+                          (a->theta - b->theta) * fmax(a->r, b->r) > tol);
+        it[k].c[0] = cell;
+    }
+    for (size_t k = 0; k < count; k++) {
+        const struct ray *a = &ry[it[k].index];
+        it[k].along = a->r;
+        it[k].index = a->index;
+    }
+    free(ry);
+    const enum tlsph_fibre_status st = stack(f, it, count, X);
+    if (st != TLSPH_FIBRE_OK)
+        return st;
+    for (size_t j = 1; j < f->n; j++) /* every fibre the same size: the particles stack */
+        if (f->start[j + 1] - f->start[j] != f->start[1] - f->start[0]) {
+            if (bad)
+                *bad = f->particle[f->start[j]];
+            const double b0[3] = {f->base[0], f->base[1], f->base[2]};
+            const double d0[3] = {f->dir[0], f->dir[1], f->dir[2]};
+            tlsph_fibres_release(f);
+            f->axis = TLSPH_FIBRE_RADIAL;
+            memcpy(f->base, b0, sizeof b0);
+            memcpy(f->dir, d0, sizeof d0);
+            return TLSPH_FIBRE_NOT_STACKED;
+        }
+    return TLSPH_FIBRE_OK;
+}
+
 double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *D)
 {
     double sum = 0.0;
@@ -104,9 +305,8 @@ double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *
 static long next_tip(const struct tlsph_fibres *f, const double *D, const struct tlsph_tip_search *q,
                      const size_t *cand, size_t ncand)
 {
-    int pa[2];
-    plane_axes(f->axis, pa);
-    const double v1[2] = {q->direction[pa[0]], q->direction[pa[1]]};
+    double v1[2];
+    tlsph_fibres_local(f, q->tip, q->direction, v1);
     const double n1 = hypot(v1[0], v1[1]);
     if (!(n1 > 0.0) || !(q->radius > 0.0))
         return -1;
@@ -119,9 +319,10 @@ static long next_tip(const struct tlsph_fibres *f, const double *D, const struct
     const size_t n = cand ? ncand : f->n;
     for (size_t c = 0; c < n; c++) {
         const size_t j = cand ? cand[c] : c;
-        const double v2[2] = {f->centre[j][pa[0]] - q->tip[pa[0]],
-                              f->centre[j][pa[1]] - q->tip[pa[1]]};
-        const double r = hypot(v2[0], v2[1]);
+        const double d[3] = {f->centre[j][0] - q->tip[0], f->centre[j][1] - q->tip[1],
+                             f->centre[j][2] - q->tip[2]};
+        double v2[2];
+        const double r = plane_vector(f, q->tip, d, v2);
         if (!(r > r_min) || r > q->radius)
             continue;
         const double c2 = (v1[0] * v2[0] + v1[1] * v2[1]) / (n1 * r);
@@ -157,16 +358,17 @@ long tlsph_fibre_next_tip_among(const struct tlsph_fibres *f, const double *D,
 size_t tlsph_fibres_within(const struct tlsph_fibres *f, const double point[3], double radius,
                            size_t *out, size_t max)
 {
-    int pa[2];
-    plane_axes(f->axis, pa);
     size_t n = 0;
-    for (size_t j = 0; j < f->n; j++)
-        if (hypot(f->centre[j][pa[0]] - point[pa[0]], f->centre[j][pa[1]] - point[pa[1]]) <=
-            radius) {
+    for (size_t j = 0; j < f->n; j++) {
+        const double d[3] = {f->centre[j][0] - point[0], f->centre[j][1] - point[1],
+                             f->centre[j][2] - point[2]};
+        double v[2];
+        if (plane_vector(f, point, d, v) <= radius) {
             if (out && n < max)
                 out[n] = j;
             n++;
         }
+    }
     return n;
 }
 
@@ -182,6 +384,8 @@ int tlsph_fibres_split_prepare(const struct tlsph_fibres *f, size_t k, struct tl
 {
     memset(fresh, 0, sizeof *fresh);
     fresh->axis = f->axis;
+    memcpy(fresh->base, f->base, sizeof fresh->base);
+    memcpy(fresh->dir, f->dir, sizeof fresh->dir);
     const size_t count = f->n ? f->start[f->n] : 0;
     fresh->start = malloc((f->n + k + 1) * sizeof *fresh->start);
     fresh->particle = malloc((count + k) * sizeof *fresh->particle);

@@ -51,20 +51,25 @@
 #include <stdint.h>
 
 #define TLSPH_FIBRE_OFFSET_TOL 1e-6 /* spacings: a lattice point's distance to its cell's */
+#define TLSPH_FIBRE_RADIAL 3         /* axis of a curved shell's fibres: the radius (below) */
 
 struct tlsph_fibres {
-    int axis;             /* thickness direction: 0 = x, 1 = y, 2 = z */
+    int axis;             /* thickness direction: 0 = x, 1 = y, 2 = z, TLSPH_FIBRE_RADIAL */
     size_t n;             /* fibres */
     size_t *start;        /* [n + 1]: fibre k's particles are particle[start[k] .. start[k+1]-1] */
     size_t *particle;     /* particle indices, each fibre ordered along axis */
     double (*centre)[3];  /* each fibre's reference centre, m */
+    double base[3], dir[3]; /* TLSPH_FIBRE_RADIAL: a point of the shell's axis (m) and its
+                               unit direction; unused otherwise */
 };
 
 enum tlsph_fibre_status {
     TLSPH_FIBRE_OK = 0,
     TLSPH_FIBRE_NO_MEMORY = -1,
     TLSPH_FIBRE_BAD_INPUT = -2,  /* axis not 0..2, spacing <= 0 or not finite, no particle */
-    TLSPH_FIBRE_NOT_LATTICE = -3 /* a particle off its in-plane lattice point */
+    TLSPH_FIBRE_NOT_LATTICE = -3, /* a particle off its in-plane lattice point */
+    TLSPH_FIBRE_NOT_STACKED = -4 /* radial: fibres of different sizes (the shells' particles
+                                    are not on common rays) */
 };
 
 /* Builds the fibres of the particles index[0..count-1] (positions X, 3 per
@@ -75,6 +80,48 @@ enum tlsph_fibre_status {
 enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double *X,
                                            const size_t *index, size_t count, double spacing,
                                            int axis, size_t *bad);
+
+/* Fibres through a curved shell (a cylindrical wall, paper 003 §6.3): the
+ * thickness is radial, about the axis through `base` along `dir` (any
+ * length > 0).  A fibre is the particles on one ray from the axis: the same
+ * axial coordinate z = (X - base).dir and the same azimuth theta, both to
+ * TLSPH_FIBRE_OFFSET_TOL spacings (theta times the particle's radius), ordered
+ * by increasing radius.  The shell's particles must stack: every fibre holds
+ * the same number of particles (the conforming tube with "thickness_axis":
+ * "radial" puts the same count on every shell, scene/conforming.c); otherwise
+ * TLSPH_FIBRE_NOT_STACKED with *bad the first particle of a fibre of another
+ * size (a conforming cylinder's shells each hold their own count, so their
+ * particles lie on different rays; a guess would mix the layers).  Fibres are
+ * numbered by z, then theta.  A particle on the axis is refused (bad input).
+ *
+ * Everything measured "in the plane" is measured in the shell's tangent
+ * plane at the point in question (tlsph_fibres_local): eq. 20's angle, the
+ * driver's directions, lengths and facets; eq. 20's circle and
+ * tlsph_fibres_within take the chord |C_J - T| (the arc to second order in
+ * R / r; the tangent projection alone would bring the tube's far side to the
+ * tip). */
+enum tlsph_fibre_status tlsph_fibres_build_radial(struct tlsph_fibres *f, const double *X,
+                                                  const size_t *index, size_t count,
+                                                  double spacing, const double base[3],
+                                                  const double dir[3], size_t *bad);
+
+/* The thickness direction at point P (unit): e_axis for a plate, the radial
+ * direction at P (away from the axis) for a shell; 0, or -1 for a point on a
+ * shell's axis. */
+int tlsph_fibres_normal(const struct tlsph_fibres *f, const double P[3], double n[3]);
+
+/* v's coordinates in the plane at P (m, in v's units): for a plate its two
+ * in-plane components (the axes other than `axis`, ascending), for a shell
+ * its components along the tangent plane's azimuthal direction (dir x n) and
+ * along dir.  The tip search and the fibre queries measure distances and
+ * angles with them: along the surface to second order in the distance over
+ * the radius. */
+void tlsph_fibres_local(const struct tlsph_fibres *f, const double P[3], const double v[3],
+                        double out[2]);
+
+/* The coordinate along the thickness of X (m): X[axis] for a plate, the
+ * distance from the axis for a shell. */
+double tlsph_fibres_depth(const struct tlsph_fibres *f, const double X[3]);
 
 /* D_J: the sum of D over fibre k's particles (D indexed by particle). */
 double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *D);

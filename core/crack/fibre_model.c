@@ -4,6 +4,21 @@
 
 #include "crack/fibre.h"
 #include "run/model.h"
+#include "scene/parse_internal.h"
+
+/* A shell wall's radial fibres, about the axis of the body's cylinder (the
+ * conforming base, scene/conforming.c: a[0..2] base, a[3..5] unit axis). */
+static enum tlsph_fibre_status radial(struct tlsph_model *m, size_t b, const size_t *index,
+                                      size_t count, size_t *bad)
+{
+    const struct tlsph_body *body = &m->scene.bodies[b];
+    const struct tlsph_geometry *g = tlsph_conforming_base(&body->geometry);
+    if (!g || g->type != TLSPH_GEOM_CYLINDER) /* refused at parse */
+        return TLSPH_FIBRE_BAD_INPUT;
+    *bad = index[0];
+    return tlsph_fibres_build_radial(&m->fibres[b], m->p.X, index, count, body->spacing, g->a,
+                                     g->a + 3, bad);
+}
 
 int tlsph_model_fibres_setup(struct tlsph_model *m, struct tlsph_errors *err)
 {
@@ -29,9 +44,25 @@ int tlsph_model_fibres_setup(struct tlsph_model *m, struct tlsph_errors *err)
         for (size_t k = 0; k < count; k++)
             index[k] = m->body_begin[b] + k;
         size_t bad = 0;
-        const enum tlsph_fibre_status st = tlsph_fibres_build(
-            &m->fibres[b], m->p.X, index, count, body->spacing, body->thickness_axis, &bad);
+        const enum tlsph_fibre_status st =
+            body->thickness_axis == TLSPH_FIBRE_RADIAL
+                ? radial(m, b, index, count, &bad)
+                : tlsph_fibres_build(&m->fibres[b], m->p.X, index, count, body->spacing,
+                                     body->thickness_axis, &bad);
         free(index);
+        if (st == TLSPH_FIBRE_NOT_STACKED || (st == TLSPH_FIBRE_BAD_INPUT &&
+                                              body->thickness_axis == TLSPH_FIBRE_RADIAL)) {
+            tlsph_errors_add(err, p,
+                             "body '%s': particle %lld at (%g, %g, %g) m %s: its radial fibres "
+                             "cannot be built",
+                             body->name, (long long)m->p.id[bad], m->p.X[3 * bad],
+                             m->p.X[3 * bad + 1], m->p.X[3 * bad + 2],
+                             st == TLSPH_FIBRE_NOT_STACKED
+                                 ? "begins a stack of another size than the first (the shells' "
+                                   "particles are not on common rays)"
+                                 : "lies on the cylinder's axis");
+            return -1;
+        }
         if (st == TLSPH_FIBRE_NOT_LATTICE) {
             tlsph_errors_add(err, p,
                              "body '%s': particle %lld at (%g, %g, %g) m is off its in-plane "

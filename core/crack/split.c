@@ -71,6 +71,8 @@ static int32_t **measure_list(struct tlsph_measures *ms, size_t k, size_t **coun
 struct lists {
     int32_t **group;   /* [nbcs] */
     size_t *group_add; /* halves joining each group */
+    double **area;     /* [nbcs]: a pressure group's new area vectors [3 (n + add)] */
+    double **load;     /* and its new stored loads, alike */
     int32_t *measure[NMEASURE_LISTS];
     size_t measure_add[NMEASURE_LISTS];
 };
@@ -79,8 +81,14 @@ static void lists_free(struct lists *l, size_t ngroups)
 {
     for (size_t g = 0; l->group && g < ngroups; g++)
         free(l->group[g]);
+    for (size_t g = 0; l->area && g < ngroups; g++) {
+        free(l->area[g]);
+        free(l->load[g]);
+    }
     free(l->group);
     free(l->group_add);
+    free(l->area);
+    free(l->load);
     for (size_t k = 0; k < NMEASURE_LISTS; k++)
         free(l->measure[k]);
 }
@@ -114,19 +122,18 @@ static int prepare_lists(struct tlsph_model *m, const struct tlsph_split *sp, st
     const size_t ng = m->scene.nbcs;
     l->group = calloc(ng ? ng : 1, sizeof *l->group);
     l->group_add = calloc(ng ? ng : 1, sizeof *l->group_add);
-    if (!l->group || !l->group_add)
+    l->area = calloc(ng ? ng : 1, sizeof *l->area);
+    l->load = calloc(ng ? ng : 1, sizeof *l->load);
+    if (!l->group || !l->group_add || !l->area || !l->load)
         goto oom;
     for (size_t g = 0; g < ng; g++) {
         const struct tlsph_group *gr = &m->groups[g];
         if (!gr->index || !(l->group_add[g] = count_parents(sp, gr->index, gr->n)))
             continue;
-        if (gr->area) {
-            tlsph_errors_add(err, "", "split: particle in the pressure group of boundary "
-                             "condition '%s' (its area cannot be shared)",
-                             m->scene.bcs[g].name);
-            return -1;
-        }
         if (!(l->group[g] = malloc((gr->n + l->group_add[g]) * sizeof **l->group)))
+            goto oom;
+        if (gr->area && (!(l->area[g] = malloc(3 * (gr->n + l->group_add[g]) * sizeof(double))) ||
+                         !(l->load[g] = malloc(3 * (gr->n + l->group_add[g]) * sizeof(double)))))
             goto oom;
     }
     for (size_t k = 0; k < NMEASURE_LISTS; k++) {
@@ -143,8 +150,33 @@ oom:
     return -1;
 }
 
+/* A pressure group's per-entry 3-vectors (area vectors, stored loads) after
+ * its index list gained the halves (remap_list's order: the old entries, then
+ * half 2 of every parent listed): a parent's vector v becomes v share (half 1)
+ * and v - v share (half 2).  share is the volume (and mass) share of half 1:
+ * the area vector is the particle's V_i / s along its surface normal
+ * (bc/surface.h), so both halves keep that rule, the normal is the parent's
+ * (they sit +-delta from it on the same surface), and the group's total area
+ * vector and force are kept to one rounding; refitting the normals would see
+ * the cut supports at the new faces and change the total. */
+static void share_vectors(const struct tlsph_split *sp, const int32_t *in, size_t n,
+                          const double *old, double *out, double share)
+{
+    size_t extra = n;
+    for (size_t a = 0; a < n; a++) {
+        const int parent = slot_of(sp, (size_t)in[a]) < sp->n;
+        for (int c = 0; c < 3; c++) {
+            const double v = old[3 * a + c], v1 = parent ? v * share : v;
+            out[3 * a + c] = v1;
+            if (parent)
+                out[3 * extra + c] = v - v1;
+        }
+        extra += parent;
+    }
+}
+
 static void commit_lists(struct tlsph_model *m, const struct tlsph_split *sp, size_t at,
-                         struct lists *l)
+                         double share, struct lists *l)
 {
     for (size_t g = 0; g < m->scene.nbcs; g++) {
         struct tlsph_group *gr = &m->groups[g];
@@ -153,6 +185,16 @@ static void commit_lists(struct tlsph_model *m, const struct tlsph_split *sp, si
         if (!l->group[g]) {
             remap_list(sp, at, gr->index, gr->n, gr->index);
             continue;
+        }
+        if (l->area[g]) { /* before the indices change: the parents by their old index */
+            share_vectors(sp, gr->index, gr->n, gr->area, l->area[g], share);
+            share_vectors(sp, gr->index, gr->n, gr->load, l->load[g], share);
+            free(gr->area);
+            free(gr->load);
+            gr->area = l->area[g];
+            gr->load = l->load[g];
+            l->area[g] = l->load[g] = NULL;
+            m->bytes_allocated += 6 * l->group_add[g] * sizeof(double);
         }
         remap_list(sp, at, gr->index, gr->n, l->group[g]);
         free(gr->index);
@@ -302,7 +344,7 @@ int tlsph_split_particles(struct tlsph_model *m, const struct tlsph_split *sp,
         m->body_begin[c] += k;
         m->body_end[c] += k;
     }
-    commit_lists(m, sp, at, &lists);
+    commit_lists(m, sp, at, share, &lists);
     tlsph_rebuild_commit(m, &plan);
     tlsph_split_forces_finish(m, b, &forces, at); /* the new supports' pair forces + the rest */
     lists_free(&lists, m->scene.nbcs);

@@ -67,10 +67,12 @@
  * (the body grows by k, later bodies shift by k), boundary groups,
  * sections and probes (indices shifted; a half joins every group, section and
  * probe of its parent), fibres, the contact phase's and the rigid bodies' per-particle arrays and
- * candidate lists (crack/split_state.h).  Refused with an error, the model
- * unchanged: a parent in a pressure group (its reference area vector cannot
- * be shared without the surface) and virtual links (D_ij per pair is not
- * remapped yet).  Fibres (m->fibres) follow the split: the halves 2 form a
+ * candidate lists (crack/split_state.h).  A pressure group's reference area
+ * vectors and stored loads are shared like the volume (half 1 the share
+ * phi1 / 2 pi of the parent's vector, half 2 the rest; split.c share_vectors
+ * says why), so the group's total area vector and force are kept to one
+ * rounding.  Refused with an error, the model unchanged: virtual links (D_ij
+ * per pair is not remapped yet).  Fibres (m->fibres) follow the split: the halves 2 form a
  * new fibre beside their parents' (crack/fibre.h tlsph_fibres_split_commit).
  * The result file of a run that splits needs the layout for changing counts
  * (io/output/output.h); one opened with one count per run refuses the next

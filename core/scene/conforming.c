@@ -23,6 +23,10 @@
  * a quarter cut by those planes (a difference whose first object is the sphere)
  * keeps exactly a quarter of each shell, and its volumes a quarter of the body's.
  *
+ * A cylinder whose body has "thickness_axis": "radial" (a shell wall, its
+ * particles stacked into radial fibres) puts the outer shell's count on every
+ * ring instead, at the same angles: the shells' particles lie on common rays.
+ *
  * Points come layer by layer, shell by shell from the centre outwards, rings
  * by increasing theta, azimuths increasing: deterministic, no random numbers. */
 #include <math.h>
@@ -120,12 +124,17 @@ static size_t cylinder_shells(const struct tlsph_body *body, const double *a, do
     w[0] = a[4] * u[2] - a[5] * u[1];
     w[1] = a[5] * u[0] - a[3] * u[2];
     w[2] = a[3] * u[1] - a[4] * u[0];
+    /* a shell wall with radial fibres ("thickness_axis": "radial"): every ring
+     * holds the outer shell's count, so the particles of all shells lie on
+     * common rays from the axis and stack into fibres (crack/fibre.h); the
+     * inner shells' arc spacing is then their radius over the outer's times h */
+    const long n_outer = ring_count(2.0 * pi * (R - 0.5 * t), h);
     size_t n = 0;
     for (long l = 0; l < layers; l++) {
         const double z = ((double)l + 0.5) * dz;
         for (long k = 0; k < N; k++) {
             const double r = ((double)k + 0.5) * t, ri = (double)k * t, ro = (double)(k + 1) * t;
-            const long nk = ring_count(2.0 * pi * r, h);
+            const long nk = body->thickness_axis == 3 ? n_outer : ring_count(2.0 * pi * r, h);
             const double each = pi * (ro * ro - ri * ri) * dz / (double)nk;
             for (long i = 0; i < nk; i++) {
                 const double phi = ((double)i + 0.5) * 2.0 * pi / (double)nk;

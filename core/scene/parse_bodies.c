@@ -143,7 +143,19 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
         bad |= tlsph_parse_refine(obj, s->dimension, b, P, err) != 0;
     /* fibres stack the particles of a uniform lattice through a plate's
      * thickness (crack/fibre.h): other sets have no unambiguous stacks */
-    if (b->thickness_axis >= 0 &&
+    const struct tlsph_geometry *base = geometry_ok ? tlsph_conforming_base(&b->geometry) : NULL;
+    if (b->thickness_axis == 3 && geometry_ok &&
+        (s->dimension == 2 || b->placement != TLSPH_PLACEMENT_CONFORMING || !base ||
+         base->type != TLSPH_GEOM_CYLINDER)) {
+        /* radial fibres stack a conforming cylinder's shells (crack/fibre.h) */
+        tlsph_pointer_join(p, sizeof p, P, "thickness_axis");
+        tlsph_errors_add(err, p,
+                         "body '%s': a radial thickness is a cylindrical shell's: the body "
+                         "must be 3-D with \"placement\": \"conforming\" and a cylinder (or a "
+                         "difference whose first object is one) as its geometry",
+                         b->name);
+        bad = 1;
+    } else if (b->thickness_axis >= 0 && b->thickness_axis != 3 &&
         (s->dimension == 2 || b->placement == TLSPH_PLACEMENT_CONFORMING ||
          json_object_get(obj, "refine"))) {
         tlsph_pointer_join(p, sizeof p, P, "thickness_axis");

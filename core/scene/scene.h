@@ -142,8 +142,9 @@ struct tlsph_body {
     struct tlsph_expr initial_velocity[3]; /* expressions of x, y, z (m) -> m/s; evaluator NULL = 0 */
     struct tlsph_refine *refine; /* owned array of nrefine; none = the uniform lattice */
     size_t nrefine;
-    int thickness_axis; /* a thin body's thickness direction (0 = x, 1 = y, 2 = z): its
-                           particles form fibres (crack/fibre.h); -1 = not thin */
+    int thickness_axis; /* a thin body's thickness direction (0 = x, 1 = y, 2 = z, 3 =
+                           radial: a conforming cylinder's wall): its particles form
+                           fibres (crack/fibre.h); -1 = not thin */
 };
 
 /* Which particles a boundary condition applies to.  A particle is selected when it

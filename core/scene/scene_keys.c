@@ -280,7 +280,7 @@ static const struct tlsph_key_choice placements[] = {
     {"lattice", TLSPH_PLACEMENT_LATTICE}, {"conforming", TLSPH_PLACEMENT_CONFORMING}, {0}};
 
 static const struct tlsph_key_choice axes[] = {
-    {"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}, {0}};
+    {"none", -1}, {"x", 0}, {"y", 1}, {"z", 2}, {"radial", 3}, {0}};
 
 static const struct tlsph_key body_keys[] = {
     {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
@@ -315,7 +315,8 @@ static const struct tlsph_key body_keys[] = {
      .choices = axes, .noun = "thickness axis", .offset = offsetof(struct tlsph_body, thickness_axis),
      .description = "a thin body (a plate; 3-D, uniform lattice): its thickness direction, "
                     "along which its particles stack into fibres for the crack-tip search; "
-                    "none = not thin"},
+                    "radial = a cylindrical shell's wall (conforming placement of a cylinder, "
+                    "the same count on every shell); none = not thin"},
 };
 const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL, body_keys);
 

@@ -25,6 +25,7 @@ SEMANTIC_ONLY = {
     "crack_misses_body",      # needs the particles
     "thickness_axis_2d",      # fibres: 3-D uniform lattices only
     "thickness_axis_refined",
+    "thickness_axis_radial_lattice",  # radial: a conforming cylinder only
     "crack_growth_no_fibres",  # crack growth: a body with fibres, a pre-crack,
     "crack_growth_no_crack",   # a damage model, a tip at a crack's end
     "crack_growth_no_damage",
