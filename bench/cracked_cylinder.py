@@ -64,6 +64,8 @@ def panel(out, f, k, ox, oy, title):
                % (ox, oy - 6, title, t * 1e6))
     out.append('<text x="%g" y="%g" font-size="10">hoop arc r_m θ (±%.0f mm)</text>'
                % (ox + 40, oy + H + 14, RM * THETA * 1e3))
+    out.append('<text x="%g" y="%g" font-size="10" transform="rotate(-90 %g %g)">z, %.2f-%.2f m</text>'
+               % (ox - 5, oy + H / 2 + 30, ox - 5, oy + H / 2 + 30, Z0, Z1))
     return t, int(keep.sum()), float(D.max())
 
 
@@ -124,12 +126,15 @@ def main():
     nf = f["particles/solid/count/value"].shape[0]
     ks = [nf // 2, (3 * nf) // 4, nf - 1]
     out = ['<svg xmlns="http://www.w3.org/2000/svg" width="%d" height="%d" font-family="sans-serif">'
-           % (4 * (W + 40) + 60, H + 70)]
+           % (4 * (W + 40) + 60, H + 80)]
     out.append('<rect width="100%" height="100%" fill="white"/>')
     for j, k in enumerate(ks):
         t, n, dmax = panel(out, f, k, 30 + j * (W + 40), 40, "frame %d" % k)
         print("frame %d: t = %.1f us, %d particles in the window, max damage %.3f" % (k, t * 1e6, n, dmax))
     t, L, op = plot(out, f, 30 + 3 * (W + 40) + 20, 40)
+    out.append('<text x="30" y="%d" font-size="11">particles coloured by damage, 0 (blue) to 1 (red); '
+               'ringed: the halves of split particles (the grown crack\'s faces); the pre-crack is '
+               'the gap at mid-height</text>' % (H + 68))
     out.append("</svg>")
     with open(sys.argv[2], "w") as o:
         o.write("\n".join(out) + "\n")
