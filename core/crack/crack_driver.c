@@ -8,6 +8,7 @@
 
 #include "crack/crack_surface.h"
 #include "crack/fibre.h"
+#include "crack/fibre_criterion.h"
 #include "crack/split.h"
 #include "util/clock.h"
 
@@ -119,6 +120,8 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                          "and the crack cannot grow", body->name);
         return -1;
     }
+    if (tlsph_crack_criterion_check(m, b, err) != 0)
+        return -1;
     const int axis = m->fibres[b].axis;
     for (size_t c = 0; c < m->scene.ncracks; c++) {
         double A[3], B[3];
@@ -354,9 +357,10 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
                                      .D_c = g->critical_damage};
         memcpy(q.tip, t->T, sizeof q.tip);
         memcpy(q.direction, t->V1, sizeof q.direction);
+        const double *D = tlsph_crack_criterion_field(m);
         const long J = t->ncand == SIZE_MAX
-                           ? tlsph_fibre_next_tip(f, m->p.damage, &q)
-                           : tlsph_fibre_next_tip_among(f, m->p.damage, &q, t->cand, t->ncand);
+                           ? tlsph_fibre_next_tip(f, D, &q)
+                           : tlsph_fibre_next_tip_among(f, D, &q, t->cand, t->ncand);
         if (J >= 0)
             rc = advance(m, k, (size_t)J, log, err);
     }
