@@ -25,11 +25,21 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
                                 "support"))
 from tlsph_result import Result  # noqa: E402
 
-VARIANTS = [("gurson", "Gurson (q = 1, no nucleation)", "#1f77b4"),
-            ("gtn", "GTN (gtn_aravas)", "#2ca02c"),
+VARIANTS = [("gurson", "Gurson", "#1f77b4"),
+            ("gtn", "GTN", "#2ca02c"),
             ("sm_gurson", "SM-Gurson", "#d62728"),
             ("m_gurson", "M-Gurson", "#ff7f0e"),
-            ("gtn_strain", "GTN, plastic strain 0.35", "#9467bd")]
+            ("gtn_strain", "GTN, eps_p 0.35", "#9467bd")]
+
+
+def nice(top):
+    """(axis end, tick step): steps of 1, 2 or 5 x 10^k, at most 6 ticks."""
+    k = 10 ** math.floor(math.log10(top)) if top > 0 else 1
+    for m in (0.1, 0.2, 0.5, 1, 2, 5, 10):
+        step = m * k
+        if math.ceil(top / step) <= 6:
+            return step * math.ceil(top / step), step
+    return top, top
 COLUMNS = ["variant", "peak P (kN)", "Delta at peak (mm)", "P at end (kN)",
            "crack at Delta 60 mm (mm)", "crack at end (mm)", "advances", "particles",
            "steps", "wall (s)", "driver", "balance / ext. work", "status"]
@@ -75,20 +85,17 @@ def curves(run):
 
 
 def svg(runs, path):
-    W, H = 900, 420
+    W, H = 900, 480
     out = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" '
            f'font-family="sans-serif" font-size="12">',
            f'<rect width="{W}" height="{H}" fill="white"/>']
-    xmax = max(float(d["delta"].max()) for _, _, d in runs) * 1e3
-    xmax = math.ceil(xmax / 20) * 20
-    pmax = max(float(d["P"].max()) for _, _, d in runs) / 1e3
-    pmax = math.ceil(pmax / 50) * 50
-    cmax = max(float(d["crack"].max()) for _, _, d in runs) * 1e3
-    cmax = max(50, math.ceil(cmax / 50) * 50)
-    panels = [(70, "P (kN), by the moment balance about O", pmax, "P", 1e-3),
-              (520, "crack length (mm)", cmax, "crack", 1e3)]
+    xmax, xstep = nice(max(float(d["delta"].max()) for _, _, d in runs) * 1e3)
+    pmax, pstep = nice(max(float(d["P"].max()) for _, _, d in runs) / 1e3)
+    cmax, cstep = nice(max(50.0, max(float(d["crack"].max()) for _, _, d in runs) * 1e3))
+    panels = [(70, "P (kN), by the moment balance about O", pmax, pstep, "P", 1e-3),
+              (520, "crack length (mm)", cmax, cstep, "crack", 1e3)]
     T, B, pw, ph = 30, 60, 340, 300
-    for L, label, ymax, key, scale in panels:
+    for L, label, ymax, ystep, key, scale in panels:
         def X(x):
             return L + pw * x / xmax
 
@@ -96,10 +103,12 @@ def svg(runs, path):
             return T + ph * (1 - min(max(y, 0), ymax) / ymax)
         out.append(f'<rect x="{L}" y="{T}" width="{pw}" height="{ph}" fill="none" '
                    f'stroke="black"/>')
-        for k in range(6):
-            x, y = xmax * k / 5, ymax * k / 5
+        for k in range(int(round(xmax / xstep)) + 1):
+            x = xstep * k
             out.append(f'<text x="{X(x):.1f}" y="{T + ph + 16}" text-anchor="middle">{x:.0f}'
                        f'</text>')
+        for k in range(int(round(ymax / ystep)) + 1):
+            y = ystep * k
             out.append(f'<text x="{L - 6}" y="{Y(y) + 4:.1f}" text-anchor="end">{y:.0f}</text>')
             out.append(f'<line x1="{L}" y1="{Y(y):.1f}" x2="{L + pw}" y2="{Y(y):.1f}" '
                        f'stroke="#ddd"/>')
@@ -112,13 +121,23 @@ def svg(runs, path):
             out.append(f'<polyline points="{pts}" fill="none" stroke="{color}" '
                        f'stroke-width="1.5"/>')
     for i, (name, (lab, color), d) in enumerate(runs):
-        lx, ly = 70 + 170 * (i % 5), H - 12
+        lx, ly = 70 + 150 * (i % 5), 412
         out.append(f'<line x1="{lx}" y1="{ly - 4}" x2="{lx + 20}" y2="{ly - 4}" '
                    f'stroke="{color}" stroke-width="2"/>')
         out.append(f'<text x="{lx + 24}" y="{ly}">{lab}</text>')
+    for i, line in enumerate(TRENDS):
+        out.append(f'<text x="70" y="{440 + 15 * i}" font-size="11" fill="#333">{line}</text>')
     out.append("</svg>")
     with open(path, "w") as f:
         f.write("\n".join(out) + "\n")
+
+
+# The paper's findings to set the curves against (no data of its Fig. 8 are
+# available here, only its text, §6.1)
+TRENDS = ["Paper 003 (§6.1, Figs. 8 and 12): all models overlap in the elastic phase; the "
+          "original Gurson model is the stiffest; SM-Gurson much softer (mode I);",
+          "GTN fits the experiment best, M-Gurson close to it; at 14 ms GTN has the longest "
+          "crack, M-Gurson almost the same, SM-Gurson a much shorter one."]
 
 
 def main():
@@ -130,12 +149,22 @@ def main():
         run = os.path.join(outdir, name)
         if not os.path.exists(os.path.join(run, "result.h5")):
             continue
-        d = curves(run)
+        try:
+            d = curves(run)
+        except OSError:  # still being written
+            continue
         k = int(np.argmax(d["P"]))
         c60 = float(np.interp(0.06, d["delta"], d["crack"])) if d["delta"][-1] >= 0.06 \
             else float("nan")
         cost = d["cost"]
-        share = cost.get("crack_growth_share", float("nan"))
+        share = float("nan")  # the driver's share: the run's log (tearing.sh keeps it)
+        try:
+            with open(os.path.join(outdir, name + ".log")) as f:
+                for line in f:
+                    if line.startswith("tlsph: crack growth:") and "% of the run" in line:
+                        share = float(line.split("(")[-1].split("%")[0]) / 100
+        except OSError:
+            pass
         cells = [lab, f"{d['P'][k] / 1e3:.0f}", f"{d['delta'][k] * 1e3:.1f}",
                  f"{d['P'][-1] / 1e3:.0f}", f"{c60 * 1e3:.0f}", f"{d['crack'][-1] * 1e3:.0f}",
                  f"{d['advances']}", f"{d['n0']} → {d['n1']}", f"{int(cost['steps'])}",

@@ -9,8 +9,7 @@
 #include "sph/kinematics.h"
 #include "util/mat3.h"
 
-/* H = ln U of F, as sym6 (xx, xy, xz, yy, yz, zz). */
-static void hencky(const double F[9], double H[6])
+void tlsph_split_hencky(const double F[9], double H[6])
 {
     double C[9];
     for (int r = 0; r < 3; r++)
@@ -57,8 +56,8 @@ int tlsph_split_keep_elastic_state(struct tlsph_model *m, size_t *changed,
         if (same || !porous_body(m, p->body[i]) || (p->damage && p->damage[i] >= 1.0))
             continue;
         double Ho[6], Hn[6];
-        hencky(Fo, Ho);
-        hencky(Fn, Hn);
+        tlsph_split_hencky(Fo, Ho);
+        tlsph_split_hencky(Fn, Hn);
         for (int a = 0; a < 6; a++)
             p->plastic_strain[6 * i + a] += Hn[a] - Ho[a];
         count++;

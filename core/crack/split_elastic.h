@@ -34,6 +34,10 @@
 #include "run/model.h"
 #include "util/errors.h"
 
+/* H = ln U of F = R U (row-major), as sym6 (xx, xy, xz, yy, yz, zz), the
+ * material point's strain measure (material/material_point.h). */
+void tlsph_split_hencky(const double F[9], double H[6]);
+
 /* After tlsph_split_particles (the halves hold their parents' F): the above.
  * Sets *changed (may be NULL) to the points re-referenced.  0, or -1 out of
  * memory (err). */

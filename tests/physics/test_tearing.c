@@ -36,55 +36,23 @@
 #include <string.h>
 
 #include "crack/crack_driver.h"
+#include "crack/split_elastic.h"
 #include "run/integrate.h"
 #include "run/model.h"
 #include "support/check_main.h"
+#include "support/crack_plate.h"
 #include "support/scene_builder.h"
-#include "util/mat3.h"
 
 #define MIN_ADVANCES 8
 #define BALANCE_BOUND 1e-3
 #define STATE_TOL 1e-12
 
-static void hencky(const double F[9], double H[6])
-{
-    double C[9];
-    for (int r = 0; r < 3; r++)
-        for (int c = 0; c < 3; c++)
-            C[3 * r + c] = F[r] * F[c] + F[3 + r] * F[3 + c] + F[6 + r] * F[6 + c];
-    double lam[3], Q[9], d[3];
-    sym3_eigen(C, lam, Q);
-    for (int a = 0; a < 3; a++)
-        d[a] = 0.5 * log(lam[a]);
-    sym3_compose(Q, d, H);
-}
-
 /* H - Ep of particle i, sym6. */
 static void elastic(const struct tlsph_model *m, size_t i, double E[6])
 {
-    hencky(m->p.F + 9 * i, E);
+    tlsph_split_hencky(m->p.F + 9 * i, E);
     for (int a = 0; a < 6; a++)
         E[a] -= m->p.plastic_strain[6 * i + a];
-}
-
-struct totals {
-    double mass, vol, mom[3], scale;
-};
-
-static struct totals totals(const struct tlsph_model *m)
-{
-    struct totals t = {0};
-    for (size_t i = 0; i < m->p.n; i++) {
-        t.mass += m->p.mass[i];
-        t.vol += m->p.vol0[i];
-        double v2 = 0.0;
-        for (int c = 0; c < 3; c++) {
-            t.mom[c] += m->p.mass[i] * m->p.v[3 * i + c];
-            v2 += m->p.v[3 * i + c] * m->p.v[3 * i + c];
-        }
-        t.scale += m->p.mass[i] * sqrt(v2);
-    }
-    return t;
 }
 
 START_TEST(the_gurson_crack_tears_the_plate)
@@ -103,7 +71,7 @@ START_TEST(the_gurson_crack_tears_the_plate)
     while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
         tlsph_model_step(m);
         const size_t before_events = m->crack_driver->nevents, nb = m->p.n;
-        const struct totals a = totals(m);
+        const struct crack_totals a = crack_totals(m);
         E0 = realloc(E0, 6 * nb * sizeof *E0);
         ck_assert_ptr_nonnull(E0);
         for (size_t i = 0; i < nb; i++)
@@ -113,7 +81,7 @@ START_TEST(the_gurson_crack_tears_the_plate)
             const struct tlsph_crack_event *e =
                 &m->crack_driver->event[m->crack_driver->nevents - 1];
             ck_assert_uint_eq(m->p.n, nb + e->split);
-            const struct totals b = totals(m);
+            const struct crack_totals b = crack_totals(m);
             worst_mass = fmax(worst_mass, fabs(b.mass - a.mass) / a.mass);
             worst_vol = fmax(worst_vol, fabs(b.vol - a.vol) / a.vol);
             for (int c = 0; c < 3; c++)
