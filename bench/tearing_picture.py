@@ -18,6 +18,7 @@ import matplotlib
 import numpy as np
 
 matplotlib.use("Agg")
+matplotlib.rcParams["svg.fonttype"] = "none"  # text as text: a smaller file
 import matplotlib.pyplot as plt  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
@@ -62,12 +63,14 @@ def main(outdir, out, delta_mm=None):
     for ax in axes[len(runs):]:
         ax.axis("off")
     if sc is not None:
-        cb = fig.colorbar(sc, ax=axes[len(runs):] if len(runs) < 6 else axes, shrink=0.8)
-        cb.set_label("equivalent plastic strain (matrix strain for the Gurson family)")
+        cax = axes[5].inset_axes([0.1, 0.1, 0.06, 0.8])
+        cb = fig.colorbar(sc, cax=cax)
+        cb.set_label("equivalent plastic strain\n(the matrix strain for the Gurson family)",
+                     fontsize=9)
     fig.text(0.01, 0.01, "middle layer, deformed (x, y) in mm; O at the origin, the clamp's "
              "pivot; the crack runs from the pre-crack's tip at x = -650 mm, y = -200 mm",
              fontsize=8)
-    fig.savefig(out, dpi=110)
+    fig.savefig(out, dpi=60)
 
 
 if __name__ == "__main__":
