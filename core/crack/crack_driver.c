@@ -8,7 +8,9 @@
 
 #include "crack/crack_surface.h"
 #include "crack/fibre.h"
+#include "crack/fibre_criterion.h"
 #include "crack/split.h"
+#include "crack/split_elastic.h"
 #include "util/clock.h"
 
 /* The two in-plane axes of a thickness direction (as crack/fibre.c). */
@@ -170,6 +172,8 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                          "and the crack cannot grow", body->name);
         return -1;
     }
+    if (tlsph_crack_criterion_check(m, b, err) != 0)
+        return -1;
     const struct tlsph_fibres *f = &m->fibres[b];
     for (size_t c = 0; c < m->scene.ncracks; c++) {
         double A[3], B[3];
@@ -283,7 +287,9 @@ static int split_fibre(struct tlsph_model *m, size_t b, size_t k, const double V
     memcpy(sp.V1, V1, sizeof sp.V1);
     memcpy(sp.V2, V2, sizeof sp.V2);
     memcpy(sp.delta, delta, sizeof sp.delta);
-    const int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
+    int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
+    if (rc == 0)
+        rc = tlsph_split_keep_elastic_state(m, NULL, err);
     free(index);
     *count += n;
     return rc;
@@ -418,9 +424,10 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
                                      .D_c = g->critical_damage};
         memcpy(q.tip, t->T, sizeof q.tip);
         memcpy(q.direction, t->V1, sizeof q.direction);
+        const double *D = tlsph_crack_criterion_field(m);
         const long J = t->ncand == SIZE_MAX
-                           ? tlsph_fibre_next_tip(f, m->p.damage, &q)
-                           : tlsph_fibre_next_tip_among(f, m->p.damage, &q, t->cand, t->ncand);
+                           ? tlsph_fibre_next_tip(f, D, &q)
+                           : tlsph_fibre_next_tip_among(f, D, &q, t->cand, t->ncand);
         if (J >= 0)
             rc = advance(m, k, (size_t)J, log, err);
     }

@@ -39,6 +39,12 @@ const struct tlsph_key_table tlsph_crack_keys = {
  * 2 spacings: a hop of 2 along a lattice row or diagonal passes through the
  * fibre between, whose particles would lie on the new facets and lose every
  * neighbour. */
+static const struct tlsph_key_choice growth_criteria[] = {
+    {"damage", TLSPH_CRACK_CRITERION_DAMAGE},
+    {"void_fraction", TLSPH_CRACK_CRITERION_VOID_FRACTION},
+    {"plastic_strain", TLSPH_CRACK_CRITERION_PLASTIC_STRAIN},
+    {0}};
+
 /* clang-format off */
 static const struct tlsph_key growth_keys[] = {
     {.name = "tips", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
@@ -61,6 +67,13 @@ static const struct tlsph_key growth_keys[] = {
      "would cut off from every neighbour",
      .description = "R of eq. 20, in spacings of the tip's body: the new tip lies within R of "
      "the old"},
+    {.name = "criterion", .kind = TLSPH_KEY_CHOICE, .flags = TLSPH_KEY_DEFAULT,
+     .def = TLSPH_CRACK_CRITERION_DAMAGE, .size = 16, .choices = growth_criteria,
+     .noun = "crack criterion", .offset = offsetof(struct tlsph_scene, crack_growth.criterion),
+     .description = "the particle quantity summed over a fibre and compared with "
+     "critical_damage (paper 003 §3.1, §6.1): damage (the damage variable D), void_fraction "
+     "(the void volume fraction f of a porous damage model) or plastic_strain (the equivalent "
+     "plastic strain of a plastic material)"},
 };
 /* clang-format on */
 const struct tlsph_key_table tlsph_crack_growth_keys = {

@@ -226,6 +226,14 @@ struct tlsph_crack_growth {
     double critical_damage; /* D_c: the fibre's summed damage, 1 */
     double fan_angle;       /* theta_c, degrees */
     double search_radius;   /* R, in spacings of the tip's body */
+    int criterion;          /* the particle quantity D_c is compared with, summed
+                               over a fibre: TLSPH_CRACK_CRITERION_* */
+};
+/* crack_growth.criterion (core/crack/fibre_criterion.h). */
+enum {
+    TLSPH_CRACK_CRITERION_DAMAGE = 0,        /* the damage variable D (the default) */
+    TLSPH_CRACK_CRITERION_VOID_FRACTION = 1, /* the void volume fraction f */
+    TLSPH_CRACK_CRITERION_PLASTIC_STRAIN = 2 /* the equivalent plastic strain */
 };
 
 /* A probe: the centre of mass of the particles a selector picks (by reference

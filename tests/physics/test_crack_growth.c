@@ -70,26 +70,6 @@ static char *plate_json(int grow)
     return crack_plate_scene(text, sizeof text, 24.0, 20.0, 1.1e-4, grow);
 }
 
-struct totals {
-    double mass, vol, mom[3], scale;
-};
-
-static struct totals totals(const struct tlsph_model *m)
-{
-    struct totals t = {0};
-    for (size_t i = 0; i < m->p.n; i++) {
-        t.mass += m->p.mass[i];
-        t.vol += m->p.vol0[i];
-        double v2 = 0.0;
-        for (int c = 0; c < 3; c++) {
-            t.mom[c] += m->p.mass[i] * m->p.v[3 * i + c];
-            v2 += m->p.v[3 * i + c] * m->p.v[3 * i + c];
-        }
-        t.scale += m->p.mass[i] * sqrt(v2);
-    }
-    return t;
-}
-
 static int cmp_i64(const void *a, const void *b)
 {
     const int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
@@ -119,10 +99,10 @@ START_TEST(mode_one_crack_grows_straight)
     while (m->t < m->scene.end_time * (1.0 - 1e-12)) {
         tlsph_model_step(m);
         const size_t before_events = m->crack_driver->nevents, before_n = m->p.n;
-        const struct totals a = totals(m);
+        const struct crack_totals a = crack_totals(m);
         ck_assert_int_eq(tlsph_crack_driver_step(m, NULL, &err), 0);
         if (m->crack_driver->nevents != before_events) {
-            const struct totals b = totals(m);
+            const struct crack_totals b = crack_totals(m);
             worst_mass = fmax(worst_mass, fabs(b.mass - a.mass) / a.mass);
             worst_vol = fmax(worst_vol, fabs(b.vol - a.vol) / a.vol);
             for (int c = 0; c < 3; c++)

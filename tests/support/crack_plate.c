@@ -1,7 +1,10 @@
 /* The crack driver's mode-I plate (crack_plate.h). */
 #include "support/crack_plate.h"
 
+#include <math.h>
 #include <stdio.h>
+
+#include "run/model.h"
 
 char *crack_plate_scene(char *buf, size_t size, double lx_mm, double ly_mm, double end, int grow)
 {
@@ -30,4 +33,20 @@ char *crack_plate_scene(char *buf, size_t size, double lx_mm, double ly_mm, doub
              end, x0, -y1, x1, y1, grow ? "\"crack_growth\":{\"tips\":[[0,0,0.0015]]}," : "",
              -y1 + 1.5e-3, y1 - 1.5e-3);
     return buf;
+}
+
+struct crack_totals crack_totals(const struct tlsph_model *m)
+{
+    struct crack_totals t = {0};
+    for (size_t i = 0; i < m->p.n; i++) {
+        t.mass += m->p.mass[i];
+        t.vol += m->p.vol0[i];
+        double v2 = 0.0;
+        for (int c = 0; c < 3; c++) {
+            t.mom[c] += m->p.mass[i] * m->p.v[3 * i + c];
+            v2 += m->p.v[3 * i + c] * m->p.v[3 * i + c];
+        }
+        t.scale += m->p.mass[i] * sqrt(v2);
+    }
+    return t;
 }

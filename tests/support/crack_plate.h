@@ -15,4 +15,13 @@
 /* Writes the scene's JSON into buf (size bytes; 4096 is enough); returns buf. */
 char *crack_plate_scene(char *buf, size_t size, double lx_mm, double ly_mm, double end, int grow);
 
+/* What a split must conserve (eqs. 21-30), summed over m's particles: mass
+ * (kg), reference volume (m^3), linear momentum (kg m/s) and its scale
+ * sum m |v| (kg m/s), the reference of the momentum tolerance. */
+struct tlsph_model;
+struct crack_totals {
+    double mass, vol, mom[3], scale;
+};
+struct crack_totals crack_totals(const struct tlsph_model *m);
+
 #endif

@@ -30,6 +30,7 @@ SEMANTIC_ONLY = {
     "crack_growth_no_crack",   # a damage model, a tip at a crack's end
     "crack_growth_no_damage",
     "crack_growth_tip_off_crack",
+    "crack_growth_criterion_no_voids",  # the material's quantities
     # JSON-level: Python's json module accepts these, jansson does not
     "duplicate_key",          # JSON_REJECT_DUPLICATES
     "huge_number",            # 1e400 overflows a double
