@@ -18,6 +18,19 @@ length would include the gap and its foot would be empty):
   final length  L = z_max + h/2 - z_b   (L(t=0) = L0 exactly)
   foot diameter D = 2 (max r + h/2) over the lowest layer: the particles within
                     h/2 of the lowest centre (the outer edge, not the centres)
+  foot diameter, material (foot_diameter_surface_mm): where the bar's surface
+                    material of the lowest layer went.  Over the particles of the
+                    lowest reference layer (reference z within h/2 of the lowest)
+                    whose reference radius r0 lies within 2h of the bar's radius R
+                    (the scene's cylinder), the final radius is fitted as
+                    a + b r0 (least squares) and D = 2 (a + b R).  The extent
+                    measure above starts wrong by the placement's own outline:
+                    at t = 0 a lattice's outermost centres sit near R (their cells
+                    reach past it: 2 (max r + h/2) = 6.96 mm for the 6.4 mm bar at
+                    h = 0.6 mm) while a conforming cylinder's sit half a shell
+                    inside (6.36 mm); the material measure is 2R at t = 0 for both,
+                    so it compares placements (NaN without a cylinder or without
+                    reference positions).
 The former centre-based values are kept as length_anvil_mm (z_max + h/2, from
 the anvil) and foot_diameter_centres_mm (2 max r of the centres within h/2 of
 the anvil, 4-5 % under the outer edge at the examples' spacings; NaN once the
@@ -49,6 +62,29 @@ def extents(x, h):
     }
 
 
+def foot_surface(x, x_ref, h, radius):
+    """Foot diameter (mm) from where the lowest layer's surface material went,
+    as defined above: final radius fitted linearly in the reference radius over
+    the outer 2h of the lowest reference layer, evaluated at the radius R (m)."""
+    r = np.hypot(x[:, 0], x[:, 1])
+    r0 = np.hypot(x_ref[:, 0], x_ref[:, 1])
+    z0 = x_ref[:, 2]
+    outer = (z0 < z0.min() + 0.5 * h) & (r0 > radius - 2.0 * h)
+    if outer.sum() < 2 or np.ptp(r0[outer]) <= 0.0:
+        return float("nan")
+    a = np.vstack([np.ones(outer.sum()), r0[outer]]).T
+    (c0, c1), *_ = np.linalg.lstsq(a, r[outer], rcond=None)
+    return 2e3 * (c0 + c1 * radius)
+
+
+def cylinder_radius(scene):
+    """The first body's cylinder radius (m), or None."""
+    try:
+        return float(scene["bodies"][0]["geometry"]["cylinder"]["radius"])
+    except (KeyError, IndexError, TypeError, ValueError):
+        return None
+
+
 def metrics(path):
     with Result(path) as f:
         h = f.spacing()
@@ -60,6 +96,10 @@ def metrics(path):
         r = np.hypot(x[:, 0], x[:, 1])
         z = x[:, 2]
         foot_anvil = z < 0.5 * h
+        radius = cylinder_radius(f.scene)
+        foot_surf = (foot_surface(x, f.field("reference_position"), h, radius)
+                     if radius is not None and f.has_field("reference_position")
+                     else float("nan"))
         out = {
             "spacing_mm": h * 1e3,
             "particles": int(cost["particles"]),
@@ -69,6 +109,7 @@ def metrics(path):
             "bytes_per_particle": float(cost["bytes_per_particle"]),
             "t_end_us": t_end * 1e6,
             **extents(x, h),
+            "foot_diameter_surface_mm": foot_surf,
             "length_anvil_mm": (z.max() + 0.5 * h) * 1e3,
             "foot_diameter_centres_mm": 2e3 * r[foot_anvil].max() if foot_anvil.any() else float("nan"),
             "max_plastic_strain": float(f.field("plastic_strain").max())
