@@ -15,6 +15,8 @@ static const struct tlsph_key_table box_table =
     TLSPH_KEY_TABLE("/boundary_conditions/*/select/box", NULL, box_keys);
 static const struct tlsph_key_table probe_box_table =
     TLSPH_KEY_TABLE("/output/probes/*/select/box", NULL, box_keys);
+static const struct tlsph_key_table extent_box_table =
+    TLSPH_KEY_TABLE("/output/extents/*/select/box", NULL, box_keys);
 
 #define SELECTOR_KEYS(box_table_)                                                              \
     {.name = "body", .kind = TLSPH_KEY_STRING, .flags = TLSPH_KEY_CALLER, .size = TLSPH_NAME_MAX, \
@@ -26,10 +28,13 @@ static const struct tlsph_key_table probe_box_table =
 
 static const struct tlsph_key selector_keys[] = {SELECTOR_KEYS(box_table)};
 static const struct tlsph_key probe_selector_keys[] = {SELECTOR_KEYS(probe_box_table)};
+static const struct tlsph_key extent_selector_keys[] = {SELECTOR_KEYS(extent_box_table)};
 const struct tlsph_key_table tlsph_selector_keys =
     TLSPH_KEY_TABLE("/boundary_conditions/*/select", NULL, selector_keys);
 const struct tlsph_key_table tlsph_probe_selector_keys =
     TLSPH_KEY_TABLE("/output/probes/*/select", NULL, probe_selector_keys);
+const struct tlsph_key_table tlsph_extent_selector_keys =
+    TLSPH_KEY_TABLE("/output/extents/*/select", NULL, extent_selector_keys);
 /* clang-format on */
 
 static const char *const xyz[] = {"x", "y", "z"};

@@ -18,6 +18,8 @@ struct tlsph_model;
 extern const struct tlsph_key_table tlsph_selector_keys;
 /* The same keys under "/output/probes/<i>/select" (core/io/measures.h). */
 extern const struct tlsph_key_table tlsph_probe_selector_keys;
+/* And under "/output/extents/<i>/select". */
+extern const struct tlsph_key_table tlsph_extent_selector_keys;
 
 /* A kind's "select" row: flags TLSPH_KEY_REQUIRED, or 0 when an absent selector
  * has a meaning the description gives. */

@@ -52,8 +52,8 @@ static size_t slot_of(const struct tlsph_split *sp, size_t i)
     return s;
 }
 
-/* The measurements that hold particles: the sections, then the probes. */
-#define NMEASURE_LISTS (2 * TLSPH_MAX_MEASURES)
+/* The measurements that hold particles: the sections, the probes, then the extents. */
+#define NMEASURE_LISTS (3 * TLSPH_MAX_MEASURES)
 
 static int32_t **measure_list(struct tlsph_measures *ms, size_t k, size_t **count)
 {
@@ -62,8 +62,13 @@ static int32_t **measure_list(struct tlsph_measures *ms, size_t k, size_t **coun
         return &ms->section_index[k];
     }
     k -= TLSPH_MAX_MEASURES;
-    *count = &ms->probe_count[k];
-    return &ms->probe_index[k];
+    if (k < TLSPH_MAX_MEASURES) {
+        *count = &ms->probe_count[k];
+        return &ms->probe_index[k];
+    }
+    k -= TLSPH_MAX_MEASURES;
+    *count = &ms->extent_count[k];
+    return &ms->extent_index[k];
 }
 
 /* Index arrays that gain halves: one per group, section and probe, prepared

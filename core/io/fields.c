@@ -459,6 +459,18 @@ static const struct tlsph_series_column probe_columns[] = {
     {"velocity", 3, "m/s", "velocity of that centre of mass (momentum / mass)", NULL, NULL},
 };
 
+/* Extents (output.extents): how far their particles reach, at the outer edges
+ * (centre +- half the spacing); in the order of enum tlsph_extent_value. */
+static const struct tlsph_series_column extent_columns[] = {
+    {"radius", 1, "m", "largest distance from the axis line of a centre, plus half its spacing "
+     "(over the lowest layer with radius_over lowest_layer)", NULL, NULL},
+    {"diameter", 1, "m", "twice the radius (a Taylor bar's foot diameter)", NULL, NULL},
+    {"lower", 1, "m", "lowest coordinate along the axis from its point, minus half the spacing",
+     NULL, NULL},
+    {"upper", 1, "m", "highest coordinate along the axis, plus half the spacing", NULL, NULL},
+    {"length", 1, "m", "upper - lower (a bar's length)", NULL, NULL},
+};
+
 /* Growing crack tips (crack_growth.tips, core/crack/crack_driver.h), named
  * tip0, tip1, ... in the scene's order. */
 static const struct tlsph_series_column crack_tip_columns[] = {
@@ -492,6 +504,12 @@ static size_t probe_count(const struct tlsph_model *m) { return m->scene.nprobes
 static const char *probe_item(const struct tlsph_model *m, size_t k)
 {
     return m->scene.probes[k].name;
+}
+
+static size_t extent_count(const struct tlsph_model *m) { return m->scene.nextents; }
+static const char *extent_item(const struct tlsph_model *m, size_t k)
+{
+    return m->scene.extents[k].name;
 }
 
 static size_t rigid_count(const struct tlsph_model *m)
@@ -607,6 +625,9 @@ const struct tlsph_series_family tlsph_series_families[] = {
     [TLSPH_FAMILY_CRACK_TIPS] = {"crack_tips", 0, crack_tip_columns,
                                  sizeof crack_tip_columns / sizeof *crack_tip_columns,
                                  crack_tip_count, crack_tip_item, crack_tip_values},
+    [TLSPH_FAMILY_EXTENTS] = {"extents", 0, extent_columns,
+                              sizeof extent_columns / sizeof *extent_columns, extent_count,
+                              extent_item, tlsph_extent_values},
 };
 
 int tlsph_series_present(const struct tlsph_series_column *c, const struct tlsph_model *m)

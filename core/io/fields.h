@@ -58,7 +58,8 @@ size_t tlsph_global_series_width(const struct tlsph_model *m);
  * bodies, rigid bodies, probes, and growing crack tips. */
 enum tlsph_family_id { TLSPH_FAMILY_GROUPS, TLSPH_FAMILY_GAUGES, TLSPH_FAMILY_SECTIONS,
                        TLSPH_FAMILY_WALLS, TLSPH_FAMILY_CONTACTS, TLSPH_FAMILY_RIGID,
-                       TLSPH_FAMILY_PROBES, TLSPH_FAMILY_CRACK_TIPS, TLSPH_NFAMILIES };
+                       TLSPH_FAMILY_PROBES, TLSPH_FAMILY_CRACK_TIPS,
+                       TLSPH_FAMILY_EXTENTS, TLSPH_NFAMILIES };
 
 struct tlsph_series_family {
     const char *name;

@@ -108,6 +108,25 @@ static int init_probe(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
     return 0;
 }
 
+static int init_extent(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
+{
+    struct tlsph_extent *x = &m->scene.extents[k];
+    struct tlsph_measures *ms = &m->measures;
+    const size_t n = tlsph_selector_pick(m, &x->select, NULL);
+    char p[TLSPH_POINTER_MAX];
+    snprintf(p, sizeof p, "/output/extents/%zu/select", k);
+    if (n == 0) {
+        tlsph_errors_add(err, p, "extent '%s' selects no particle", x->name);
+        return -1;
+    }
+    if (!(ms->extent_index[k] = tlsph_alloc(m, n, sizeof(int32_t)))) {
+        tlsph_errors_add(err, p, "out of memory");
+        return -1;
+    }
+    ms->extent_count[k] = tlsph_selector_pick(m, &x->select, ms->extent_index[k]);
+    return 0;
+}
+
 int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err)
 {
     int bad = 0;
@@ -117,6 +136,8 @@ int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err)
         bad |= init_section(m, k, err) != 0;
     for (size_t k = 0; k < m->scene.nprobes; k++)
         bad |= init_probe(m, k, err) != 0;
+    for (size_t k = 0; k < m->scene.nextents; k++)
+        bad |= init_extent(m, k, err) != 0;
     return bad ? -1 : 0;
 }
 
@@ -127,6 +148,8 @@ void tlsph_measures_free(struct tlsph_measures *ms)
         ms->section_index[k] = NULL;
         free(ms->probe_index[k]);
         ms->probe_index[k] = NULL;
+        free(ms->extent_index[k]);
+        ms->extent_index[k] = NULL;
     }
 }
 
@@ -190,4 +213,53 @@ void tlsph_section_values(const struct tlsph_model *m, size_t k,
     }
     for (int c = 0; c < TLSPH_SECTION_NVALUES; c++)
         out[c] = sum[c] / ms->section_volume[k];
+}
+
+/* The axial coordinate of x along the extent's axis, and its squared distance
+ * from the axis line. */
+static double axial(const struct tlsph_extent *e, const double *x, double *r2)
+{
+    double d[3], s = 0.0;
+    for (int c = 0; c < 3; c++) {
+        d[c] = x[c] - e->point[c];
+        s += d[c] * e->axis[c];
+    }
+    *r2 = 0.0;
+    for (int c = 0; c < 3; c++) {
+        const double q = d[c] - s * e->axis[c];
+        *r2 += q * q;
+    }
+    return s;
+}
+
+void tlsph_extent_values(const struct tlsph_model *m, size_t k, double *out)
+{
+    const struct tlsph_extent *e = &m->scene.extents[k];
+    const struct tlsph_measures *ms = &m->measures;
+    const int32_t *index = ms->extent_index[k];
+    const size_t n = ms->extent_count[k];
+    /* lowest and highest centre and edge along the axis */
+    double lo_c = INFINITY, lo = INFINITY, hi = -INFINITY, r2;
+    for (size_t a = 0; a < n; a++) {
+        const size_t i = (size_t)index[a];
+        const double s = axial(e, m->p.x + 3 * i, &r2), h2 = 0.5 * tlsph_particle_spacing(m, i);
+        lo_c = fmin(lo_c, s);
+        lo = fmin(lo, s - h2);
+        hi = fmax(hi, s + h2);
+    }
+    /* the radius at the outer edge, over all or over the lowest layer: the
+     * centres within half their own spacing of the lowest centre (strictly, as
+     * bench/taylor_metrics.py's "z < z.min() + h/2") */
+    double rmax = -INFINITY;
+    for (size_t a = 0; a < n; a++) {
+        const size_t i = (size_t)index[a];
+        const double s = axial(e, m->p.x + 3 * i, &r2), h2 = 0.5 * tlsph_particle_spacing(m, i);
+        if (!e->lowest_layer || s < lo_c + h2)
+            rmax = fmax(rmax, sqrt(r2) + h2);
+    }
+    out[TLSPH_EXTENT_RADIUS] = rmax;
+    out[TLSPH_EXTENT_DIAMETER] = 2.0 * rmax;
+    out[TLSPH_EXTENT_LOWER] = lo;
+    out[TLSPH_EXTENT_UPPER] = hi;
+    out[TLSPH_EXTENT_LENGTH] = hi - lo;
 }

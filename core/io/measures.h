@@ -3,7 +3,9 @@
  * stress and strain between two loaded groups, averages over a Lagrangian
  * cross-section (the quantities tensile tests report (paper 000 §6: engineering stress-strain of
  * smooth bars, principal stress vs plastic strain averaged over the notch
- * section of notched bars), and the motion of selected particles' centre of mass. */
+ * section of notched bars), the motion of selected particles' centre of mass,
+ * and how far selected particles reach about and along an axis (a Taylor
+ * bar's foot diameter and length). */
 #ifndef TLSPH_MEASURES_H
 #define TLSPH_MEASURES_H
 
@@ -25,6 +27,8 @@ struct tlsph_measures {
     int32_t *probe_index[TLSPH_MAX_MEASURES];   /* particles of each probe (owned) */
     size_t probe_count[TLSPH_MAX_MEASURES];
     double probe_mass[TLSPH_MAX_MEASURES];      /* their mass, kg */
+    int32_t *extent_index[TLSPH_MAX_MEASURES];  /* particles of each extent (owned) */
+    size_t extent_count[TLSPH_MAX_MEASURES];
 };
 
 /* Values of one section, in this order; the output keeps the present ones. */
@@ -52,5 +56,20 @@ void tlsph_section_values(const struct tlsph_model *m, size_t k,
 /* Probe k: the mass-weighted mean displacement x - X (m) of its particles in
  * out[0..2] and their mean velocity (m/s: momentum / mass) in out[3..5]. */
 void tlsph_probe_values(const struct tlsph_model *m, size_t k, double out[6]);
+
+/* Values of one extent, in this order (m).  Each particle counts with its outer
+ * edge: its centre plus or minus half its spacing (the body's, or its own where
+ * the body refines), the same edge bench/taylor_metrics.py's extent measure uses. */
+enum tlsph_extent_value {
+    TLSPH_EXTENT_RADIUS,   /* largest distance of a centre from the axis line, + half spacing,
+                              over the radius_over particles */
+    TLSPH_EXTENT_DIAMETER, /* twice that */
+    TLSPH_EXTENT_LOWER,    /* lowest coordinate along the axis (from point), - half spacing */
+    TLSPH_EXTENT_UPPER,    /* highest coordinate along the axis, + half spacing */
+    TLSPH_EXTENT_LENGTH,   /* upper - lower */
+    TLSPH_EXTENT_NVALUES
+};
+/* Extent k at the current positions (enum tlsph_extent_value). */
+void tlsph_extent_values(const struct tlsph_model *m, size_t k, double *out);
 
 #endif

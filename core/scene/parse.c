@@ -439,6 +439,8 @@ void tlsph_scene_free(struct tlsph_scene *s)
     }
     for (size_t i = 0; i < s->nprobes; i++)
         tlsph_expr_free(&s->probes[i].select.expression);
+    for (size_t i = 0; i < s->nextents; i++)
+        tlsph_expr_free(&s->extents[i].select.expression);
     free(s->bodies);
     free(s->bcs);
     tlsph_rigid_specs_free(s->rigid, s->nrigid);

@@ -18,6 +18,7 @@ extern const struct tlsph_key_table tlsph_refine_keys;   /* "/bodies/<i>/refine/
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
 extern const struct tlsph_key_table tlsph_probe_keys;    /* "/output/probes/<i>" */
+extern const struct tlsph_key_table tlsph_extent_keys;   /* "/output/extents/<i>" */
 extern const struct tlsph_key_table tlsph_contact_keys;  /* "/contact" */
 extern const struct tlsph_key_table tlsph_rigid_body_keys; /* "/rigid_bodies/<i>" */
 

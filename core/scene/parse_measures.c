@@ -1,7 +1,8 @@
 /* Scene measurements written as time series (see core/io/measures.h):
  *   "output": {"gauges": [{"name", "between": [GROUP, GROUP], "area", "length"?}],
  *              "sections": [{"name", "point", "normal", "thickness"}],
- *              "probes": [{"name", "select"}]}
+ *              "probes": [{"name", "select"}],
+ *              "extents": [{"name", "select", "point", "axis", "radius_over"?}]}
  * A gauge's groups must be load-carrying boundary conditions (fixed or
  * velocity), since the gauge reads their reactions. */
 #include <string.h>
@@ -130,6 +131,19 @@ static int parse_section(const json_t *o, int dim, const char *P, struct tlsph_s
     return bad ? -1 : 0;
 }
 
+static int parse_extent(const json_t *o, struct tlsph_scene *s, const char *P,
+                        struct tlsph_extent *x, struct tlsph_errors *err)
+{
+    int bad = tlsph_selector_read(o, 1, s, &x->select, P, err) != 0;
+    bad |= jc_vector(o, "point", 1, 3, "m", P, x->point, err) != 0;
+    if (s->dimension == 2)
+        x->point[2] = 0.0;
+    bad |= tlsph_parse_direction(o, "axis", s->dimension, P, x->axis, err) != 0;
+    const struct tlsph_key_target to = {.base = x};
+    bad |= tlsph_keys_values(o, &tlsph_extent_keys, P, &to, err) != 0;
+    return bad ? -1 : 0;
+}
+
 int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
 {
     const json_t *out = json_object_get(root, "output");
@@ -174,6 +188,19 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
         const json_t *o = measure_item(arr, (size_t)i, "probes", "probe name", &tlsph_probe_keys,
                                        q->name, s->probes[0].name, sizeof *q, P, err);
         if (!o || tlsph_selector_read(o, 1, s, &q->select, P, err) != 0)
+            bad = 1;
+    }
+
+    n = measure_array(out, "extents", &arr, err);
+    bad |= n < 0;
+    if (n > 0)
+        s->nextents = (size_t)n; /* before parsing: the scene frees what the items hold */
+    for (long i = 0; i < n; i++) {
+        struct tlsph_extent *x = &s->extents[i];
+        x->select.body = -1;
+        const json_t *o = measure_item(arr, (size_t)i, "extents", "extent name", &tlsph_extent_keys,
+                                       x->name, s->extents[0].name, sizeof *x, P, err);
+        if (!o || parse_extent(o, s, P, x, err) != 0)
             bad = 1;
     }
     return bad ? -1 : 0;

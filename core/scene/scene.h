@@ -245,6 +245,21 @@ struct tlsph_probe {
     struct tlsph_selector select;  /* the expression is freed with the scene */
 };
 
+/* An extent: how far the particles a selector picks (by reference position,
+ * once at setup) reach, measured at their outer edges (centre +- half the
+ * particle's spacing) about an axis through a point: the largest distance
+ * from the axis line and the lowest and highest coordinate along it (a
+ * Taylor bar's foot radius and its length, core/io/measures.h). */
+struct tlsph_extent {
+    char name[TLSPH_NAME_MAX];
+    struct tlsph_selector select;  /* the expression is freed with the scene */
+    double point[3];               /* a point of the axis, m */
+    double axis[3];                /* its direction, unit */
+    int lowest_layer;              /* "radius_over": 1 = "lowest_layer" (the particles whose
+                                      centre lies within half their spacing of the lowest
+                                      centre along the axis); 0 = "all" (the default) */
+};
+
 /* Contact between bodies and between the separated parts of a body
  * ("contact" block, core/contact/): on when law != NULL.  On by default
  * (without the block) in a scene of more than one body or with a damage
@@ -302,6 +317,7 @@ struct tlsph_scene {
     struct tlsph_gauge gauges[TLSPH_MAX_MEASURES];     size_t ngauges;
     struct tlsph_section sections[TLSPH_MAX_MEASURES]; size_t nsections;
     struct tlsph_probe probes[TLSPH_MAX_MEASURES];     size_t nprobes;
+    struct tlsph_extent extents[TLSPH_MAX_MEASURES];   size_t nextents;
 
     struct tlsph_param *params;   size_t nparams;
     struct tlsph_material *materials; size_t nmaterials;

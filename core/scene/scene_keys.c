@@ -203,6 +203,25 @@ static const struct tlsph_key probe_keys[] = {
 const struct tlsph_key_table tlsph_probe_keys =
     TLSPH_KEY_TABLE("/output/probes/*", NULL, probe_keys);
 
+static const struct tlsph_key_choice radius_overs[] = {{"all", 0}, {"lowest_layer", 1}, {0}};
+static const struct tlsph_key extent_keys[] = {
+    {.name = "name", .kind = TLSPH_KEY_STRING, .flags = REQUIRED | CALLER | TLSPH_KEY_NAME,
+     .size = TLSPH_NAME_MAX, .description = "unique among the extents; names the output series"},
+    {.name = "select", .kind = TLSPH_KEY_OBJECT, .flags = REQUIRED | CALLER,
+     .table = &tlsph_extent_selector_keys,
+     .description = "the particles whose extent is measured (by reference position)"},
+    TLSPH_KEY_POINT("point", "a point of the axis"),
+    TLSPH_KEY_DIRECTION("axis", "direction of the axis, any non-zero length"),
+    {.name = "radius_over", .kind = CHOICE, .flags = DEFAULT, .def = 0.0, .size = 16,
+     .choices = radius_overs, .noun = "radius selection",
+     .offset = offsetof(struct tlsph_extent, lowest_layer),
+     .description = "the particles the radius is taken over: all the selected ones, or "
+                    "lowest_layer, those whose centre lies within half their spacing of the "
+                    "lowest selected centre along the axis (a Taylor bar's foot)"},
+};
+const struct tlsph_key_table tlsph_extent_keys =
+    TLSPH_KEY_TABLE("/output/extents/*", NULL, extent_keys);
+
 static const struct tlsph_key output_keys[] = {
     {.name = "frames", .kind = INTEGER, .flags = DEFAULT,
      .range = {1.0, (double)TLSPH_MAX_FRAMES, JC_CLOSED, JC_CLOSED}, .unit = "1",
@@ -218,6 +237,8 @@ static const struct tlsph_key output_keys[] = {
      .description = "Lagrangian cross-sections"},
     {.name = "probes", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_probe_keys,
      .description = "displacement and velocity of selected particles' centre of mass"},
+    {.name = "extents", .kind = TLSPH_KEY_ARRAY, .flags = CALLER, .table = &tlsph_extent_keys,
+     .description = "how far selected particles reach about and along an axis"},
 };
 static const struct tlsph_key_table output_table = TLSPH_KEY_TABLE("/output", NULL, output_keys);
 

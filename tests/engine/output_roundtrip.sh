@@ -72,6 +72,31 @@ EOF
 echo "== final checks"
 "$PY" "$CHECK" final "$DOCS" "$TMP/out" "$SCENE" || fail "final checks"
 
+# the extent (docs/output.md), recomputed from the last frame's positions (a
+# series sample too): axis x through (0, 5, 5) mm, the radius over the lowest
+# layer (centres within h/2 = 0.5 mm of the lowest), edges at centre +- h/2
+PYTHONPATH="$top_srcdir/tests/support" "$PY" - "$TMP/out/result.h5" <<'EOF' || fail "extent series"
+import sys
+import numpy as np
+from tlsph_result import Result
+with Result(sys.argv[1]) as r:
+    x = r.field("position").astype(float)
+    ext = r.file["observables/extents/block"]
+    k = list(ext["radius/step"][:]).index(r.file["particles/solid/position/step"][-1])
+    s = x[:, 0]
+    rad = np.hypot(x[:, 1] - 0.005, x[:, 2] - 0.005)
+    h2 = 0.0005
+    want = {"radius": rad[s < s.min() + h2].max() + h2, "lower": s.min() - h2,
+            "upper": s.max() + h2}
+    want["diameter"] = 2 * want["radius"]
+    want["length"] = want["upper"] - want["lower"]
+    for name, v in want.items():
+        got = ext[name + "/value"][k]
+        # the field is float32: a few 1e-9 m at 20 mm
+        assert abs(got - v) <= 1e-8, "extent %s %.9g, from the field %.9g" % (name, got, v)
+    print("extent: radius %.6g mm, length %.6g mm" % (want["radius"] * 1e3, want["length"] * 1e3))
+EOF
+
 # Module-dependent output: a plastic scene with thermal coupling writes the
 # plastic and thermal fields and series (documented in docs/output.md); the
 # elastic scene above writes none of them.

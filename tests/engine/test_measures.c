@@ -23,7 +23,12 @@
  *     (no force acts: F = I) give the mass-weighted mean displacement
  *     (m_a v_a + m_b v_b) t / (m_a + m_b) and velocity, exact up to the
  *     round-off of the drift (1e-9 relative); a probe on one body reads that
- *     body's v t. */
+ *     body's v t.
+ *  5. An extent reads the outer edges of hand-placed particles: radius = the
+ *     largest distance of a centre from the axis line + h/2, over the lowest
+ *     layer (centres strictly within h/2 of the lowest centre) or over all;
+ *     lower/upper = the extreme axial coordinates from the axis point -/+ h/2;
+ *     the answers computed by hand below, to 1e-12 m (round-off). */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -31,6 +36,7 @@
 
 #include "bc/boundary.h"
 #include "io/fields.h"
+#include "io/measures.h"
 #include "support/scene_builder.h"
 #include "support/check_main.h"
 
@@ -167,5 +173,74 @@ START_TEST(probe_reads_the_centre_of_mass)
 }
 END_TEST
 
+/* A cube of 4 x 4 x 4 particles, spacing 1 mm (centres at 0.5 .. 3.5 mm); the
+ * extents' axis is z through (2, 2, 10) mm, given with length 2. */
+static const char *cube_scene =
+    "{\"dimension\":3,\"time\":{\"end\":1e-6},"
+    "\"output\":{\"extents\":[{\"name\":\"foot\",\"select\":{\"body\":\"cube\"},"
+    "\"point\":[0.002,0.002,0.01],\"axis\":[0,0,2],\"radius_over\":\"lowest_layer\"},"
+    "{\"name\":\"all\",\"select\":{\"body\":\"cube\"},"
+    "\"point\":[0.002,0.002,0.01],\"axis\":[0,0,2]}]},"
+    "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+    "\"poisson_ratio\":0.3}},"
+    "\"bodies\":[{\"name\":\"cube\",\"material\":\"steel\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.004,0.004,0.004]}}}]}";
+
+/* The particle whose reference centre is (i, j, k) + 0.5 mm. */
+static size_t cube_particle(const struct tlsph_model *m, int i, int j, int k)
+{
+    for (size_t a = 0; a < m->p.n; a++) {
+        const double *X = m->p.X + 3 * a;
+        if (fabs(X[0] - (i + 0.5) * 1e-3) < 1e-9 && fabs(X[1] - (j + 0.5) * 1e-3) < 1e-9 &&
+            fabs(X[2] - (k + 0.5) * 1e-3) < 1e-9)
+            return a;
+    }
+    ck_abort_msg("no particle at (%d, %d, %d)", i, j, k);
+    return 0;
+}
+
+static void place(struct tlsph_model *m, size_t a, double x, double y, double z)
+{
+    m->p.x[3 * a] = x;
+    m->p.x[3 * a + 1] = y;
+    m->p.x[3 * a + 2] = z;
+}
+
+START_TEST(extent_reads_the_outer_edges)
+{
+    struct tlsph_model *m = build_model(cube_scene);
+    ck_assert_uint_eq(m->scene.nextents, 2);
+    ck_assert_uint_eq(m->measures.extent_count[0], 64);
+    /* hand placed (mm): the lowest centre at z = 0.4 (so the lowest layer is
+     * z < 0.9: the whole bottom layer at 0.5 stays in it); in it, one centre 4
+     * from the axis at z = 0.85; above it, one at z = 0.95 (just out of the
+     * layer) 4.8 from the axis and one at z = 2 5.5 from it; the highest
+     * centre at z = 4.2 on the axis.  The other centres stay at their
+     * reference positions, at most sqrt(2) 1.5 = 2.12 from the axis. */
+    place(m, cube_particle(m, 0, 0, 0), 0.002 + 0.003, 0.002, 0.0004);
+    place(m, cube_particle(m, 1, 0, 0), 0.002, 0.002 - 0.004, 0.00085);
+    place(m, cube_particle(m, 2, 2, 1), 0.002 + 0.0048 * 0.6, 0.002 + 0.0048 * 0.8, 0.00095);
+    place(m, cube_particle(m, 3, 3, 2), 0.002 - 0.0055, 0.002, 0.002);
+    place(m, cube_particle(m, 1, 1, 3), 0.002, 0.002, 0.0042);
+    double foot[TLSPH_EXTENT_NVALUES], all[TLSPH_EXTENT_NVALUES];
+    tlsph_extent_values(m, 0, foot);
+    tlsph_extent_values(m, 1, all);
+    /* axial coordinates from the point at z = 10 mm: lowest centre 0.4 - 10,
+     * highest 4.2 - 10; edges -/+ 0.5 */
+    const double want_foot[] = {4.5e-3, 9e-3, -10.1e-3, -5.3e-3, 4.8e-3};
+    const double want_all[] = {6e-3, 12e-3, -10.1e-3, -5.3e-3, 4.8e-3};
+    for (int c = 0; c < TLSPH_EXTENT_NVALUES; c++) {
+        ck_assert_msg(fabs(foot[c] - want_foot[c]) <= 1e-12, "foot value %d: %.15g, want %.15g",
+                      c, foot[c], want_foot[c]);
+        ck_assert_msg(fabs(all[c] - want_all[c]) <= 1e-12, "all value %d: %.15g, want %.15g", c,
+                      all[c], want_all[c]);
+    }
+    ck_assert_uint_eq(tlsph_family_width(&tlsph_series_families[TLSPH_FAMILY_EXTENTS], m),
+                      TLSPH_EXTENT_NVALUES);
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("measures", 300, section_means_are_exact, gauge_length_and_axis,
-                 elastic_bar_follows_hooke, probe_reads_the_centre_of_mass)
+                 elastic_bar_follows_hooke, probe_reads_the_centre_of_mass,
+                 extent_reads_the_outer_edges)

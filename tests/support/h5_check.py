@@ -67,7 +67,7 @@ def load_docs(path):
     families = {"groups": table(doc, "group-series"), "gauges": table(doc, "gauge-series"),
                 "sections": table(doc, "section-series"), "walls": table(doc, "wall-series"),
                 "contacts": table(doc, "contact-series"), "rigid": table(doc, "rigid-series"),
-                "probes": table(doc, "probe-series"),
+                "probes": table(doc, "probe-series"), "extents": table(doc, "extent-series"),
                 "crack_tips": table(doc, "crack-tip-series")}
     for row in families["sections"]:
         row["optional"] = row.get("present when", "always") != "always"
@@ -180,7 +180,7 @@ def check_series_group(g, rows, where, live):
     documented = {r["name"] for r in rows}
     for name in g:
         if name not in ("groups", "gauges", "sections", "walls", "contacts", "rigid", "probes",
-                        "crack_tips"):
+                        "crack_tips", "extents"):
             check(name in documented, "%s/%s is documented" % (where, name))
     return lengths
 
@@ -225,6 +225,7 @@ def check_series(f, series, families, scene, live):
              "contacts": contact_items(scene),
              "rigid": [r["name"] for r in scene.get("rigid_bodies", [])],
              "probes": [q["name"] for q in out.get("probes", [])],
+             "extents": [e["name"] for e in out.get("extents", [])],
              "crack_tips": ["tip%d" % k for k in
                             range(len(scene.get("crack_growth", {}).get("tips", [])))]}
     check("groups" in obs, "/observables/groups exists")

@@ -125,6 +125,9 @@ SEMANTIC_ONLY = {
     "probe_duplicate_name",            # uniqueness
     "probe_selects_nothing",           # the particles at t = 0
     "probe_unknown_body",              # a name in /bodies
+    # extents (core/scene/parse_measures.c, core/io/measures.c)
+    "extent_selects_nothing",          # the particles at t = 0
+    "extent_zero_axis",                # a direction's length
 }
 
 
