@@ -47,7 +47,9 @@ static const char *plate_scene =
     "\"hourglass\":{\"enabled\":true}},"
     "\"output\":{\"sections\":[{\"name\":\"s\",\"point\":[0.0005,0,0],\"normal\":[1,0,0],"
     "\"thickness\":0.0005}],\"probes\":[{\"name\":\"pa\",\"select\":{\"box\":{\"min\":[0.00025,-1,-1],"
-    "\"max\":[0.00075,1,1]}}},{\"name\":\"pb\",\"select\":{\"body\":\"block\"}}]},"
+    "\"max\":[0.00075,1,1]}}},{\"name\":\"pb\",\"select\":{\"body\":\"block\"}}],"
+    "\"extents\":[{\"name\":\"ea\",\"select\":{\"box\":{\"min\":[0.00025,-1,-1],"
+    "\"max\":[0.00075,1,1]}},\"point\":[0,0,0],\"axis\":[1,0,0]}]},"
     "\"materials\":{\"m\":{\"density\":2700,\"youngs_modulus\":7e10,\"poisson_ratio\":0.33}},"
     "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
     "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.010,0.008,0.003]}}},"
@@ -372,6 +374,7 @@ START_TEST(split_two_fibres)
     ck_assert_uint_eq(m->measures.section_count[0], sec0 + 3);
     ck_assert_uint_eq(m->measures.probe_count[0], pa0 + 3);
     ck_assert_uint_eq(m->measures.probe_count[1], pb0);
+    ck_assert_uint_eq(m->measures.extent_count[0], pa0 + 3); /* an extent picks like a probe */
     for (size_t k = 0; k < 2; k++) { /* each probe's particles still weigh its mass */
         double mass = 0.0;
         for (size_t a = 0; a < m->measures.probe_count[k]; a++)
