@@ -86,24 +86,36 @@ static int init_section(struct tlsph_model *m, size_t k, struct tlsph_errors *er
     return 0;
 }
 
+/* The particles sel picks into a new list (*index, *count); none is an error
+ * at pointer p naming the measure. */
+static int pick_list(struct tlsph_model *m, struct tlsph_selector *sel, const char *what,
+                     const char *name, const char *p, int32_t **index, size_t *count,
+                     struct tlsph_errors *err)
+{
+    const size_t n = tlsph_selector_pick(m, sel, NULL);
+    if (n == 0) {
+        tlsph_errors_add(err, p, "%s '%s' selects no particle", what, name);
+        return -1;
+    }
+    if (!(*index = tlsph_alloc(m, n, sizeof(int32_t)))) {
+        tlsph_errors_add(err, p, "out of memory");
+        return -1;
+    }
+    *count = tlsph_selector_pick(m, sel, *index);
+    return 0;
+}
+
 static int init_probe(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
 {
     struct tlsph_probe *q = &m->scene.probes[k];
     struct tlsph_measures *ms = &m->measures;
-    const size_t n = tlsph_selector_pick(m, &q->select, NULL);
     char p[TLSPH_POINTER_MAX];
     snprintf(p, sizeof p, "/output/probes/%zu/select", k);
-    if (n == 0) {
-        tlsph_errors_add(err, p, "probe '%s' selects no particle", q->name);
+    if (pick_list(m, &q->select, "probe", q->name, p, &ms->probe_index[k], &ms->probe_count[k],
+                  err) != 0)
         return -1;
-    }
-    if (!(ms->probe_index[k] = tlsph_alloc(m, n, sizeof(int32_t)))) {
-        tlsph_errors_add(err, p, "out of memory");
-        return -1;
-    }
-    ms->probe_count[k] = tlsph_selector_pick(m, &q->select, ms->probe_index[k]);
     ms->probe_mass[k] = 0.0;
-    for (size_t a = 0; a < n; a++)
+    for (size_t a = 0; a < ms->probe_count[k]; a++)
         ms->probe_mass[k] += m->p.mass[ms->probe_index[k][a]];
     return 0;
 }
@@ -111,20 +123,10 @@ static int init_probe(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
 static int init_extent(struct tlsph_model *m, size_t k, struct tlsph_errors *err)
 {
     struct tlsph_extent *x = &m->scene.extents[k];
-    struct tlsph_measures *ms = &m->measures;
-    const size_t n = tlsph_selector_pick(m, &x->select, NULL);
     char p[TLSPH_POINTER_MAX];
     snprintf(p, sizeof p, "/output/extents/%zu/select", k);
-    if (n == 0) {
-        tlsph_errors_add(err, p, "extent '%s' selects no particle", x->name);
-        return -1;
-    }
-    if (!(ms->extent_index[k] = tlsph_alloc(m, n, sizeof(int32_t)))) {
-        tlsph_errors_add(err, p, "out of memory");
-        return -1;
-    }
-    ms->extent_count[k] = tlsph_selector_pick(m, &x->select, ms->extent_index[k]);
-    return 0;
+    return pick_list(m, &x->select, "extent", x->name, p, &m->measures.extent_index[k],
+                     &m->measures.extent_count[k], err);
 }
 
 int tlsph_measures_init(struct tlsph_model *m, struct tlsph_errors *err)

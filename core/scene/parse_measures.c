@@ -119,29 +119,32 @@ static int parse_gauge(const json_t *o, const struct tlsph_scene *s, const char 
     return bad ? -1 : 0;
 }
 
-static int parse_section(const json_t *o, int dim, const char *P, struct tlsph_section *c,
-                         struct tlsph_errors *err)
+/* The keys of a section or an extent: "point", the direction dirkey (normalised),
+ * and the keys' table's plain values into base. */
+static int parse_point_direction(const json_t *o, int dim, const char *P, const char *dirkey,
+                                 double point[3], double dir[3],
+                                 const struct tlsph_key_table *keys, void *base,
+                                 struct tlsph_errors *err)
 {
-    int bad = jc_vector(o, "point", 1, 3, "m", P, c->point, err) != 0;
+    int bad = jc_vector(o, "point", 1, 3, "m", P, point, err) != 0;
     if (dim == 2)
-        c->point[2] = 0.0;
-    bad |= tlsph_parse_direction(o, "normal", dim, P, c->normal, err) != 0;
-    const struct tlsph_key_target to = {.base = c};
-    bad |= tlsph_keys_values(o, &tlsph_section_keys, P, &to, err) != 0;
+        point[2] = 0.0;
+    bad |= tlsph_parse_direction(o, dirkey, dim, P, dir, err) != 0;
+    const struct tlsph_key_target to = {.base = base};
+    bad |= tlsph_keys_values(o, keys, P, &to, err) != 0;
     return bad ? -1 : 0;
 }
 
-static int parse_extent(const json_t *o, struct tlsph_scene *s, const char *P,
-                        struct tlsph_extent *x, struct tlsph_errors *err)
+/* measure_item for an item with a required "select", read into sel. */
+static const json_t *selecting_item(const json_t *arr, size_t i, const char *key,
+                                    const char *noun, const struct tlsph_key_table *keys,
+                                    char *name, const char *names, size_t stride,
+                                    struct tlsph_selector *sel, struct tlsph_scene *s, char *P,
+                                    struct tlsph_errors *err)
 {
-    int bad = tlsph_selector_read(o, 1, s, &x->select, P, err) != 0;
-    bad |= jc_vector(o, "point", 1, 3, "m", P, x->point, err) != 0;
-    if (s->dimension == 2)
-        x->point[2] = 0.0;
-    bad |= tlsph_parse_direction(o, "axis", s->dimension, P, x->axis, err) != 0;
-    const struct tlsph_key_target to = {.base = x};
-    bad |= tlsph_keys_values(o, &tlsph_extent_keys, P, &to, err) != 0;
-    return bad ? -1 : 0;
+    sel->body = -1;
+    const json_t *o = measure_item(arr, i, key, noun, keys, name, names, stride, P, err);
+    return o && tlsph_selector_read(o, 1, s, sel, P, err) == 0 ? o : NULL;
 }
 
 int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph_errors *err)
@@ -172,7 +175,8 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
         const json_t *o =
             measure_item(arr, (size_t)i, "sections", "section name", &tlsph_section_keys, c->name,
                          s->sections[0].name, sizeof *c, P, err);
-        if (!o || parse_section(o, s->dimension, P, c, err) != 0)
+        if (!o || parse_point_direction(o, s->dimension, P, "normal", c->point, c->normal,
+                                        &tlsph_section_keys, c, err) != 0)
             bad = 1;
     }
     if (n > 0)
@@ -184,24 +188,21 @@ int tlsph_parse_measures(const json_t *root, struct tlsph_scene *s, struct tlsph
         s->nprobes = (size_t)n; /* before parsing: the scene frees what the items hold */
     for (long i = 0; i < n; i++) {
         struct tlsph_probe *q = &s->probes[i];
-        q->select.body = -1;
-        const json_t *o = measure_item(arr, (size_t)i, "probes", "probe name", &tlsph_probe_keys,
-                                       q->name, s->probes[0].name, sizeof *q, P, err);
-        if (!o || tlsph_selector_read(o, 1, s, &q->select, P, err) != 0)
-            bad = 1;
+        bad |= !selecting_item(arr, (size_t)i, "probes", "probe name", &tlsph_probe_keys, q->name,
+                               s->probes[0].name, sizeof *q, &q->select, s, P, err);
     }
 
     n = measure_array(out, "extents", &arr, err);
     bad |= n < 0;
     if (n > 0)
-        s->nextents = (size_t)n; /* before parsing: the scene frees what the items hold */
+        s->nextents = (size_t)n;
     for (long i = 0; i < n; i++) {
         struct tlsph_extent *x = &s->extents[i];
-        x->select.body = -1;
-        const json_t *o = measure_item(arr, (size_t)i, "extents", "extent name", &tlsph_extent_keys,
-                                       x->name, s->extents[0].name, sizeof *x, P, err);
-        if (!o || parse_extent(o, s, P, x, err) != 0)
-            bad = 1;
+        const json_t *o =
+            selecting_item(arr, (size_t)i, "extents", "extent name", &tlsph_extent_keys, x->name,
+                           s->extents[0].name, sizeof *x, &x->select, s, P, err);
+        bad |= !o || parse_point_direction(o, s->dimension, P, "axis", x->point, x->axis,
+                                           &tlsph_extent_keys, x, err) != 0;
     }
     return bad ? -1 : 0;
 }
