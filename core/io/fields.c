@@ -468,7 +468,7 @@ static const struct tlsph_series_column extent_columns[] = {
     {"lower", 1, "m", "lowest coordinate along the axis from its point, minus half the spacing",
      NULL, NULL},
     {"upper", 1, "m", "highest coordinate along the axis, plus half the spacing", NULL, NULL},
-    {"length", 1, "m", "upper - lower (a bar's length)", NULL, NULL},
+    {"length", 1, "m", "upper - lower (a free body's length)", NULL, NULL},
 };
 
 /* Growing crack tips (crack_growth.tips, core/crack/crack_driver.h), named
