@@ -27,6 +27,11 @@ int tlsph_split_carry_row(struct tlsph_model *m, size_t i)
             for (int c = 0; c < 3; c++)
                 S[3 * r + c] += du[r] * (s * d[c]);
     }
+    /* the damage-aware treatment subtracts what damaged neighbours did not
+     * transmit (sph/damage_aware.h; a gather with dt = 0 adds nothing to it) */
+    if (p->crack_gradient)
+        for (int a = 0; a < 9; a++)
+            S[a] -= p->crack_gradient[9 * i + a];
     double *L = p->Linv + 9 * i, *G = p->F_carry + 9 * i;
     double SL[9], Fraw[9], Frawi[9], Gnew[9], Lc[9];
     mat3_mul(S, L, SL);
@@ -34,7 +39,9 @@ int tlsph_split_carry_row(struct tlsph_model *m, size_t i)
         Fraw[a] = (a % 4 == 0) + SL[a];
     const double det = mat3_det(Fraw);
     int carried = 0;
-    if (det > 0.0 && isfinite(det)) {
+    /* a failed point carries no stress and its F is no longer updated */
+    const int failed = p->damage && p->damage[i] >= 1.0;
+    if (!failed && det > 0.0 && isfinite(det)) {
         mat3_inverse(Fraw, Frawi);
         mat3_mul(Frawi, p->F + 9 * i, Gnew);
         carried = 1;

@@ -15,7 +15,8 @@
  * What.  When a split rebuilds row i (crack/local_rebuild.h), with F_old the
  * F the material sees (p.F, the last evaluation, at the current positions)
  * and F_raw = I + S_new L_new^-1 the new support's reading of the same
- * positions, the row keeps
+ * positions (with the damage-aware treatment S_new less the row's stored
+ * crack gradient, as its gather takes it), the row keeps
  *     G_i = F_raw^-1 F_old,      p.Linv_i = L_new^-1 G_i,    p.F_carry_i = G_i,
  * so that the kinematics (sph/kinematics.h) give F_i = G_i + S L_new^-1 G_i =
  * F_raw G_i: equal to F_old at the split, and changed afterwards by the new
@@ -40,8 +41,10 @@
 
 /* For row i whose pairs and p.Linv (the raw L_new^-1) were just rebuilt, while
  * p.F still holds F_old: sets p.F_carry_i and p.Linv_i as above.  Returns 1
- * when carried, 0 when p.F_carry is NULL or F_raw is not invertible (det <= 0
- * or not finite: p.Linv_i = L_new^-1 G_old, F jumps as without the carry). */
+ * when carried, 0 when p.F_carry is NULL, the point has failed (D >= 1: no
+ * stress, its F no longer updated) or F_raw is not invertible (det <= 0 or
+ * not finite); then G_old is kept (p.Linv_i = L_new^-1 G_old) and F jumps
+ * as without the carry. */
 int tlsph_split_carry_row(struct tlsph_model *m, size_t i);
 
 /* Allocates p.F_carry (the identity for every particle; its capacity p.cap)
