@@ -70,3 +70,16 @@ int tlsph_split_carry_enable(struct tlsph_model *m)
     m->bytes_allocated += 9 * cap * sizeof *G;
     return 0;
 }
+
+void tlsph_split_hencky(const double F[9], double H[6])
+{
+    double C[9];
+    for (int r = 0; r < 3; r++)
+        for (int c = 0; c < 3; c++)
+            C[3 * r + c] = F[r] * F[c] + F[3 + r] * F[3 + c] + F[6 + r] * F[6 + c];
+    double lam[3], Q[9], d[3];
+    sym3_eigen(C, lam, Q);
+    for (int a = 0; a < 3; a++)
+        d[a] = 0.5 * log(lam[a]);
+    sym3_compose(Q, d, H);
+}

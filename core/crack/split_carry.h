@@ -53,4 +53,9 @@ int tlsph_split_carry_row(struct tlsph_model *m, size_t i);
  * unchanged). */
 int tlsph_split_carry_enable(struct tlsph_model *m);
 
+/* H = ln U of F = R U (row-major), as sym6 (xx, xy, xz, yy, yz, zz), the
+ * material point's strain measure (material/material_point.h): what the
+ * tests compare across a split. */
+void tlsph_split_hencky(const double F[9], double H[6]);
+
 #endif
