@@ -10,7 +10,6 @@
 #include "crack/fibre.h"
 #include "crack/fibre_criterion.h"
 #include "crack/split.h"
-#include "crack/split_elastic.h"
 #include "util/clock.h"
 
 /* The two in-plane axes of a thickness direction (as crack/fibre.c). */
@@ -288,8 +287,6 @@ static int split_fibre(struct tlsph_model *m, size_t b, size_t k, const double V
     memcpy(sp.V2, V2, sizeof sp.V2);
     memcpy(sp.delta, delta, sizeof sp.delta);
     int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
-    if (rc == 0)
-        rc = tlsph_split_keep_elastic_state(m, NULL, err);
     free(index);
     *count += n;
     return rc;

@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "crack/split_carry.h"
 #include "sph/correction.h"
 #include "sph/neighbors.h"
 #include "util/mat3.h"
@@ -399,6 +400,9 @@ void tlsph_rebuild_commit(struct tlsph_model *m, struct tlsph_rebuild_plan *plan
             deficient++;
         else
             m->max_L_condition = fmax(m->max_L_condition, cond);
+        /* F as the material saw it, carried onto the new support (split_carry.h):
+         * p.Linv becomes L^-1 G before the refold below uses it */
+        tlsph_split_carry_row(m, i);
         /* P_tilde = P L^-T folds the old L: refold it, P = sigma cof(F) (=
          * J sigma F^-T, the stress of the last evaluation), so that the next
          * step's first energy half (kinematics.h) and forces see the new L */

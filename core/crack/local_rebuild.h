@@ -39,9 +39,11 @@
  * Correction.  The committed rows get dw, w and L_i^-1 from the kernel and
  * the safe inverse (sph/correction.h, the same arithmetic as at setup);
  * deficient_supports and isolated are corrected by the rows' status before
- * and after, max_L_condition keeps the largest seen.  Their P_tilde = P L^-T
- * is refolded with the new L^-1 (P = sigma cof F, the last evaluation's
- * stress), so the next step's first energy half sees the new supports. */
+ * and after, max_L_condition keeps the largest seen.  With p.F_carry (crack
+ * growth) each row's F is then carried (crack/split_carry.h: p.Linv becomes
+ * L_i^-1 G_i).  Their P_tilde = P Linv^T is refolded with the new p.Linv (P =
+ * sigma cof F, the last evaluation's stress), so the next step's first
+ * energy half sees the new supports. */
 #ifndef TLSPH_CRACK_LOCAL_REBUILD_H
 #define TLSPH_CRACK_LOCAL_REBUILD_H
 

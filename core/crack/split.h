@@ -45,12 +45,13 @@
  *                 so momentum is exact to round-off
  *   h, spacing    copied (the split cuts the support, it does not refine it)
  *   F, Fdot, sigma, e, eps_p, plastic_strain, eps_p_rate,
- *   yield_stress, hg_scale, T, damage, damage_init, void_*, crack_gradient
- *                 copied: the same material point's state (intensive; e is
+ *   yield_stress, hg_scale, T, damage, damage_init, void_*, crack_gradient,
+ *   F_carry       copied: the same material point's state (intensive; e is
  *                 per kg, so the internal energy m e is conserved); F is
- *                 recomputed from the new supports at the next evaluation
- *   Linv          recomputed from the new support (local_rebuild.h)
- *   P_tilde       sigma cof(F) L^-T with the new L (local_rebuild.h)
+ *                 carried onto the new supports (crack/split_carry.h)
+ *   Linv          recomputed from the new support (local_rebuild.h), times
+ *                 the carried G (crack/split_carry.h)
+ *   P_tilde       sigma cof(F) Linv^T with the new Linv (local_rebuild.h)
  *   id            two new ids, after the largest so far (half 1 of the s-th
  *                 parent: max + 1 + 2s, half 2: max + 2 + 2s); the parent's
  *                 id ends with the split

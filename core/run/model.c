@@ -70,7 +70,7 @@ void tlsph_model_free(struct tlsph_model *m)
     free(p->eps_p); free(p->plastic_strain); free(p->eps_p_rate); free(p->yield_stress);
     free(p->T); free(p->hg_scale); free(p->spacing);
     free(p->damage); free(p->damage_init); free(p->crack_gradient); free(p->void_fraction);
-    free(p->void_fstar); free(p->void_nucleated); free(p->void_shear);
+    free(p->void_fstar); free(p->void_nucleated); free(p->void_shear); free(p->F_carry);
     free(m->pairs.start); free(m->pairs.j); free(m->pairs.dw); free(m->pairs.w);
     free(m->body_begin); free(m->body_end);
     if (m->groups)
@@ -228,6 +228,11 @@ static int allocate_particles(struct tlsph_model *m, size_t n)
     if ((m->crack->fields & TLSPH_CRACK_FIELD_GRADIENT) &&
         !(p->crack_gradient = tlsph_alloc(m, 9 * n, sizeof(double))))
         return -1;
+    /* F carried through splits (crack/split_carry.h); the pseudo-spring
+     * recomputes L^-1 every step, so it cannot hold the carried part */
+    if (m->scene.crack_growth.on && m->crack->variant != TLSPH_APPROX_PSEUDO_SPRING &&
+        !(p->F_carry = tlsph_alloc(m, 9 * n, sizeof(double))))
+        return -1;
     if (plastic && (!(p->eps_p = tlsph_alloc(m, n, sizeof(double))) ||
                     !(p->plastic_strain = tlsph_alloc(m, 6 * n, sizeof(double))) ||
                     !(p->eps_p_rate = tlsph_alloc(m, n, sizeof(double))) ||
@@ -336,6 +341,8 @@ static int generate(struct tlsph_model *m, struct tlsph_errors *err)
         }
         for (int c = 0; c < 9; c++)
             p->F[9 * k + c] = (c % 4 == 0);
+        for (int c = 0; p->F_carry && c < 9; c++)
+            p->F_carry[9 * k + c] = (c % 4 == 0);
         tlsph_constitutive_init_particle(m, k);
     }
     rc = 0;

@@ -78,6 +78,10 @@ struct tlsph_particles {
      * (du_j - du_i) (x) grad W_i, the part of the displacement gradient (before
      * L_i^-1) that damaged neighbours did not transmit, so that F follows eq. 34 [9n]. */
     double *crack_gradient;
+    /* Crack growth only (crack/split_carry.h): the part G_i of F carried through
+     * the splits, F_i = G_i + [sum_j ...] L_i^-1 G_i, where p.Linv holds L_i^-1 G_i;
+     * the identity until a split rebuilds i's support, 1 [9n].  NULL otherwise. */
+    double *F_carry;
 };
 
 /* Reference neighbour pairs in CSR form, built once: the pairs of i are

@@ -6,7 +6,7 @@
 
 /* Every pointer member of struct tlsph_particles must be listed below: a new
  * field changes the size and stops the build here until it is added. */
-_Static_assert(sizeof(struct tlsph_particles) == 2 * sizeof(size_t) + 31 * sizeof(void *),
+_Static_assert(sizeof(struct tlsph_particles) == 2 * sizeof(size_t) + 32 * sizeof(void *),
                "struct tlsph_particles changed: list the new array in tlsph_particle_arrays");
 
 size_t tlsph_particle_arrays(struct tlsph_particles *p, struct tlsph_grow_array *out)
@@ -43,8 +43,9 @@ size_t tlsph_particle_arrays(struct tlsph_particles *p, struct tlsph_grow_array 
         {(void **)&p->void_nucleated, sizeof(double)},
         {(void **)&p->void_shear, sizeof(double)},
         {(void **)&p->crack_gradient, 9 * sizeof(double)},
+        {(void **)&p->F_carry, 9 * sizeof(double)},
     };
-    _Static_assert(sizeof all / sizeof all[0] == 31, "one row per array");
+    _Static_assert(sizeof all / sizeof all[0] == 32, "one row per array");
     size_t count = 0;
     for (size_t k = 0; k < sizeof all / sizeof all[0]; k++)
         if (*all[k].ptr)

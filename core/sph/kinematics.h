@@ -80,7 +80,9 @@ tlsph_pair_delta(const struct tlsph_particles *p, const struct tlsph_gather_orig
 /* The end of particle i's gather, shared by every treatment: G and Gd are the
  * uncorrected sums of V_j (u_j - u_i) (x) grad W and V_j (v_j - v_i) (x) grad W.
  * Books the first half of the trapezoidal energy update with the old P_tilde,
- * then sets F_i = I + G L_i^-1 and Fdot_i = Gd L_i^-1 (with the current p.Linv). */
+ * then sets F_i = I + G L_i^-1 and Fdot_i = Gd L_i^-1 (with the current p.Linv;
+ * after a split, F_i = G_c + G L_i^-1 G_c with p.Linv = L_i^-1 G_c and G_c =
+ * p.F_carry: crack/split_carry.h). */
 static inline void tlsph_kinematics_finish(struct tlsph_particles *p, size_t i, double dt,
                                            const double G[9], const double Gd[9])
 {
@@ -91,9 +93,12 @@ static inline void tlsph_kinematics_finish(struct tlsph_particles *p, size_t i, 
 
     const double *Li = p->Linv + 9 * i;
     double *Fi = p->F + 9 * i, *Fdi = p->Fdot + 9 * i;
+    /* the part carried through splits (model.h F_carry): I without crack growth */
+    static const double identity[9] = {1, 0, 0, 0, 1, 0, 0, 0, 1};
+    const double *Gc = p->F_carry ? p->F_carry + 9 * i : identity;
     for (int r = 0; r < 3; r++)
         for (int c = 0; c < 3; c++) {
-            Fi[3 * r + c] = (r == c) + G[3 * r] * Li[c] + G[3 * r + 1] * Li[3 + c] +
+            Fi[3 * r + c] = Gc[3 * r + c] + G[3 * r] * Li[c] + G[3 * r + 1] * Li[3 + c] +
                             G[3 * r + 2] * Li[6 + c];
             Fdi[3 * r + c] =
                 Gd[3 * r] * Li[c] + Gd[3 * r + 1] * Li[3 + c] + Gd[3 * r + 2] * Li[6 + c];

@@ -23,12 +23,14 @@
  *    (the pair forces stay antisymmetric on the rebuilt pairs). */
 #include <check.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
 
 #include "contact/state.h"
 #include "crack/split.h"
+#include "crack/split_carry.h"
 #include "io/output/output.h"
 #include "rigid/state.h"
 #include "run/integrate.h"
@@ -961,6 +963,129 @@ START_TEST(crack_grows_through_opening_plate)
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("split", 120, crack_grows_through_opening_plate, pressure_group_shared, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
+/* F carried through a split (crack/split_carry.h), for a J2 plate: the plate
+ * of crack_grows_through_opening_plate with linear-hardening plasticity
+ * (yield 100 MPa, the rows opening at 20 m/s: 276 points flowing by step 20,
+ * eps_p up to 0.028, around the row y = 4.5 mm), split
+ * at its left edge after 20 steps.  Reference: the material point's state
+ * did not change, so the first evaluation after the split (dt = 0: no
+ * increment) must give every particle (the halves their parent's) the det F
+ * and the pressure -tr(sigma)/3 of the last evaluation before it, to
+ * round-off: 1e-12 in det F, 1e-12 of the bulk modulus K = 1.67e11 Pa in the
+ * pressure.  Without the carry they jump (the rows around the cut read F from
+ * one side): measured max |d det F| 2.9e-3 and |dp| 4.9e8 Pa (with it 1.3e-15
+ * and 2.2e-4 Pa), and the test asserts a jump above 1e-4 without it so that
+ * it can fail.  Then mass and
+ * momentum as in split_fibre, and the balance across the next step moves by
+ * velocity Verlet's term alone (momentum_after_split's reference and
+ * bound), and 30 more steps run without a diagnostic. */
+static const char *j2_plate =
+    "{\"dimension\":3,\"time\":{\"end\":1.0,\"max_steps\":1000},\"contact\":{\"enabled\":false},"
+    "\"discretization\":{\"hourglass\":{\"enabled\":true}},"
+    "\"materials\":{\"m\":{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
+    "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":1e8,\"hardening_modulus\":5e8}}},"
+    "\"bodies\":[{\"name\":\"plate\",\"material\":\"m\",\"spacing\":0.001,"
+    "\"geometry\":{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.008,0.003]}},"
+    "\"initial_velocity\":[\"2*sin(300*y)\",\"20*tanh((y-0.0045)*1e5)\",\"0\"]}]}";
+
+static double pressure_of(const struct tlsph_model *m, size_t i)
+{
+    const double *s = m->p.sigma + 6 * i;
+    return -(s[0] + s[3] + s[5]) / 3.0;
+}
+
+/* The largest jumps of det F and pressure over every particle at a split of
+ * the J2 plate, with or without the carry; with it, the balance and momentum
+ * checks above. */
+static void j2_split_jumps(int carry, double *jdet, double *jp, size_t *plastic)
+{
+    struct tlsph_model *m = build_model(j2_plate);
+    if (carry)
+        ck_assert_int_eq(tlsph_split_carry_enable(m), 0);
+    for (int s = 0; s < 20; s++)
+        tlsph_model_step(m);
+    const size_t n0 = m->p.n;
+    double *det0 = malloc(n0 * sizeof *det0), *p0 = malloc(n0 * sizeof *p0);
+    ck_assert(det0 && p0);
+    *plastic = 0;
+    double epmax = 0.0;
+    for (size_t i = 0; i < n0; i++) {
+        epmax = fmax(epmax, m->p.eps_p[i]);
+        det0[i] = mat3_det(m->p.F + 9 * i);
+        p0[i] = pressure_of(m, i);
+        *plastic += m->p.eps_p[i] > 0.0;
+    }
+    printf("t %.3g s, max eps_p %.3g\n", m->t, epmax);
+    fflush(stdout);
+    const double yt = split_plate_lattice(m, 1, 0.0045), x0 = split_plate_lattice(m, 0, 0.0);
+    struct tlsph_crack_surface cs;
+    ck_assert_int_eq(tlsph_crack_surface_init(&cs, 2.4 * SPACING), TLSPH_CRACK_OK);
+    const struct totals t0 = totals(m);
+    size_t parent[MAXF];
+    const size_t k = fibre(m, x0, yt, parent);
+    ck_assert_uint_eq(k, 3);
+    add_crack(&cs, yt, x0 - 2 * SPACING, x0);
+    struct tlsph_split sp = {parent, k, {1, 0, 0}, {1, 0, 0}, {0, DELTA, 0}};
+    struct tlsph_errors err;
+    tlsph_errors_init(&err);
+    ck_assert_int_eq(tlsph_split_particles(m, &sp, &cs, 0, NULL, NULL, &err), 0);
+    tlsph_errors_free(&err);
+    const struct totals t1 = totals(m);
+    ck_assert(fabs(t1.mass - t0.mass) <= 1e-14 * t0.mass);
+    ck_assert(fabs(t1.vol - t0.vol) <= 1e-14 * t0.vol);
+    const double scale = momentum_scale(m);
+    for (int c = 0; c < 3; c++)
+        ck_assert(fabs(t1.mom[c] - t0.mom[c]) <= 1e-14 * scale + 1e-300);
+    tlsph_evaluate(m, 0.0);
+    *jdet = *jp = 0.0;
+    for (size_t q = 0; q < m->p.n; q++) {
+        const size_t i = q < n0 ? q : parent[q - n0];
+        *jdet = fmax(*jdet, fabs(mat3_det(m->p.F + 9 * q) - det0[i]));
+        *jp = fmax(*jp, fabs(pressure_of(m, q) - p0[i]));
+    }
+    if (carry) {
+        double mom0[3];
+        tlsph_model_momentum(m, mom0);
+        const double dt = tlsph_next_dt(m);
+        const double s0 = split_plate_verlet_term(m, dt), before = tlsph_energy_balance(&m->energy);
+        tlsph_model_step(m);
+        const double moved = tlsph_energy_balance(&m->energy) - before;
+        const double term = split_plate_verlet_term(m, dt) - s0;
+        printf("carry: balance moved %.6g J, Verlet term %.6g J, scale %.3g J\n", moved, term,
+               m->energy.scale);
+        ck_assert_msg(fabs(moved - term) <= 1e-12 * m->energy.scale,
+                      "balance moved %.6g J, the Verlet term %.6g J (scale %.3g J)", moved, term,
+                      m->energy.scale);
+        struct tlsph_diagnostic d;
+        for (int s = 0; s < 30; s++) {
+            tlsph_model_step(m);
+            ck_assert_msg(tlsph_model_check(m, &d) == 0, "step %ld: %s", m->step, d.message);
+        }
+        check_momentum_since(m, mom0, scale);
+    }
+    free(det0);
+    free(p0);
+    tlsph_crack_surface_release(&cs);
+    tlsph_model_free(m);
+}
+
+START_TEST(carry_keeps_F_j2)
+{
+    const double K = 2e11 / (3.0 * (1.0 - 2.0 * 0.3));
+    double jdet, jp, jdet0, jp0;
+    size_t plastic, plastic0;
+    j2_split_jumps(0, &jdet0, &jp0, &plastic0);
+    j2_split_jumps(1, &jdet, &jp, &plastic);
+    printf("split of the J2 plate (%zu plastic points): without the carry max |d det F| %.3g, "
+           "|dp| %.3g Pa; with it %.3g, %.3g Pa\n", plastic, jdet0, jp0, jdet, jp);
+    fflush(stdout);
+    ck_assert_uint_gt(plastic, 0);
+    ck_assert_msg(jdet0 > 1e-4, "no jump without the carry (%.3g): the test cannot fail", jdet0);
+    ck_assert_msg(jdet <= 1e-12, "det F jumps by %.3g with the carry", jdet);
+    ck_assert_msg(jp <= 1e-12 * K, "pressure jumps by %.3g Pa with the carry", jp);
+}
+END_TEST
+
+TLSPH_CHECK_MAIN("split", 120, carry_keeps_F_j2, crack_grows_through_opening_plate, pressure_group_shared, output_refuses_a_new_count, split_two_fibres, growth_failure_leaves_model,
                  refusals_leave_model, angles, momentum_after_split, contact_and_rigid_follow,
                  split_forces_match_full_pass, split_forces_match_full_pass_damaged)

@@ -22,12 +22,12 @@
  *    (test_crack_growth's bound after the first split; measured in the log
  *    line; the worst over the whole run, 1.1e-2, is in the first steps of the
  *    crosshead's ramp, where the largest term is still tiny);
- *  - the elastic state across the split (core/crack/split_elastic.h): every
- *    porous point that has not failed keeps its elastic strain H - Ep through
- *    the driver's step, the split halves the parent's, to 1e-12 (the halves'
- *    one-sided F changes H by up to ~0.1 here; without the re-reference the
- *    porous return fails two steps after the second split and the run
- *    stops). */
+ *  - the elastic state across the split (F carried, core/crack/split_carry.h):
+ *    every porous point that has not failed keeps its elastic strain H - Ep
+ *    through the driver's step, F read by the new supports (a gather with
+ *    dt = 0), the split halves the parent's, to 1e-12 (measured 8.3e-16; the
+ *    halves' one-sided F changed H by up to ~0.1 here before F was carried,
+ *    and the porous return failed two steps after the second split). */
 #include <check.h>
 #include <jansson.h>
 #include <math.h>
@@ -36,7 +36,8 @@
 #include <string.h>
 
 #include "crack/crack_driver.h"
-#include "crack/split_elastic.h"
+#include "crack/split_carry.h"
+#include "sph/kinematics.h"
 #include "run/integrate.h"
 #include "run/model.h"
 #include "support/check_main.h"
@@ -92,7 +93,9 @@ START_TEST(the_gurson_crack_tears_the_plate)
                           e->position[0], lastx);
             lastx = e->position[0];
             /* the elastic state through the split: half 1 at the parent's index,
-             * half 2 (index >= nb) the particle 2 delta away from it */
+             * half 2 (index >= nb) the particle 2 delta away from it; F as the
+             * new supports read it (a gather with dt = 0: no increment) */
+            tlsph_kinematics(m, 0.0);
             for (size_t i = 0; i < m->p.n; i++) {
                 if (m->p.damage[i] >= 1.0)
                     continue;
