@@ -21,7 +21,7 @@ import h5py
 import numpy as np
 
 RM = 0.226                       # reference mean radius, m
-THETA = 0.22                     # half-width of the window, rad
+THETA = 0.40                     # half-width of the window, rad (the opening reaches 113 mm at 600 us)
 Z0, Z1 = 0.20, 0.48              # the window's z range, m
 W, H = 250, 300                  # a frame's plot, px
 
