@@ -627,14 +627,19 @@ static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
         return -1;
     memcpy(ta->T, C, sizeof C);
     memcpy(ta->V1, u, sizeof u);
-    memcpy(ta->end, P1, sizeof P1);
+    /* the tips' surfaces end at C, as a pre-crack's at its end: a first advance
+     * that goes through the edge runs its facets end -> past the edge fibre
+     * along C -> C_J, through C_J between its halves (from C +- s/2 u they
+     * would miss C_J when u and C_J - C differ, leaving the halves 2 delta
+     * apart in one support: measured, the run turned non-finite) */
+    memcpy(ta->end, C, sizeof C);
     const size_t first_tip = d->ntips + d->nstarted;
     d->nstarted++;
     if (!edge) {
         struct tlsph_crack_tip *tb = &d->tip[d->ntips + d->nstarted];
         *tb = (struct tlsph_crack_tip){.body = b, .fibre = -1};
         memcpy(tb->T, C, sizeof C);
-        memcpy(tb->end, P0, sizeof P0);
+        memcpy(tb->end, C, sizeof C);
         for (int i = 0; i < 3; i++)
             tb->V1[i] = -u[i];
         d->nstarted++;

@@ -61,7 +61,8 @@
  * (V1 = V2 = u, halves at +-delta across u) with facets spanning the
  * thickness from C - s/2 u to C + s/2 u (s the spacing), and two tips start
  * at C (no fibre, as a pre-crack's end) with directions +u and -u, their
- * facet ends at C +- s/2 u.  On the body's edge (at_edge's rule) u is turned
+ * surface ends at C (so a first advance through the edge cuts along C -> C_J,
+ * between the edge fibre's halves).  On the body's edge (at_edge's rule) u is turned
  * inward (towards the mean of the neighbours' centres), the facets start a
  * spacing past the edge and one tip grows.  Started tips follow the scene's
  * tips in the tip array (tip[ntips + j]); the crack_tips series lists the
