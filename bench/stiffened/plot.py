@@ -32,7 +32,7 @@ def main(res, log, out):
     X = last_frame(f, "reference_position")
     x = last_frame(f, "position")
     names = list(f["/particles/solid"].keys())
-    ep_name = next(k for k in ("equivalent_plastic_strain", "plastic_strain_eq", "eps_p")
+    ep_name = next(k for k in ("plastic_strain", "equivalent_plastic_strain", "eps_p")
                    if k in names)
     ep = last_frame(f, ep_name)
     top = X[:, 2] > X[:, 2].max() - 1e-6  # the plate's top layer
@@ -45,7 +45,8 @@ def main(res, log, out):
     fig, ax = plt.subplots(1, 2, figsize=(11, 5))
     for a, P, title in ((ax[0], X, "reference"), (ax[1], x, "current (last frame)")):
         sc = a.scatter(1e3 * P[top, 0], 1e3 * P[top, 1], c=ep[top], s=6, cmap="viridis",
-                       vmin=0, vmax=max(0.35, float(np.percentile(ep[top], 99))))
+                       vmin=0, vmax=max(0.35, float(np.percentile(ep[top], 99))),
+                       rasterized=True)  # an SVG of 5000 vector dots is 0.5 MB
         a.set_aspect("equal")
         a.set_xlabel("x (mm)")
         a.set_ylabel("y (mm)")
@@ -55,18 +56,24 @@ def main(res, log, out):
     fig.colorbar(sc, ax=ax, label=ep_name + " (top layer)")
     tips = {}
     start = None
+    starts = []
     for tip, p in events:
-        if tip is None:
+        if tip is None:  # a start: the tips it makes begin there
             start = p
+            starts.append(p)
             continue
         tips.setdefault(tip, [start]).append(p)
     for tip, path in tips.items():
         path = np.array([q for q in path if q is not None])
-        ax[0].plot(1e3 * path[:, 0], 1e3 * path[:, 1], "r.-", lw=1.5, ms=4,
-                   label="tip %s" % tip)
-    if start is not None:
-        ax[0].plot(1e3 * start[0], 1e3 * start[1], "r*", ms=12, label="start")
+        ax[0].plot(1e3 * path[:, 0], 1e3 * path[:, 1], ".-", lw=1.2, ms=3)
+    if starts:
+        S = np.array(starts)
+        ax[0].plot(1e3 * S[:, 0], 1e3 * S[:, 1], "r*", ms=10, ls="none", label="starts")
     ax[0].legend(loc="upper right", fontsize=8)
+    ax[0].set_xlim(-1, 31)
+    ax[0].set_ylim(-20, 20)
+    ax[1].set_xlim(-10, 31)
+    ax[1].set_ylim(-20, 20)
     fig.savefig(out + "-path.svg")
     obs = f["/observables/rigid/cone"]
     pos = obs["position/value"][:, 0]

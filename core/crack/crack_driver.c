@@ -16,6 +16,7 @@
 /* Initiation (crack_driver.h "Initiation"), defined after the advance. */
 static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err);
 static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct tlsph_errors *err);
+static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err);
 static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
 
 /* The two in-plane axes of a thickness direction (as crack/fibre.c). */
@@ -297,6 +298,8 @@ static int split_fibre(struct tlsph_model *m, size_t b, size_t k, const double V
     int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
     if (rc == 0)
         rc = tlsph_split_keep_elastic_state(m, NULL, err);
+    if (rc == 0 && m->crack_driver->near) /* initiation: k is a crack's face now */
+        rc = mark_face(m, b, k, err);
     free(index);
     *count += n;
     return rc;
@@ -417,6 +420,10 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
 
 /* ---------------------------------------------------------------- initiation */
 
+/* Near flags: 0 free, NEAR a crack (no start there), NEAR_FACE a fibre a split
+ * made or split (a crack's face: a tip that would step onto it stops). */
+enum { NEAR = 1, NEAR_FACE = 2 };
+
 /* Body b's near flags cover its fibres; entries added since (the halves a
  * split appended: faces of a crack) are near.  0 or -1. */
 static int near_cover(struct tlsph_model *m, size_t b, struct tlsph_errors *err)
@@ -431,7 +438,7 @@ static int near_cover(struct tlsph_model *m, size_t b, struct tlsph_errors *err)
         tlsph_errors_add(err, "", "crack initiation: out of memory");
         return -1;
     }
-    memset(q + d->near_cap[b], 1, cap - d->near_cap[b]);
+    memset(q + d->near_cap[b], NEAR_FACE, cap - d->near_cap[b]);
     d->near[b] = q;
     d->near_cap[b] = cap;
     return 0;
@@ -447,8 +454,18 @@ static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct 
     const double r = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
     unsigned char *near = m->crack_driver->near[b];
     for (size_t k = 0; k < f->n; k++)
-        if (plane_distance(f, P, f->centre[k]) <= r)
-            near[k] = 1;
+        if (plane_distance(f, P, f->centre[k]) <= r && !near[k])
+            near[k] = NEAR;
+    return 0;
+}
+
+/* Fibre k of body b has been split: a crack's face (the fibres the split
+ * appended are faces from birth, near_cover). */
+static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err)
+{
+    if (near_cover(m, b, err) != 0)
+        return -1;
+    m->crack_driver->near[b][k] = NEAR_FACE;
     return 0;
 }
 
@@ -471,7 +488,7 @@ static void mark_near_segment(struct tlsph_model *m, size_t b, const double A[3]
         double t = L2 > 0.0 ? (c[0] * u[0] + c[1] * u[1]) / L2 : 0.0;
         t = fmin(1.0, fmax(0.0, t));
         if (hypot(c[0] - t * u[0], c[1] - t * u[1]) <= r)
-            m->crack_driver->near[b][k] = 1;
+            m->crack_driver->near[b][k] = NEAR;
     }
 }
 
@@ -692,6 +709,15 @@ static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *
     return rc;
 }
 
+/* Is fibre J of body b another tip's fibre (two cracks meeting there)? */
+static int tip_fibre_of_other(const struct tlsph_crack_driver *d, size_t self, size_t b, long J)
+{
+    for (size_t q = 0; q < d->ntips + d->nstarted; q++)
+        if (q != self && d->tip[q].body == b && d->tip[q].fibre == J)
+            return 1;
+    return 0;
+}
+
 int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_errors *err)
 {
     struct tlsph_crack_driver *d = m->crack_driver;
@@ -714,7 +740,17 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
         const long J = t->ncand == SIZE_MAX
                            ? tlsph_fibre_next_tip(f, D, &q)
                            : tlsph_fibre_next_tip_among(f, D, &q, t->cand, t->ncand);
-        if (J >= 0)
+        if (J >= 0 && d->near && (rc = near_cover(m, t->body, err)) == 0 &&
+            (d->near[t->body][J] == NEAR_FACE || tip_fibre_of_other(d, k, t->body, J))) {
+            /* initiation: the next fibre is a crack's face, this crack meets
+             * another (or its own): it stops there (not joined, crack_driver.h) */
+            t->stopped = 1;
+            if (log)
+                fprintf(log, "tlsph: crack tip %zu at (%g, %g, %g) m meets a crack (fibre %ld, a "
+                        "face or another tip's), step %ld: it stops\n", k, t->T[0], t->T[1], t->T[2], J, m->step);
+            continue;
+        }
+        if (J >= 0 && rc == 0)
             rc = advance(m, k, (size_t)J, log, err);
     }
     if (rc == 0 && d->near)

@@ -68,6 +68,10 @@
  * tips in the tip array (tip[ntips + j]); the crack_tips series lists the
  * scene's tips only (its item count is fixed at output setup); the events
  * (started = 1) and the globals crack_length / crack_advances count them.
+ * Meeting: with initiation on, a tip whose next fibre is a crack's face (a
+ * fibre a split made or split) or another tip's fibre stops there, logged:
+ * cracks are not joined (the last fibre between them stays whole), but no
+ * fibre is split twice and no tip runs along another crack's faces.
  * At most TLSPH_CRACK_MAX_TIPS tips in all: past that the scan stops (logged
  * once).  fan_angle must be below 180 degrees (checked at setup): a started
  * tip sits between its fibre's halves, which a wider fan would take.
