@@ -36,12 +36,13 @@ def main(res, log, out):
                    if k in names)
     ep = last_frame(f, ep_name)
     top = X[:, 2] > X[:, 2].max() - 1e-6  # the plate's top layer
-    events = []
+    events = []  # (tip, position); a start: (None, position, its first tip)
     for line in open(log):
         m = re.search(r"(crack starts at|crack tip (\d+) ->) fibre \d+.*? at \(([^)]*)\) m", line)
         if m:
             p = [float(v) for v in m.group(3).split(",")]
-            events.append((m.group(2), p))
+            first = re.search(r"tips (\d+)( and the next)?", line)
+            events.append((m.group(2), p, first and (int(first.group(1)), bool(first.group(2)))))
     fig, ax = plt.subplots(1, 2, figsize=(11, 5))
     for a, P, title in ((ax[0], X, "reference"), (ax[1], x, "current (last frame)")):
         sc = a.scatter(1e3 * P[top, 0], 1e3 * P[top, 1], c=ep[top], s=6, cmap="viridis",
@@ -55,16 +56,16 @@ def main(res, log, out):
             a.axhline(ys, color="grey", lw=0.8, ls="--")
     fig.colorbar(sc, ax=ax, label=ep_name + " (top layer)")
     tips = {}
-    start = None
     starts = []
-    for tip, p in events:
+    for tip, p, first in events:
         if tip is None:  # a start: the tips it makes begin there
-            start = p
             starts.append(p)
+            for q in range(first[0], first[0] + (2 if first[1] else 1)):
+                tips[str(q)] = [p]
             continue
-        tips.setdefault(tip, [start]).append(p)
+        tips.setdefault(tip, []).append(p)
     for tip, path in tips.items():
-        path = np.array([q for q in path if q is not None])
+        path = np.array(path)
         ax[0].plot(1e3 * path[:, 0], 1e3 * path[:, 1], ".-", lw=1.2, ms=3)
     if starts:
         S = np.array(starts)
