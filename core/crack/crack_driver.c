@@ -159,6 +159,20 @@ static size_t body_of(const struct tlsph_model *m, const double P[3])
     return m->scene.nbodies;
 }
 
+/* Body b has a damage model and the criterion's quantity; else an error at
+ * pointer (the damage one ending with `then`).  0 or -1. */
+static int body_can_crack(const struct tlsph_model *m, size_t b, const char *pointer,
+                          const char *then, struct tlsph_errors *err)
+{
+    const struct tlsph_body *body = &m->scene.bodies[b];
+    if (!m->scene.materials[body->material].damage.model) {
+        tlsph_errors_add(err, pointer, "body '%s' has no damage model: its fibres' damage stays "
+                         "0 and %s", body->name, then);
+        return -1;
+    }
+    return tlsph_crack_criterion_check(m, b, err);
+}
+
 static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                      struct tlsph_errors *err)
 {
@@ -173,12 +187,7 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
         return -1;
     }
     const struct tlsph_body *body = &m->scene.bodies[b];
-    if (!m->scene.materials[body->material].damage.model) {
-        tlsph_errors_add(err, p, "body '%s' has no damage model: its fibres' damage stays 0 "
-                         "and the crack cannot grow", body->name);
-        return -1;
-    }
-    if (tlsph_crack_criterion_check(m, b, err) != 0)
+    if (body_can_crack(m, b, p, "the crack cannot grow", err) != 0)
         return -1;
     const struct tlsph_fibres *f = &m->fibres[b];
     for (size_t c = 0; c < m->scene.ncracks; c++) {
@@ -513,13 +522,7 @@ static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err)
         const struct tlsph_fibres *f = &m->fibres[b];
         if (!f->n)
             continue;
-        const struct tlsph_body *body = &m->scene.bodies[b];
-        if (!m->scene.materials[body->material].damage.model) {
-            tlsph_errors_add(err, P, "body '%s' has fibres but no damage model: its fibres' "
-                             "damage stays 0 and no crack can start there", body->name);
-            return -1;
-        }
-        if (tlsph_crack_criterion_check(m, b, err) != 0)
+        if (body_can_crack(m, b, P, "no crack can start there", err) != 0)
             return -1;
         d->near[b] = calloc(f->n, 1);
         if (!d->near[b]) {
