@@ -23,8 +23,10 @@
  *  - a fibre on the left edge (-9.5, 0.5) mm: the first crack starts there,
  *    with one tip, growing inward (+x): its first three advances along the
  *    row (measured: five along the row, then it turns up by 45 degrees where
- *    the plate necks; two more cracks start in that zone later, at steps
- *    1816 and 1955 of 2255: physical, the test allows them);
+ *    the plate necks and stops meeting a crack started there; three more
+ *    cracks start in that zone later: physical, the test allows them);
+ *  - two weakened fibres 10 mm apart: both start, the inner tips stop where
+ *    they meet (cracks_that_meet_stop);
  *  - across every driver step that starts or advances (totals just before and
  *    after): mass and volume to 1e-14 relative, linear momentum to 1e-14 of
  *    sum m|v| (eqs. 21-30, as test_crack_growth); the stability contract every
@@ -204,6 +206,40 @@ START_TEST(crack_starts_at_the_edge_and_grows_inward)
 }
 END_TEST
 
+/* Two weakened fibres 10 mm apart on the row: two cracks start (measured:
+ * at (5.5, 0.5) mm, step 256, and (-4.5, 0.5) mm, step 316), their inner
+ * tips grow towards each other and stop when the next fibre is the other
+ * crack's (measured: at -1.5 and -2.5 mm, each the other's tip fibre): no
+ * fibre is reached twice, the run stays stable (run()'s checks). */
+START_TEST(cracks_that_meet_stop)
+{
+    struct tlsph_model *m = build_model_json(plate(1));
+    const size_t k1 = weaken(m, -0.0045, ROW_Y, 0.95), k2 = weaken(m, 0.0055, ROW_Y, 0.95);
+    run(m);
+    const struct tlsph_crack_driver *cd = m->crack_driver;
+    ck_assert_uint_eq(cd->starts, 2);
+    int seen1 = 0, seen2 = 0;
+    for (size_t e = 0; e < cd->nevents; e++) {
+        seen1 |= cd->event[e].started && cd->event[e].fibre == (long)k1;
+        seen2 |= cd->event[e].started && cd->event[e].fibre == (long)k2;
+    }
+    ck_assert(seen1 && seen2);
+    for (size_t e = 0; e < cd->nevents; e++)
+        for (size_t q = 0; q < e; q++)
+            ck_assert(cd->event[e].fibre != cd->event[q].fibre);
+    /* the inner tips stop between the starts, away from the edges */
+    size_t inner = 0;
+    for (size_t q = 0; q < cd->ntips + cd->nstarted; q++) {
+        const struct tlsph_crack_tip *t = &cd->tip[q];
+        if (t->stopped && t->T[0] > -0.0045 && t->T[0] < 0.0055)
+            inner++;
+    }
+    printf("meeting: %zu events, %zu tips stopped between the starts\n", cd->nevents, inner);
+    ck_assert_uint_eq(inner, 2);
+    tlsph_model_free(m);
+}
+END_TEST
+
 START_TEST(no_initiation_without_the_key)
 {
     char pointer[256] = "";
@@ -226,4 +262,5 @@ START_TEST(no_initiation_without_the_key)
 END_TEST
 
 TLSPH_CHECK_MAIN("crack_initiation", 600, crack_starts_in_the_middle_and_grows_both_ways,
-                 crack_starts_at_the_edge_and_grows_inward, no_initiation_without_the_key)
+                 crack_starts_at_the_edge_and_grows_inward, cracks_that_meet_stop,
+                 no_initiation_without_the_key)
