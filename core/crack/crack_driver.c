@@ -12,6 +12,12 @@
 #include "crack/split.h"
 #include "util/clock.h"
 
+/* Initiation (crack_driver.h "Initiation"), defined after the advance. */
+static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err);
+static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct tlsph_errors *err);
+static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err);
+static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
+
 /* The two in-plane axes of a thickness direction (as crack/fibre.c). */
 static void plane_axes(int axis, int out[2])
 {
@@ -152,6 +158,20 @@ static size_t body_of(const struct tlsph_model *m, const double P[3])
     return m->scene.nbodies;
 }
 
+/* Body b has a damage model and the criterion's quantity; else an error at
+ * pointer (the damage one ending with `then`).  0 or -1. */
+static int body_can_crack(const struct tlsph_model *m, size_t b, const char *pointer,
+                          const char *then, struct tlsph_errors *err)
+{
+    const struct tlsph_body *body = &m->scene.bodies[b];
+    if (!m->scene.materials[body->material].damage.model) {
+        tlsph_errors_add(err, pointer, "body '%s' has no damage model: its fibres' damage stays "
+                         "0 and %s", body->name, then);
+        return -1;
+    }
+    return tlsph_crack_criterion_check(m, b, err);
+}
+
 static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                      struct tlsph_errors *err)
 {
@@ -166,12 +186,7 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
         return -1;
     }
     const struct tlsph_body *body = &m->scene.bodies[b];
-    if (!m->scene.materials[body->material].damage.model) {
-        tlsph_errors_add(err, p, "body '%s' has no damage model: its fibres' damage stays 0 "
-                         "and the crack cannot grow", body->name);
-        return -1;
-    }
-    if (tlsph_crack_criterion_check(m, b, err) != 0)
+    if (body_can_crack(m, b, p, "the crack cannot grow", err) != 0)
         return -1;
     const struct tlsph_fibres *f = &m->fibres[b];
     for (size_t c = 0; c < m->scene.ncracks; c++) {
@@ -211,15 +226,17 @@ int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err)
         return -1;
     }
     m->crack_driver = d;
-    if (!m->fibres || !m->crack_surface) {
+    if (!m->fibres || (!m->crack_surface && !g->initiate)) {
         tlsph_errors_add(err, "/crack_growth", "a growing crack needs a body with fibres and a "
                          "pre-crack");
         return -1;
     }
+    if (g->initiate && initiate_setup(m, err) != 0)
+        return -1;
     for (size_t j = 0; j < g->ntips; j++)
         if (setup_tip(m, j, &d->tip[j], err) != 0)
             return -1;
-    if (!m->p.damage) { /* setup_tip checked the tips' materials: cannot happen */
+    if (!m->p.damage) { /* setup_tip and initiate checked the materials: cannot happen */
         tlsph_errors_add(err, "/crack_growth", "no damage model: the crack cannot grow");
         return -1;
     }
@@ -287,6 +304,8 @@ static int split_fibre(struct tlsph_model *m, size_t b, size_t k, const double V
     memcpy(sp.V2, V2, sizeof sp.V2);
     memcpy(sp.delta, delta, sizeof sp.delta);
     int rc = tlsph_split_particles(m, &sp, m->crack_surface, first_facet, NULL, NULL, err);
+    if (rc == 0 && m->crack_driver->near) /* initiation: k is a crack's face now */
+        rc = mark_face(m, b, k, err);
     free(index);
     *count += n;
     return rc;
@@ -392,7 +411,9 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
     d->particles_split += split;
     if (record(d, m, tip, split, err) != 0)
         return -1;
-    for (size_t q = 0; q < d->ntips; q++)
+    if (d->near && mark_near(m, b, CJ, err) != 0)
+        return -1;
+    for (size_t q = 0; q < d->ntips + d->nstarted; q++)
         refresh_candidates(m, &d->tip[q]);
     if (log)
         fprintf(log,
@@ -400,6 +421,300 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
                 "particles split, %zu particles, grown %g m%s\n",
                 tip, t->fibre, CJ[0], CJ[1], CJ[2], m->step, m->t, split, m->p.n, t->length,
                 t->stopped ? ", through the edge" : "");
+    return 0;
+}
+
+/* ---------------------------------------------------------------- initiation */
+
+/* Near flags: 0 free, NEAR a crack (no start there), NEAR_FACE a fibre a split
+ * made or split (a crack's face: a tip that would step onto it stops). */
+enum { NEAR = 1, NEAR_FACE = 2 };
+
+/* Body b's near flags cover its fibres; entries added since (the halves a
+ * split appended: faces of a crack) are near.  0 or -1. */
+static int near_cover(struct tlsph_model *m, size_t b, struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    const size_t n = m->fibres[b].n;
+    if (n <= d->near_cap[b])
+        return 0;
+    const size_t cap = n > 2 * d->near_cap[b] ? n : 2 * d->near_cap[b];
+    unsigned char *q = realloc(d->near[b], cap);
+    if (!q) {
+        tlsph_errors_add(err, "", "crack initiation: out of memory");
+        return -1;
+    }
+    memset(q + d->near_cap[b], NEAR_FACE, cap - d->near_cap[b]);
+    d->near[b] = q;
+    d->near_cap[b] = cap;
+    return 0;
+}
+
+/* Marks body b's fibres within TLSPH_CRACK_CLEAR spacings of P near (a scan
+ * of the body's fibres: once per advance or start, not per step). */
+static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct tlsph_errors *err)
+{
+    if (near_cover(m, b, err) != 0)
+        return -1;
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const double r = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
+    unsigned char *near = m->crack_driver->near[b];
+    for (size_t k = 0; k < f->n; k++)
+        if (plane_distance(f, P, f->centre[k]) <= r && !near[k])
+            near[k] = NEAR;
+    return 0;
+}
+
+/* Fibre k of body b has been split: a crack's face (the fibres the split
+ * appended are faces from birth, near_cover). */
+static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err)
+{
+    if (near_cover(m, b, err) != 0)
+        return -1;
+    m->crack_driver->near[b][k] = NEAR_FACE;
+    return 0;
+}
+
+/* Marks body b's fibres within TLSPH_CRACK_CLEAR spacings of the in-plane
+ * segment A-B near (a pre-crack's trace). */
+static void mark_near_segment(struct tlsph_model *m, size_t b, const double A[3],
+                              const double B[3])
+{
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const double r = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
+    const double AB[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
+    double u[2];
+    tlsph_fibres_local(f, A, AB, u);
+    const double L2 = u[0] * u[0] + u[1] * u[1];
+    for (size_t k = 0; k < f->n; k++) {
+        const double AC[3] = {f->centre[k][0] - A[0], f->centre[k][1] - A[1],
+                              f->centre[k][2] - A[2]};
+        double c[2];
+        tlsph_fibres_local(f, A, AC, c);
+        double t = L2 > 0.0 ? (c[0] * u[0] + c[1] * u[1]) / L2 : 0.0;
+        t = fmin(1.0, fmax(0.0, t));
+        if (hypot(c[0] - t * u[0], c[1] - t * u[1]) <= r)
+            m->crack_driver->near[b][k] = NEAR;
+    }
+}
+
+static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    const char *P = "/crack_growth/initiate";
+    if (!(m->scene.crack_growth.fan_angle < 180.0)) {
+        tlsph_errors_add(err, "/crack_growth/fan_angle", "a started crack's tips sit between "
+                         "their fibre's halves, which a fan of %g degrees (180 or more) would "
+                         "take: below 180 with initiate", m->scene.crack_growth.fan_angle);
+        return -1;
+    }
+    const size_t nb = m->scene.nbodies;
+    d->near = calloc(nb, sizeof *d->near);
+    d->near_cap = calloc(nb, sizeof *d->near_cap);
+    if (!d->near || !d->near_cap) {
+        tlsph_errors_add(err, P, "out of memory");
+        return -1;
+    }
+    for (size_t b = 0; b < nb; b++) {
+        const struct tlsph_fibres *f = &m->fibres[b];
+        if (!f->n)
+            continue;
+        if (body_can_crack(m, b, P, "no crack can start there", err) != 0)
+            return -1;
+        d->near[b] = calloc(f->n, 1);
+        if (!d->near[b]) {
+            tlsph_errors_add(err, P, "out of memory");
+            return -1;
+        }
+        d->near_cap[b] = f->n;
+        for (size_t c = 0; c < m->scene.ncracks; c++) {
+            double A[3], B[3];
+            if (trace_ends(&m->scene.cracks[c], f, A, B) == 0)
+                mark_near_segment(m, b, A, B);
+        }
+    }
+    if (!m->crack_surface) { /* no pre-crack: an empty surface (cells as precrack.c) */
+        double cell = 0.0;
+        for (size_t i = 0; i < m->p.n; i++)
+            cell = fmax(cell, 2.0 * m->p.h[i]);
+        m->crack_surface = calloc(1, sizeof *m->crack_surface);
+        if (!m->crack_surface ||
+            tlsph_crack_surface_init(m->crack_surface, cell) != TLSPH_CRACK_OK) {
+            tlsph_errors_add(err, P, "cannot make the crack surface (out of memory or no "
+                             "particle)");
+            return -1;
+        }
+    }
+    return 0;
+}
+
+/* u: the crack's direction at fibre k of body b (unit, in the plane at C):
+ * normal to the largest principal stress of the fibre's mean Cauchy stress
+ * projected on the plane. */
+static void start_direction(const struct tlsph_model *m, const struct tlsph_fibres *f, size_t k,
+                            double u[3])
+{
+    const double *C = f->centre[k];
+    double e[2][3] = {{0, 0, 0}, {0, 0, 0}};
+    if (f->axis == TLSPH_FIBRE_RADIAL) {
+        double n[3];
+        tlsph_fibres_normal(f, C, n);
+        e[0][0] = f->dir[1] * n[2] - f->dir[2] * n[1];
+        e[0][1] = f->dir[2] * n[0] - f->dir[0] * n[2];
+        e[0][2] = f->dir[0] * n[1] - f->dir[1] * n[0];
+        memcpy(e[1], f->dir, sizeof e[1]);
+    } else {
+        int pa[2];
+        plane_axes(f->axis, pa);
+        e[0][pa[0]] = e[1][pa[1]] = 1.0;
+    }
+    static const int sym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}}; /* xx xy xz yy yz zz */
+    double S[2][2] = {{0, 0}, {0, 0}};
+    for (size_t p = f->start[k]; p < f->start[k + 1]; p++) {
+        const double *sg = m->p.sigma + 6 * f->particle[p];
+        for (int a = 0; a < 2; a++)
+            for (int c = 0; c < 2; c++)
+                for (int i = 0; i < 3; i++)
+                    for (int j = 0; j < 3; j++)
+                        S[a][c] += e[a][i] * sg[sym[i][j]] * e[c][j];
+    }
+    const double th = 0.5 * atan2(2.0 * S[0][1], S[0][0] - S[1][1]); /* largest's axis */
+    for (int i = 0; i < 3; i++)
+        u[i] = -sin(th) * e[0][i] + cos(th) * e[1][i];
+}
+
+/* A crack starts at fibre k of body b (crack_driver.h "Initiation"). */
+static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
+                       struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const double s = body_spacing(m, b);
+    const int edge = at_edge(f, k, s);
+    if (d->ntips + d->nstarted + (edge ? 1 : 2) > TLSPH_CRACK_MAX_TIPS) {
+        d->full = 1;
+        if (log)
+            fprintf(log, "tlsph: crack initiation stops at step %ld: %d tips, the most the "
+                    "driver holds\n", m->step, TLSPH_CRACK_MAX_TIPS);
+        return 0;
+    }
+    double C[3], u[3], n2[3] = {0, 0, 0}, delta[3];
+    memcpy(C, f->centre[k], sizeof C);
+    start_direction(m, f, k, u);
+    if (edge) { /* inward: towards the mean of the neighbours' centres */
+        size_t nb[TLSPH_CRACK_MAX_CAND];
+        const size_t cnt = tlsph_fibres_within(f, C, 1.5 * s * (1.0 + 1e-9), nb,
+                                               TLSPH_CRACK_MAX_CAND);
+        double w = 0.0;
+        for (size_t q = 0; q < cnt && q < TLSPH_CRACK_MAX_CAND; q++)
+            for (int i = 0; i < 3; i++)
+                w += (f->centre[nb[q]][i] - C[i]) * u[i];
+        if (w < 0.0)
+            for (int i = 0; i < 3; i++)
+                u[i] = -u[i];
+    }
+    if (f->axis == TLSPH_FIBRE_RADIAL) { /* n2 = n x u, as advance */
+        double nt[3];
+        tlsph_fibres_normal(f, C, nt);
+        n2[0] = nt[1] * u[2] - nt[2] * u[1];
+        n2[1] = nt[2] * u[0] - nt[0] * u[2];
+        n2[2] = nt[0] * u[1] - nt[1] * u[0];
+    } else {
+        n2[(f->axis + 1) % 3] = -u[(f->axis + 2) % 3];
+        n2[(f->axis + 2) % 3] = u[(f->axis + 1) % 3];
+    }
+    for (int i = 0; i < 3; i++)
+        delta[i] = TLSPH_CRACK_DELTA * s * n2[i];
+    double lo = INFINITY, hi = -INFINITY;
+    fibre_span(m, f, k, &lo, &hi);
+    lo -= 0.5 * s;
+    hi += 0.5 * s;
+    const double back = edge ? s : 0.5 * s;
+    double P0[3], P1[3];
+    for (int i = 0; i < 3; i++) {
+        P0[i] = C[i] - back * u[i];
+        P1[i] = C[i] + 0.5 * s * u[i];
+    }
+    struct tlsph_crack_tip *ta = &d->tip[d->ntips + d->nstarted];
+    *ta = (struct tlsph_crack_tip){.body = b, .fibre = -1};
+    const size_t first = m->crack_surface->nfacets;
+    size_t split = 0;
+    if (add_rect(m, f, P0, P1, lo, hi, s, &ta->length, err) != 0 ||
+        split_fibre(m, b, k, u, u, delta, first, &split, err) != 0)
+        return -1;
+    memcpy(ta->T, C, sizeof C);
+    memcpy(ta->V1, u, sizeof u);
+    /* the tips' surfaces end at C, as a pre-crack's at its end: a first advance
+     * that goes through the edge runs its facets end -> past the edge fibre
+     * along C -> C_J, through C_J between its halves (from C +- s/2 u they
+     * would miss C_J when u and C_J - C differ, leaving the halves 2 delta
+     * apart in one support: measured, the run turned non-finite) */
+    memcpy(ta->end, C, sizeof C);
+    const size_t first_tip = d->ntips + d->nstarted;
+    d->nstarted++;
+    if (!edge) {
+        struct tlsph_crack_tip *tb = &d->tip[d->ntips + d->nstarted];
+        *tb = (struct tlsph_crack_tip){.body = b, .fibre = -1};
+        memcpy(tb->T, C, sizeof C);
+        memcpy(tb->end, C, sizeof C);
+        for (int i = 0; i < 3; i++)
+            tb->V1[i] = -u[i];
+        d->nstarted++;
+    }
+    d->starts++;
+    d->particles_split += split;
+    for (size_t q = first_tip; q < d->ntips + d->nstarted; q++)
+        refresh_candidates(m, &d->tip[q]);
+    if (record(d, m, first_tip, split, err) != 0)
+        return -1;
+    d->event[d->nevents - 1].fibre = (long)k;
+    d->event[d->nevents - 1].started = 1;
+    if (mark_near(m, b, C, err) != 0)
+        return -1;
+    if (log)
+        fprintf(log,
+                "tlsph: crack starts at fibre %zu of body '%s' at (%g, %g, %g) m, step %ld, "
+                "t = %g s, direction (%.3f, %.3f, %.3f)%s: tips %zu%s, %zu particles split, %zu "
+                "particles\n",
+                k, m->scene.bodies[b].name, C[0], C[1], C[2], m->step, m->t, u[0], u[1], u[2],
+                edge ? " (edge, inward)" : "", first_tip, edge ? "" : " and the next", split,
+                m->p.n);
+    return 0;
+}
+
+/* After a step: every thin body's fibres in index order (crack_driver.h). */
+static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err)
+{
+    struct tlsph_crack_driver *d = m->crack_driver;
+    const double t0 = tlsph_monotonic_seconds();
+    const double Dc = m->scene.crack_growth.critical_damage;
+    double starting = 0.0; /* the starts themselves (splits): not the scan's cost */
+    int rc = 0;
+    for (size_t b = 0; b < m->scene.nbodies && rc == 0 && !d->full; b++) {
+        const size_t n0 = m->fibres[b].n; /* fibres a start appends are halves: near */
+        if (!n0 || (rc = near_cover(m, b, err)) != 0)
+            continue;
+        for (size_t k = 0; k < n0 && rc == 0 && !d->full; k++) {
+            if (d->near[b][k])
+                continue;
+            /* the field and the fibres move with every split: read them here */
+            if (tlsph_fibre_damage(&m->fibres[b], k, tlsph_crack_criterion_field(m)) >= Dc) {
+                const double t1 = tlsph_monotonic_seconds();
+                rc = start_crack(m, b, k, log, err);
+                starting += tlsph_monotonic_seconds() - t1;
+            }
+        }
+    }
+    d->scan_seconds += tlsph_monotonic_seconds() - t0 - starting;
+    return rc;
+}
+
+/* Is fibre J of body b another tip's fibre (two cracks meeting there)? */
+static int tip_fibre_of_other(const struct tlsph_crack_driver *d, size_t self, size_t b, long J)
+{
+    for (size_t q = 0; q < d->ntips + d->nstarted; q++)
+        if (q != self && d->tip[q].body == b && d->tip[q].fibre == J)
+            return 1;
     return 0;
 }
 
@@ -411,7 +726,7 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
     const double t0 = tlsph_monotonic_seconds();
     const struct tlsph_crack_growth *g = &m->scene.crack_growth;
     int rc = 0;
-    for (size_t k = 0; k < d->ntips && rc == 0; k++) {
+    for (size_t k = 0; k < d->ntips + d->nstarted && rc == 0; k++) {
         struct tlsph_crack_tip *t = &d->tip[k];
         if (t->stopped)
             continue;
@@ -425,9 +740,21 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
         const long J = t->ncand == SIZE_MAX
                            ? tlsph_fibre_next_tip(f, D, &q)
                            : tlsph_fibre_next_tip_among(f, D, &q, t->cand, t->ncand);
-        if (J >= 0)
+        if (J >= 0 && d->near && (rc = near_cover(m, t->body, err)) == 0 &&
+            (d->near[t->body][J] == NEAR_FACE || tip_fibre_of_other(d, k, t->body, J))) {
+            /* initiation: the next fibre is a crack's face, this crack meets
+             * another (or its own): it stops there (not joined, crack_driver.h) */
+            t->stopped = 1;
+            if (log)
+                fprintf(log, "tlsph: crack tip %zu at (%g, %g, %g) m meets a crack (fibre %ld, a "
+                        "face or another tip's), step %ld: it stops\n", k, t->T[0], t->T[1], t->T[2], J, m->step);
+            continue;
+        }
+        if (J >= 0 && rc == 0)
             rc = advance(m, k, (size_t)J, log, err);
     }
+    if (rc == 0 && d->near)
+        rc = initiate_scan(m, log, err);
     d->seconds += tlsph_monotonic_seconds() - t0;
     return rc;
 }
@@ -436,7 +763,7 @@ double tlsph_crack_driver_length(const struct tlsph_model *m)
 {
     const struct tlsph_crack_driver *d = m->crack_driver;
     double sum = 0.0;
-    for (size_t k = 0; d && k < d->ntips; k++)
+    for (size_t k = 0; d && k < d->ntips + d->nstarted; k++)
         sum += d->tip[k].length;
     return sum;
 }
@@ -445,7 +772,12 @@ void tlsph_crack_driver_release(struct tlsph_model *m)
 {
     if (!m->crack_driver)
         return;
-    free(m->crack_driver->event);
-    free(m->crack_driver);
+    struct tlsph_crack_driver *d = m->crack_driver;
+    for (size_t b = 0; d->near && b < m->scene.nbodies; b++)
+        free(d->near[b]);
+    free(d->near);
+    free(d->near_cap);
+    free(d->event);
+    free(d);
     m->crack_driver = NULL;
 }

@@ -44,6 +44,38 @@
  * once more at the tip before a split, delta is normal to V2 in it, and the
  * facets span the thickness along the radial lines at their ends.
  *
+ * Initiation (crack_growth.initiate; paper 003 §6.2-6.3: in the stiffened
+ * plates "once the increasing void volume fraction reaches the threshold,
+ * crack is set to grow", with no pre-crack).  After the tips' searches, each
+ * step scans every fibre of every thin body (O(fibres), the criterion sums):
+ * a fibre whose sum reaches D_c and that is not "near a crack" starts one, in
+ * ascending fibre index (deterministic; each start marks its surroundings
+ * near, so one damaged patch starts one crack).  Near: within
+ * TLSPH_CRACK_CLEAR spacings of a through-thickness pre-crack's trace, of a
+ * fibre a tip has reached, or of a started crack, and every fibre a split
+ * made (a face's fibre).  The crack's direction u: the paper gives none; here
+ * normal to the largest principal stress of the fibre in the plane (the
+ * Cauchy stress averaged over its particles, projected on the plane): the
+ * opening mode's plane, the direction a mode-I crack runs, and the one the
+ * tip search then keeps within its fan.  The fibre is split straight
+ * (V1 = V2 = u, halves at +-delta across u) with facets spanning the
+ * thickness from C - s/2 u to C + s/2 u (s the spacing), and two tips start
+ * at C (no fibre, as a pre-crack's end) with directions +u and -u, their
+ * surface ends at C (so a first advance through the edge cuts along C -> C_J,
+ * between the edge fibre's halves).  On the body's edge (at_edge's rule) u is turned
+ * inward (towards the mean of the neighbours' centres), the facets start a
+ * spacing past the edge and one tip grows.  Started tips follow the scene's
+ * tips in the tip array (tip[ntips + j]); the crack_tips series lists the
+ * scene's tips only (its item count is fixed at output setup); the events
+ * (started = 1) and the globals crack_length / crack_advances count them.
+ * Meeting: with initiation on, a tip whose next fibre is a crack's face (a
+ * fibre a split made or split) or another tip's fibre stops there, logged:
+ * cracks are not joined (the last fibre between them stays whole), but no
+ * fibre is split twice and no tip runs along another crack's faces.
+ * At most TLSPH_CRACK_MAX_TIPS tips in all: past that the scan stops (logged
+ * once).  fan_angle must be below 180 degrees (checked at setup): a started
+ * tip sits between its fibre's halves, which a wider fan would take.
+ *
  * Energy: splitting books nothing (split.h); cutting pairs releases the
  * stored energy of the cut pairs into the next steps' kinetic and internal
  * energy through the forces, which the account follows.
@@ -60,6 +92,8 @@
 #include "util/errors.h"
 
 #define TLSPH_CRACK_DELTA 0.01  /* |delta|, spacings */
+#define TLSPH_CRACK_MAX_TIPS 64 /* scene tips plus started ones */
+#define TLSPH_CRACK_CLEAR 2.0   /* spacings: "near a crack" for initiation */
 #define TLSPH_CRACK_MAX_CAND 64 /* fibres within R of a tip (R < 2 spacings: <= 16 lattice
                                    fibres, plus split halves) */
 
@@ -72,6 +106,7 @@ struct tlsph_crack_event {
     long fibre;              /* the new tip fibre */
     size_t split;            /* particles split by this advance (0 or the fibre's, twice at an edge) */
     size_t particles;        /* particle count after it */
+    int started;             /* 1: a crack started at this fibre (initiation) */
 };
 
 struct tlsph_crack_tip {
@@ -85,8 +120,15 @@ struct tlsph_crack_tip {
 };
 
 struct tlsph_crack_driver {
-    struct tlsph_crack_tip tip[TLSPH_MAX_GROWTH_TIPS];
-    size_t ntips;
+    struct tlsph_crack_tip tip[TLSPH_CRACK_MAX_TIPS];
+    size_t ntips;            /* the scene's tips: tip[0 .. ntips-1] */
+    size_t nstarted;         /* started tips: tip[ntips .. ntips+nstarted-1] */
+    size_t starts;           /* cracks started (initiation) */
+    int full;                /* the tip array is full: no more starts */
+    unsigned char **near;    /* initiation: per body, per fibre, 1 = near a crack; NULL without */
+    size_t *near_cap;        /* entries allocated per body */
+    double scan_seconds;     /* wall time in the initiation scan without its starts, s
+                                (part of seconds) */
     struct tlsph_crack_event *event;
     size_t nevents, event_cap;
     size_t particles_split;  /* over the run */
@@ -98,7 +140,10 @@ struct tlsph_crack_driver {
  * of a crack's trace in that body's plane (the crack must be through the
  * thickness: its corners on one line in the plane), V1 outwards along the
  * trace.  Refused at /crack_growth/tips/<j> otherwise, and at /crack_growth
- * when the body's material has no damage model (D stays 0).  Call after the
+ * when the body's material has no damage model (D stays 0).  With initiate:
+ * every thin body's material is checked (at /crack_growth/initiate), the
+ * crack surface is made empty when the scene has no pre-crack, and the
+ * fibres near the pre-cracks are marked.  Call after the
  * fibres and the pre-cracks are set up.  0, or -1 with err. */
 int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err);
 
@@ -107,7 +152,7 @@ int tlsph_crack_driver_setup(struct tlsph_model *m, struct tlsph_errors *err);
  * cannot go on with a crack surface its pairs do not match). */
 int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
 
-/* Sum of the tips' grown lengths, m; 0 without a driver. */
+/* Sum of the tips' grown lengths (started tips included), m; 0 without a driver. */
 double tlsph_crack_driver_length(const struct tlsph_model *m);
 
 void tlsph_crack_driver_release(struct tlsph_model *m);

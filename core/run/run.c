@@ -211,7 +211,7 @@ int tlsph_run(struct tlsph_model *m, const struct tlsph_run_options *o,
                 "%zu isolated, dt = %.4g s\n",
                 m->p.n, m->pairs.npairs, m->p.n ? (double)m->pairs.npairs / (double)m->p.n : 0.0,
                 m->deficient_supports, m->isolated, m->dt);
-    if (o->log && m->crack_surface)
+    if (o->log && m->crack_surface && m->scene.ncracks)
         fprintf(o->log, "tlsph: the scene's cracks cut %zu reference pairs\n", m->cut_pairs);
 
     long frames = 0, next_frame = 1;

@@ -47,9 +47,14 @@ static const struct tlsph_key_choice growth_criteria[] = {
 
 /* clang-format off */
 static const struct tlsph_key growth_keys[] = {
-    {.name = "tips", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_REQUIRED | TLSPH_KEY_CALLER,
+    {.name = "tips", .kind = TLSPH_KEY_ARRAY, .flags = TLSPH_KEY_CALLER,
      .unit = "m", .description = "the crack tips that grow, each [x, y, z]: an end of a crack's "
-     "trace in the plane of a body with fibres (thickness_axis)"},
+     "trace in the plane of a body with fibres (thickness_axis); required unless initiate"},
+    {.name = "initiate", .kind = TLSPH_KEY_BOOLEAN, .flags = TLSPH_KEY_DEFAULT, .def = 0,
+     .offset = offsetof(struct tlsph_scene, crack_growth.initiate),
+     .description = "cracks also start where none is: after each step a fibre of a thin body "
+     "whose criterion sum reaches critical_damage, away from every crack, is split and grows "
+     "two tips (one, inward, at the body's edge)"},
     {.name = "critical_damage", .kind = TLSPH_KEY_NUMBER, .flags = TLSPH_KEY_DEFAULT,
      .range = {0.0, 0.0, JC_OPEN, JC_NONE}, .unit = "1", .def = 0.1,
      .offset = offsetof(struct tlsph_scene, crack_growth.critical_damage),
@@ -302,8 +307,10 @@ int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct t
                         err) != 0)
         return -1;
     const json_t *tips = json_object_get(g, "tips");
-    if (!tips) {
-        tlsph_errors_add(err, "/crack_growth/tips", "required: the crack tips that grow");
+    const int initiate = s->crack_growth.initiate;
+    if (!tips && !initiate) {
+        tlsph_errors_add(err, "/crack_growth/tips", "required (unless \"initiate\" is true): "
+                         "the crack tips that grow");
         return -1;
     }
     if (json_is_array(tips) &&
@@ -313,7 +320,7 @@ int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct t
         return -1;
     }
     struct tlsph_crack_spec pts = {0};
-    if (read_points(tips, 1, TLSPH_MAX_GROWTH_TIPS, "/crack_growth/tips", &pts, err) != 0)
+    if (tips && read_points(tips, 1, TLSPH_MAX_GROWTH_TIPS, "/crack_growth/tips", &pts, err) != 0)
         return -1;
     for (int k = 0; k < pts.ncorners; k++)
         memcpy(s->crack_growth.tip[k], pts.corner[k], sizeof pts.corner[k]);
@@ -323,7 +330,7 @@ int tlsph_parse_crack_growth(const json_t *root, struct tlsph_scene *s, struct t
                          "scene only");
         return -1;
     }
-    if (s->ncracks == 0) {
+    if (s->ncracks == 0 && !initiate) {
         tlsph_errors_add(err, P, "a crack grows from a pre-crack: the scene has no \"cracks\"");
         return -1;
     }

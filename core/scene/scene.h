@@ -228,6 +228,8 @@ struct tlsph_crack_growth {
     double search_radius;   /* R, in spacings of the tip's body */
     int criterion;          /* the particle quantity D_c is compared with, summed
                                over a fibre: TLSPH_CRACK_CRITERION_* */
+    int initiate;           /* 1: cracks also start at fibres reaching D_c away from any
+                               crack (crack_driver.h "Initiation") */
 };
 /* crack_growth.criterion (core/crack/fibre_criterion.h). */
 enum {

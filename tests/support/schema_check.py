@@ -31,6 +31,9 @@ SEMANTIC_ONLY = {
     "crack_growth_no_damage",
     "crack_growth_tip_off_crack",
     "crack_growth_criterion_no_voids",  # the material's quantities
+    "crack_growth_initiate_no_damage",  # initiation: every thin body's material,
+    "crack_growth_initiate_wide_fan",   # the fan with initiate,
+    "crack_growth_no_tips",             # tips unless initiate (kept out of the schema)
     # JSON-level: Python's json module accepts these, jansson does not
     "duplicate_key",          # JSON_REJECT_DUPLICATES
     "huge_number",            # 1e400 overflows a double
