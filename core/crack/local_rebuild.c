@@ -396,7 +396,7 @@ void tlsph_rebuild_commit(struct tlsph_model *m, struct tlsph_rebuild_plan *plan
         const size_t i = plan->rows[r];
         double cond;
         isolated += pr->start[i + 1] == pr->start[i];
-        if (tlsph_correction_row(m, i, &cond))
+        if (tlsph_correction_row_rcond(m, i, &cond, TLSPH_L_RCOND_CUT))
             deficient++;
         else
             m->max_L_condition = fmax(m->max_L_condition, cond);

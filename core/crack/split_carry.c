@@ -41,7 +41,7 @@ int tlsph_split_carry_row(struct tlsph_model *m, size_t i)
     int carried = 0;
     /* a failed point carries no stress and its F is no longer updated */
     const int failed = p->damage && p->damage[i] >= 1.0;
-    if (!failed && det > 0.0 && isfinite(det)) {
+    if (!failed && det != 0.0 && isfinite(det)) {
         mat3_inverse(Fraw, Frawi);
         mat3_mul(Frawi, p->F + 9 * i, Gnew);
         carried = 1;

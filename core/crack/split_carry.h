@@ -42,9 +42,12 @@
 /* For row i whose pairs and p.Linv (the raw L_new^-1) were just rebuilt, while
  * p.F still holds F_old: sets p.F_carry_i and p.Linv_i as above.  Returns 1
  * when carried, 0 when p.F_carry is NULL, the point has failed (D >= 1: no
- * stress, its F no longer updated) or F_raw is not invertible (det <= 0 or
- * not finite); then G_old is kept (p.Linv_i = L_new^-1 G_old) and F jumps
- * as without the carry. */
+ * stress, its F no longer updated) or F_raw is singular or not finite;
+ * then G_old is kept (p.Linv_i = L_new^-1 G_old) and F jumps as without the
+ * carry.  An F_raw with det < 0 (a support the cut left inverted against the
+ * old F) is carried too: F_raw G = F_old whatever det F_raw's sign, and
+ * keeping G_old there handed the material an inverted F (the stiffened plate
+ * of docs/crack-growth.md went non-finite 5 steps after such a row). */
 int tlsph_split_carry_row(struct tlsph_model *m, size_t i);
 
 /* Allocates p.F_carry (the identity for every particle; its capacity p.cap)

@@ -8,6 +8,12 @@
 
 int tlsph_correction_invert(double L[9], int dim, double Linv[9], double *condition)
 {
+    return tlsph_correction_invert_rcond(L, dim, Linv, condition, TLSPH_L_RCOND);
+}
+
+int tlsph_correction_invert_rcond(double L[9], int dim, double Linv[9], double *condition,
+                                  double rcond)
+{
     /* L is symmetric for a radial kernel; in 2-D it has no z row, and plane
      * strain means no gradient along z, so the z direction is the identity. */
     if (dim == 2) {
@@ -26,7 +32,7 @@ int tlsph_correction_invert(double L[9], int dim, double Linv[9], double *condit
     double amin = amax;
     for (int a = 0; a < 3; a++) {
         amin = fmin(amin, fabs(lam[a]));
-        if (amax > 0.0 && fabs(lam[a]) > TLSPH_L_RCOND * amax) {
+        if (amax > 0.0 && fabs(lam[a]) > rcond * amax) {
             inv[a] = 1.0 / lam[a];
         } else {
             inv[a] = 0.0;
@@ -75,6 +81,13 @@ int tlsph_correction_row(struct tlsph_model *m, size_t i, double *condition)
     double L[9];
     row_matrix(m, i, 1, L);
     return tlsph_correction_invert(L, m->dim, m->p.Linv + 9 * i, condition);
+}
+
+int tlsph_correction_row_rcond(struct tlsph_model *m, size_t i, double *condition, double rcond)
+{
+    double L[9];
+    row_matrix(m, i, 1, L);
+    return tlsph_correction_invert_rcond(L, m->dim, m->p.Linv + 9 * i, condition, rcond);
 }
 
 int tlsph_correction_row_status(const struct tlsph_model *m, size_t i, double *condition)

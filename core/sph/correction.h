@@ -26,7 +26,20 @@ int tlsph_correction_row_status(const struct tlsph_model *m, size_t i, double *c
  * rank-deficient (the pseudo-inverse was used), else 0 with *condition =
  * largest/smallest |eigenvalue|. */
 int tlsph_correction_invert(double L[9], int dim, double Linv[9], double *condition);
+/* The same with the relative eigenvalue floor rcond instead of TLSPH_L_RCOND. */
+int tlsph_correction_invert_rcond(double L[9], int dim, double Linv[9], double *condition,
+                                  double rcond);
+/* tlsph_correction_row with the floor rcond (the rows a crack split rebuilds,
+ * crack/local_rebuild.h: TLSPH_L_RCOND_CUT). */
+int tlsph_correction_row_rcond(struct tlsph_model *m, size_t i, double *condition, double rcond);
 
 #define TLSPH_L_RCOND 1e-6
+/* The floor for rows whose support a crack cut (crack/local_rebuild.c): a
+ * support left nearly flat by the cut (the particles beside a crack face and
+ * an edge) has an eigenvalue just above 1e-6 of the largest, and its inverse
+ * (|L^-1| up to 8e4 in the stiffened plate of docs/crack-growth.md) turns
+ * the next displacements' noise into F; below 1e-3 such a direction is
+ * treated as unsupported (no gradient read along it), as at setup. */
+#define TLSPH_L_RCOND_CUT 1e-3
 
 #endif
