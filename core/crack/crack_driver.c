@@ -18,13 +18,6 @@ static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct 
 static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err);
 static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
 
-/* The two in-plane axes of a thickness direction (as crack/fibre.c). */
-static void plane_axes(int axis, int out[2])
-{
-    out[0] = axis == 0 ? 1 : 0;
-    out[1] = axis == 2 ? 1 : 2;
-}
-
 /* |a - b| in the plane (a plate's, or a shell's tangent plane at a). */
 static double plane_distance(const struct tlsph_fibres *f, const double a[3], const double b[3])
 {
@@ -141,7 +134,7 @@ static size_t body_of(const struct tlsph_model *m, const double P[3])
             continue;
         }
         int pa[2];
-        plane_axes(f->axis, pa);
+        tlsph_fibre_plane_axes(f->axis, pa);
         const double half = 0.5 * body_spacing(m, b);
         int inside = 1;
         for (int a = 0; a < 2; a++) {
@@ -565,7 +558,7 @@ static void start_direction(const struct tlsph_model *m, const struct tlsph_fibr
         memcpy(e[1], f->dir, sizeof e[1]);
     } else {
         int pa[2];
-        plane_axes(f->axis, pa);
+        tlsph_fibre_plane_axes(f->axis, pa);
         e[0][pa[0]] = e[1][pa[1]] = 1.0;
     }
     static const int sym[3][3] = {{0, 1, 2}, {1, 3, 4}, {2, 4, 5}}; /* xx xy xz yy yz zz */

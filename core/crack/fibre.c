@@ -25,13 +25,6 @@ static int cmp_item(const void *a, const void *b)
 static enum tlsph_fibre_status stack(struct tlsph_fibres *f, struct item *it, size_t count,
                                      const double *X);
 
-/* The two in-plane axes of a thickness direction. */
-static void plane_axes(int axis, int out[2])
-{
-    out[0] = axis == 0 ? 1 : 0;
-    out[1] = axis == 2 ? 1 : 2;
-}
-
 enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double *X,
                                            const size_t *index, size_t count, double spacing,
                                            int axis, size_t *bad)
@@ -41,7 +34,7 @@ enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double 
     if (axis < 0 || axis > 2 || !(spacing > 0.0) || !isfinite(spacing) || count == 0)
         return TLSPH_FIBRE_BAD_INPUT;
     int pa[2];
-    plane_axes(axis, pa);
+    tlsph_fibre_plane_axes(axis, pa);
     double lo[2] = {INFINITY, INFINITY};
     for (size_t k = 0; k < count; k++)
         for (int a = 0; a < 2; a++)
@@ -149,7 +142,7 @@ void tlsph_fibres_local(const struct tlsph_fibres *f, const double P[3], const d
 {
     if (f->axis != TLSPH_FIBRE_RADIAL) {
         int pa[2];
-        plane_axes(f->axis, pa);
+        tlsph_fibre_plane_axes(f->axis, pa);
         out[0] = v[pa[0]];
         out[1] = v[pa[1]];
         return;

@@ -123,6 +123,14 @@ void tlsph_fibres_local(const struct tlsph_fibres *f, const double P[3], const d
  * distance from the axis for a shell. */
 double tlsph_fibres_depth(const struct tlsph_fibres *f, const double X[3]);
 
+/* The two in-plane axes of a plate with thickness direction `axis` (0..2), in
+ * increasing order. */
+static inline void tlsph_fibre_plane_axes(int axis, int out[2])
+{
+    out[0] = axis == 0 ? 1 : 0;
+    out[1] = axis == 2 ? 1 : 2;
+}
+
 /* D_J: the sum of D over fibre k's particles (D indexed by particle). */
 double tlsph_fibre_damage(const struct tlsph_fibres *f, size_t k, const double *D);
 
