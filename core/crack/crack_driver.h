@@ -113,6 +113,7 @@ struct tlsph_crack_tip {
     size_t body;
     double T[3], V1[3], end[3];
     long fibre;
+    int region;              /* the fibres' region it grows in (fibre.h; 0 without regions) */
     int stopped;             /* reached the body's edge */
     double length;           /* in-plane length of the facets added (the cut's growth), m */
     size_t advances;
