@@ -102,6 +102,12 @@ int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3],
  * b->refine; 0, or -1 with errors under pointer ("/bodies/<i>"). */
 int tlsph_parse_refine(const json_t *obj, int dimension, struct tlsph_body *b, const char *pointer,
                        struct tlsph_errors *err);
+/* parse_geometry.c: a box object {"min": [..], "max": [..]} (m) with key table t
+ * at pointer P into lo, hi; refused at P/max/<k> when max[k] <= min[k] for k <
+ * naxes ("<what> max[k] = ... must be greater than ...").  0 or -1. */
+int tlsph_parse_box_corners(const json_t *o, const struct tlsph_key_table *t, int naxes,
+                            const char *what, const char *P, double lo[3], double hi[3],
+                            struct tlsph_errors *err);
 /* A body's "thickness_regions" (thickness_regions.c): into b->thickness_region,
  * b->thickness_axis = TLSPH_THICKNESS_REGIONS when given.  0 or -1. */
 int tlsph_parse_thickness_regions(const json_t *obj, int dimension, struct tlsph_body *b,

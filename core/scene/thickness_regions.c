@@ -63,21 +63,8 @@ static int parse_item(const json_t *o, struct tlsph_thickness_region *r, const c
     if (!box)
         return -1;
     tlsph_pointer_join(p, sizeof p, P, "box");
-    bad |= tlsph_keys_unknown(box, &box_table, p, err) != 0;
-    if (jc_vector(box, "min", 1, 3, "m", p, r->min, err) ||
-        jc_vector(box, "max", 1, 3, "m", p, r->max, err))
-        return -1;
-    for (int k = 0; k < 3; k++)
-        if (!(r->max[k] > r->min[k])) {
-            char m[TLSPH_POINTER_MAX], mk[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(m, sizeof m, p, "max");
-            tlsph_pointer_index(mk, sizeof mk, m, (size_t)k);
-            tlsph_errors_add(err, mk,
-                             "the region's box is empty: max[%d] = %g m must be greater than "
-                             "min[%d] = %g m",
-                             k, r->max[k], k, r->min[k]);
-            bad = 1;
-        }
+    bad |= tlsph_parse_box_corners(box, &box_table, 3, "thickness region box", p, r->min, r->max,
+                                   err) != 0;
     return bad ? -1 : 0;
 }
 
