@@ -20,6 +20,9 @@ static enum tlsph_fibre_status radial(struct tlsph_model *m, size_t b, const siz
                                      g->a + 3, bad);
 }
 
+_Static_assert(TLSPH_MAX_THICKNESS_REGIONS == TLSPH_FIBRE_MAX_REGIONS,
+               "the scene's regions are the fibre set's regions");
+
 /* Body b's fibres per region ("thickness_regions", fibre.h): each particle's
  * region by its reference position; a particle in two regions, a region
  * without particles, particles off the lattice and a fibre with a gap (two
