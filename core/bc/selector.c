@@ -86,29 +86,14 @@ int tlsph_selector_read(const json_t *obj, int required, struct tlsph_scene *s,
     const json_t *box = jc_object(v, "box", 0, p, err);
     if (box) {
         tlsph_pointer_join(q, sizeof q, p, "box");
-        bad |= tlsph_keys_unknown(box, &box_table, q, err) != 0;
-        int r1 = jc_vector(box, "min", 1, 3, "m", q, sel->box_min, err);
-        int r2 = jc_vector(box, "max", 1, 3, "m", q, sel->box_max, err);
-        if (r1 || r2) {
-            bad = 1;
-        } else {
-            if (s->dimension == 2) {
-                sel->box_min[2] = -1e300;
-                sel->box_max[2] = 1e300;
-            }
-            for (int k = 0; k < s->dimension; k++)
-                if (!(sel->box_max[k] > sel->box_min[k])) {
-                    char m[TLSPH_POINTER_MAX], mk[TLSPH_POINTER_MAX];
-                    tlsph_pointer_join(m, sizeof m, q, "max");
-                    tlsph_pointer_index(mk, sizeof mk, m, (size_t)k);
-                    tlsph_errors_add(err, mk,
-                                     "selector box max[%d] = %g m must be greater than min[%d] "
-                                     "= %g m",
-                                     k, sel->box_max[k], k, sel->box_min[k]);
-                    bad = 1;
-                }
-            sel->has_box = 1;
+        const int rb = tlsph_parse_box_corners(box, &box_table, s->dimension, "selector box", q,
+                                               sel->box_min, sel->box_max, err);
+        bad |= rb != 0;
+        if (s->dimension == 2) {
+            sel->box_min[2] = -1e300;
+            sel->box_max[2] = 1e300;
         }
+        sel->has_box = 1;
     } else if (json_object_get(v, "box")) {
         bad = 1;
     }

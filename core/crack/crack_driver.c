@@ -14,7 +14,8 @@
 
 /* Initiation (crack_driver.h "Initiation"), defined after the advance. */
 static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err);
-static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct tlsph_errors *err);
+static int mark_near(struct tlsph_model *m, size_t b, int r, const double P[3],
+                     struct tlsph_errors *err);
 static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err);
 static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
 
@@ -74,7 +75,8 @@ static double body_spacing(const struct tlsph_model *m, size_t b)
  * list holds: ncand = SIZE_MAX). */
 static void refresh_candidates(const struct tlsph_model *m, struct tlsph_crack_tip *t)
 {
-    const struct tlsph_fibres *f = &m->fibres[t->body];
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[t->body], t->region);
+    const struct tlsph_fibres *f = &view;
     const double R = m->scene.crack_growth.search_radius * body_spacing(m, t->body);
     const size_t n = tlsph_fibres_within(f, t->T, R * (1.0 + 1e-9), t->cand, TLSPH_CRACK_MAX_CAND);
     t->ncand = n <= TLSPH_CRACK_MAX_CAND ? n : SIZE_MAX;
@@ -182,6 +184,12 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
     if (body_can_crack(m, b, p, "the crack cannot grow", err) != 0)
         return -1;
     const struct tlsph_fibres *f = &m->fibres[b];
+    if (f->nregions) { /* which region's plane the trace lies in: not decided yet */
+        tlsph_errors_add(err, p, "body '%s' has thickness_regions: its cracks start by "
+                         "initiation (\"initiate\": true), a pre-crack's tip there is not "
+                         "supported", body->name);
+        return -1;
+    }
     for (size_t c = 0; c < m->scene.ncracks; c++) {
         double A[3], B[3];
         if (trace_ends(&m->scene.cracks[c], f, A, B) != 0)
@@ -337,7 +345,10 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
     struct tlsph_crack_driver *d = m->crack_driver;
     struct tlsph_crack_tip *t = &d->tip[tip];
     const size_t b = t->body;
-    const struct tlsph_fibres *f = &m->fibres[b];
+    /* the tip's region (valid until the first split below: after it only the
+     * geometry of the view, its axis, is read; fibres from m->fibres again) */
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[b], t->region);
+    const struct tlsph_fibres *f = &view;
     const int axis = f->axis;
     const double s = body_spacing(m, b);
     double CJ[3], V2[3], u2[3], delta[3], n2[3] = {0, 0, 0};
@@ -363,12 +374,12 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
     for (int k = 0; k < 3; k++)
         delta[k] = dm * n2[k];
     double lo = INFINITY, hi = -INFINITY;
-    fibre_span(m, &m->fibres[b], J, &lo, &hi);
+    fibre_span(m, f, J, &lo, &hi);
     if (t->fibre >= 0)
-        fibre_span(m, &m->fibres[b], (size_t)t->fibre, &lo, &hi);
+        fibre_span(m, f, (size_t)t->fibre, &lo, &hi);
     lo -= 0.5 * s;
     hi += 0.5 * s;
-    const int edge = at_edge(&m->fibres[b], J, s);
+    const int edge = at_edge(f, J, s);
     size_t split = 0;
     if (t->fibre >= 0) {
         double CI[3], stop[3];
@@ -404,7 +415,7 @@ static int advance(struct tlsph_model *m, size_t tip, size_t J, FILE *log,
     d->particles_split += split;
     if (record(d, m, tip, split, err) != 0)
         return -1;
-    if (d->near && mark_near(m, b, CJ, err) != 0)
+    if (d->near && mark_near(m, b, t->region, CJ, err) != 0)
         return -1;
     for (size_t q = 0; q < d->ntips + d->nstarted; q++)
         refresh_candidates(m, &d->tip[q]);
@@ -445,15 +456,18 @@ static int near_cover(struct tlsph_model *m, size_t b, struct tlsph_errors *err)
 
 /* Marks body b's fibres within TLSPH_CRACK_CLEAR spacings of P near (a scan
  * of the body's fibres: once per advance or start, not per step). */
-static int mark_near(struct tlsph_model *m, size_t b, const double P[3], struct tlsph_errors *err)
+static int mark_near(struct tlsph_model *m, size_t b, int r, const double P[3],
+                     struct tlsph_errors *err)
 {
     if (near_cover(m, b, err) != 0)
         return -1;
-    const struct tlsph_fibres *f = &m->fibres[b];
-    const double r = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[b], r);
+    const struct tlsph_fibres *f = &view;
+    const double radius = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
     unsigned char *near = m->crack_driver->near[b];
     for (size_t k = 0; k < f->n; k++)
-        if (plane_distance(f, P, f->centre[k]) <= r && !near[k])
+        if (tlsph_fibres_sees(f, k) && plane_distance(f, P, f->centre[k]) <= radius &&
+            !near[k])
             near[k] = NEAR;
     return 0;
 }
@@ -470,16 +484,17 @@ static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_err
 
 /* Marks body b's fibres within TLSPH_CRACK_CLEAR spacings of the in-plane
  * segment A-B near (a pre-crack's trace). */
-static void mark_near_segment(struct tlsph_model *m, size_t b, const double A[3],
-                              const double B[3])
+static void mark_near_segment(struct tlsph_model *m, size_t b, const struct tlsph_fibres *f,
+                              const double A[3], const double B[3])
 {
-    const struct tlsph_fibres *f = &m->fibres[b];
     const double r = TLSPH_CRACK_CLEAR * body_spacing(m, b) * (1.0 + 1e-9);
     const double AB[3] = {B[0] - A[0], B[1] - A[1], B[2] - A[2]};
     double u[2];
     tlsph_fibres_local(f, A, AB, u);
     const double L2 = u[0] * u[0] + u[1] * u[1];
     for (size_t k = 0; k < f->n; k++) {
+        if (!tlsph_fibres_sees(f, k))
+            continue;
         const double AC[3] = {f->centre[k][0] - A[0], f->centre[k][1] - A[1],
                               f->centre[k][2] - A[2]};
         double c[2];
@@ -520,10 +535,13 @@ static int initiate_setup(struct tlsph_model *m, struct tlsph_errors *err)
             return -1;
         }
         d->near_cap[b] = f->n;
-        for (size_t c = 0; c < m->scene.ncracks; c++) {
-            double A[3], B[3];
-            if (trace_ends(&m->scene.cracks[c], f, A, B) == 0)
-                mark_near_segment(m, b, A, B);
+        for (int r = 0; r < (f->nregions ? f->nregions : 1); r++) { /* each region's plane */
+            const struct tlsph_fibres view = tlsph_fibres_view(f, r);
+            for (size_t c = 0; c < m->scene.ncracks; c++) {
+                double A[3], B[3];
+                if (trace_ends(&m->scene.cracks[c], &view, A, B) == 0)
+                    mark_near_segment(m, b, &view, A, B);
+            }
         }
     }
     if (!m->crack_surface) { /* no pre-crack: an empty surface (cells as precrack.c) */
@@ -581,7 +599,10 @@ static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
                        struct tlsph_errors *err)
 {
     struct tlsph_crack_driver *d = m->crack_driver;
-    const struct tlsph_fibres *f = &m->fibres[b];
+    const int region = tlsph_fibres_region_of(&m->fibres[b], k);
+    /* k's region (valid until k's split below: after it only its axis is read) */
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[b], region);
+    const struct tlsph_fibres *f = &view;
     const double s = body_spacing(m, b);
     const int edge = at_edge(f, k, s);
     if (d->ntips + d->nstarted + (edge ? 1 : 2) > TLSPH_CRACK_MAX_TIPS) {
@@ -629,7 +650,7 @@ static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
         P1[i] = C[i] + 0.5 * s * u[i];
     }
     struct tlsph_crack_tip *ta = &d->tip[d->ntips + d->nstarted];
-    *ta = (struct tlsph_crack_tip){.body = b, .fibre = -1};
+    *ta = (struct tlsph_crack_tip){.body = b, .fibre = -1, .region = region};
     const size_t first = m->crack_surface->nfacets;
     size_t split = 0;
     if (add_rect(m, f, P0, P1, lo, hi, s, &ta->length, err) != 0 ||
@@ -647,7 +668,7 @@ static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
     d->nstarted++;
     if (!edge) {
         struct tlsph_crack_tip *tb = &d->tip[d->ntips + d->nstarted];
-        *tb = (struct tlsph_crack_tip){.body = b, .fibre = -1};
+        *tb = (struct tlsph_crack_tip){.body = b, .fibre = -1, .region = region};
         memcpy(tb->T, C, sizeof C);
         memcpy(tb->end, C, sizeof C);
         for (int i = 0; i < 3; i++)
@@ -662,7 +683,7 @@ static int start_crack(struct tlsph_model *m, size_t b, size_t k, FILE *log,
         return -1;
     d->event[d->nevents - 1].fibre = (long)k;
     d->event[d->nevents - 1].started = 1;
-    if (mark_near(m, b, C, err) != 0)
+    if (mark_near(m, b, region, C, err) != 0)
         return -1;
     if (log)
         fprintf(log,
@@ -723,7 +744,8 @@ int tlsph_crack_driver_step(struct tlsph_model *m, FILE *log, struct tlsph_error
         struct tlsph_crack_tip *t = &d->tip[k];
         if (t->stopped)
             continue;
-        const struct tlsph_fibres *f = &m->fibres[t->body];
+        const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[t->body], t->region);
+        const struct tlsph_fibres *f = &view;
         struct tlsph_tip_search q = {.radius = g->search_radius * body_spacing(m, t->body),
                                      .theta_c = g->fan_angle * M_PI / 180.0,
                                      .D_c = g->critical_damage};

@@ -39,6 +39,10 @@
  * and the facets run past the edge by a spacing; the tip stops growing.
  * One advance per tip and step: the damage field answers the cut before the
  * next search.
+ * In a body with fibres per region (thickness_regions, crack/fibre.h) "the
+ * plane" is the tip's region's (tip.region, the region of the fibre it started
+ * at): every geometric step below reads the body's fibres through that
+ * region's view, and a tip never steps into another region.
  * On a curved shell (radial fibres, crack/fibre.h) "the plane" is the shell's
  * tangent plane at the point in question: V1 and V2 are projected on it, V1
  * once more at the tip before a split, delta is normal to V2 in it, and the
@@ -113,6 +117,7 @@ struct tlsph_crack_tip {
     size_t body;
     double T[3], V1[3], end[3];
     long fibre;
+    int region;              /* the fibres' region it grows in (fibre.h; 0 without regions) */
     int stopped;             /* reached the body's edge */
     double length;           /* in-plane length of the facets added (the cut's growth), m */
     size_t advances;

@@ -61,6 +61,74 @@ enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double 
     return stack(f, it, count, X);
 }
 
+/* Appends the fibres of g (particles and centres) to f as region r. */
+static void append_fibres(struct tlsph_fibres *f, const struct tlsph_fibres *g, int r)
+{
+    const size_t used = f->n ? f->start[f->n] : 0;
+    for (size_t j = 0; j < g->n; j++) {
+        f->start[f->n + j] = used + g->start[j];
+        memcpy(f->centre[f->n + j], g->centre[j], sizeof f->centre[0]);
+        f->region[f->n + j] = r;
+    }
+    memcpy(f->particle + used, g->particle, g->start[g->n] * sizeof *f->particle);
+    f->n += g->n;
+    f->start[f->n] = used + g->start[g->n];
+}
+
+enum tlsph_fibre_status tlsph_fibres_build_regions(struct tlsph_fibres *f, const double *X,
+                                                   const size_t *index, const int *region_of,
+                                                   size_t count, double spacing,
+                                                   const int *axes, int nregions, size_t *bad)
+{
+    memset(f, 0, sizeof *f);
+    if (nregions < 1 || nregions > TLSPH_FIBRE_MAX_REGIONS)
+        return TLSPH_FIBRE_BAD_INPUT;
+    for (int r = 0; r < nregions; r++) {
+        if (axes[r] < 0 || axes[r] > 2)
+            return TLSPH_FIBRE_BAD_INPUT;
+        f->region_axis[r] = axes[r];
+    }
+    f->axis = axes[0];
+    f->nregions = nregions;
+    /* at most one fibre per particle: the arrays sized by the particles in a region */
+    size_t inside = 0;
+    for (size_t k = 0; k < count; k++)
+        inside += region_of[k] >= 0 && region_of[k] < nregions;
+    size_t *sub = malloc((inside ? inside : 1) * sizeof *sub);
+    f->start = malloc((inside + 1) * sizeof *f->start);
+    f->particle = malloc((inside ? inside : 1) * sizeof *f->particle);
+    f->centre = malloc((inside ? inside : 1) * sizeof *f->centre);
+    f->region = malloc((inside ? inside : 1) * sizeof *f->region);
+    enum tlsph_fibre_status st = TLSPH_FIBRE_OK;
+    if (!sub || !f->start || !f->particle || !f->centre || !f->region)
+        st = TLSPH_FIBRE_NO_MEMORY;
+    else
+        f->start[0] = 0;
+    for (int r = 0; r < nregions && st == TLSPH_FIBRE_OK; r++) {
+        size_t m = 0;
+        for (size_t k = 0; k < count; k++)
+            if (region_of[k] == r)
+                sub[m++] = index[k];
+        if (m == 0) {
+            if (bad)
+                *bad = (size_t)-1 - (size_t)r;
+            st = TLSPH_FIBRE_BAD_INPUT;
+            break;
+        }
+        struct tlsph_fibres g;
+        st = tlsph_fibres_build(&g, X, sub, m, spacing, axes[r], bad);
+        if (st == TLSPH_FIBRE_OK)
+            append_fibres(f, &g, r);
+        tlsph_fibres_release(&g);
+    }
+    free(sub);
+    if (st != TLSPH_FIBRE_OK) {
+        tlsph_fibres_release(f);
+        return st;
+    }
+    return TLSPH_FIBRE_OK;
+}
+
 /* The fibres of items it[0..count-1] (their cells set, along the coordinate
  * through the thickness): sorted, grouped by cell, centres; frees it. */
 static enum tlsph_fibre_status stack(struct tlsph_fibres *f, struct item *it, size_t count,
@@ -312,6 +380,8 @@ static long next_tip(const struct tlsph_fibres *f, const double *D, const struct
     const size_t n = cand ? ncand : f->n;
     for (size_t c = 0; c < n; c++) {
         const size_t j = cand ? cand[c] : c;
+        if (!tlsph_fibres_sees(f, j))
+            continue;
         const double d[3] = {f->centre[j][0] - q->tip[0], f->centre[j][1] - q->tip[1],
                              f->centre[j][2] - q->tip[2]};
         double v2[2];
@@ -353,6 +423,8 @@ size_t tlsph_fibres_within(const struct tlsph_fibres *f, const double point[3], 
 {
     size_t n = 0;
     for (size_t j = 0; j < f->n; j++) {
+        if (!tlsph_fibres_sees(f, j))
+            continue;
         const double d[3] = {f->centre[j][0] - point[0], f->centre[j][1] - point[1],
                              f->centre[j][2] - point[2]};
         double v[2];
@@ -370,20 +442,20 @@ void tlsph_fibres_release(struct tlsph_fibres *f)
     free(f->start);
     free(f->particle);
     free(f->centre);
+    free(f->region);
     memset(f, 0, sizeof *f);
 }
 
 int tlsph_fibres_split_prepare(const struct tlsph_fibres *f, size_t k, struct tlsph_fibres *fresh)
 {
-    memset(fresh, 0, sizeof *fresh);
-    fresh->axis = f->axis;
-    memcpy(fresh->base, f->base, sizeof fresh->base);
-    memcpy(fresh->dir, f->dir, sizeof fresh->dir);
+    *fresh = *f; /* the header: axis, base, dir, regions */
+    fresh->only = 0;
     const size_t count = f->n ? f->start[f->n] : 0;
     fresh->start = malloc((f->n + k + 1) * sizeof *fresh->start);
     fresh->particle = malloc((count + k) * sizeof *fresh->particle);
     fresh->centre = malloc((f->n + k) * sizeof *fresh->centre);
-    if (!fresh->start || !fresh->particle || !fresh->centre) {
+    fresh->region = f->region ? malloc((f->n + k) * sizeof *fresh->region) : NULL;
+    if (!fresh->start || !fresh->particle || !fresh->centre || (f->region && !fresh->region)) {
         tlsph_fibres_release(fresh);
         return -1;
     }
@@ -416,6 +488,8 @@ size_t tlsph_fibres_split_commit(struct tlsph_fibres *f, struct tlsph_fibres *fr
     memcpy(fresh->start, f->start, (f->n + 1) * sizeof *f->start);
     memcpy(fresh->particle, f->particle, count * sizeof *f->particle);
     memcpy(fresh->centre, f->centre, f->n * sizeof *f->centre);
+    if (f->region)
+        memcpy(fresh->region, f->region, f->n * sizeof *f->region);
     size_t nf = f->n, used = count;
     for (size_t j = 0; j < f->n; j++) {
         const size_t first = used;
@@ -427,6 +501,8 @@ size_t tlsph_fibres_split_commit(struct tlsph_fibres *f, struct tlsph_fibres *fr
         if (used == first)
             continue;
         fresh->start[++nf] = used;
+        if (fresh->region) /* the new face's fibre stays in its parent's region */
+            fresh->region[nf - 1] = f->region[j];
         fibre_centre(fresh, j, X);
         fibre_centre(fresh, nf - 1, X);
     }

@@ -53,14 +53,22 @@
 #define TLSPH_FIBRE_OFFSET_TOL 1e-6 /* spacings: a lattice point's distance to its cell's */
 #define TLSPH_FIBRE_RADIAL 3         /* axis of a curved shell's fibres: the radius (below) */
 
+#define TLSPH_FIBRE_MAX_REGIONS 8 /* regions of one body, each with its own axis (below) */
+
 struct tlsph_fibres {
-    int axis;             /* thickness direction: 0 = x, 1 = y, 2 = z, TLSPH_FIBRE_RADIAL */
+    int axis;             /* thickness direction: 0 = x, 1 = y, 2 = z, TLSPH_FIBRE_RADIAL
+                             (a set with regions: region 0's; read it through a view) */
     size_t n;             /* fibres */
     size_t *start;        /* [n + 1]: fibre k's particles are particle[start[k] .. start[k+1]-1] */
     size_t *particle;     /* particle indices, each fibre ordered along axis */
     double (*centre)[3];  /* each fibre's reference centre, m */
     double base[3], dir[3]; /* TLSPH_FIBRE_RADIAL: a point of the shell's axis (m) and its
                                unit direction; unused otherwise */
+    int nregions;           /* 0: one region, every fibre along axis; else region[] holds
+                               each fibre's region, region_axis each region's axis (0..2) */
+    int region_axis[TLSPH_FIBRE_MAX_REGIONS];
+    int *region;            /* [n] with regions, else NULL */
+    int only;               /* 0; in a view (tlsph_fibres_view) r + 1: region r's fibres only */
 };
 
 enum tlsph_fibre_status {
@@ -104,6 +112,50 @@ enum tlsph_fibre_status tlsph_fibres_build_radial(struct tlsph_fibres *f, const 
                                                   const size_t *index, size_t count,
                                                   double spacing, const double base[3],
                                                   const double dir[3], size_t *bad);
+
+/* Fibres of several regions of one body (a stiffened plate: the plate's
+ * region thin along z, each stiffener's along y).  Particle index[k] belongs
+ * to region region_of[k] (0 .. nregions-1, or -1: in no region and no fibre);
+ * each region's fibres are built by the lattice rule along its own axis
+ * axes[r] (0..2) from its own lowest particle, and appended region by region
+ * (the fibres of region 0 first).  *bad as tlsph_fibres_build; a region with
+ * no particle: bad input with *bad = (size_t)-1 - r.
+ *
+ * A set with regions is read through views: tlsph_fibres_view(f, r) is f with
+ * region r's axis whose queries (the tip search, tlsph_fibres_within) see
+ * region r's fibres only; the geometry (normal, local, depth) then measures in
+ * r's plane.  A crack stays in the region it grows in: a fibre of another
+ * region is no candidate (projected on r's plane it would lie anywhere: two
+ * stiffeners' fibres coincide there), and a particle in no region is no fibre,
+ * so the tip treats it as the body's edge. */
+enum tlsph_fibre_status tlsph_fibres_build_regions(struct tlsph_fibres *f, const double *X,
+                                                   const size_t *index, const int *region_of,
+                                                   size_t count, double spacing,
+                                                   const int *axes, int nregions, size_t *bad);
+
+/* Fibre k's region (0 for a set without regions). */
+static inline int tlsph_fibres_region_of(const struct tlsph_fibres *f, size_t k)
+{
+    return f->region ? f->region[k] : 0;
+}
+
+/* The view of region r of f (f itself for a set without regions): a copy of
+ * the header sharing f's arrays, valid until f changes (a split). */
+static inline struct tlsph_fibres tlsph_fibres_view(const struct tlsph_fibres *f, int r)
+{
+    struct tlsph_fibres v = *f;
+    if (f->nregions > 0 && r >= 0 && r < f->nregions) {
+        v.axis = f->region_axis[r];
+        v.only = r + 1;
+    }
+    return v;
+}
+
+/* Does the view f see fibre k? */
+static inline int tlsph_fibres_sees(const struct tlsph_fibres *f, size_t k)
+{
+    return !f->only || !f->region || f->region[k] == f->only - 1;
+}
 
 /* The thickness direction at point P (unit): e_axis for a plate, the radial
  * direction at P (away from the axis) for a shell; 0, or -1 for a point on a

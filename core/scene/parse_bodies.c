@@ -141,6 +141,7 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     bad |= parse_initial_velocity(obj, s, b, P, err) != 0;
     if (geometry_ok)
         bad |= tlsph_parse_refine(obj, s->dimension, b, P, err) != 0;
+    bad |= tlsph_parse_thickness_regions(obj, s->dimension, b, P, err) != 0;
     /* fibres stack the particles of a uniform lattice through a plate's
      * thickness (crack/fibre.h): other sets have no unambiguous stacks */
     const struct tlsph_geometry *base = geometry_ok ? tlsph_conforming_base(&b->geometry) : NULL;
@@ -158,7 +159,8 @@ static int parse_body(const json_t *obj, size_t index, struct tlsph_scene *s,
     } else if (b->thickness_axis >= 0 && b->thickness_axis != 3 &&
         (s->dimension == 2 || b->placement == TLSPH_PLACEMENT_CONFORMING ||
          json_object_get(obj, "refine"))) {
-        tlsph_pointer_join(p, sizeof p, P, "thickness_axis");
+        tlsph_pointer_join(p, sizeof p, P,
+                           b->nthickness_regions ? "thickness_regions" : "thickness_axis");
         tlsph_errors_add(err, p,
                          "body '%s': fibres stack a uniform lattice through a plate's thickness: "
                          "%s",

@@ -76,27 +76,35 @@ static const struct tlsph_key box_keys[] = {
 static const struct tlsph_key_table box_table = PRIMITIVE("box", box_keys);
 /* clang-format on */
 
-static int parse_box(const json_t *o, int dim, const char *P, double *a, struct tlsph_errors *err)
+int tlsph_parse_box_corners(const json_t *o, const struct tlsph_key_table *t, int naxes,
+                            const char *what, const char *P, double lo[3], double hi[3],
+                            struct tlsph_errors *err)
 {
-    int bad = tlsph_keys_unknown(o, &box_table, P, err) != 0;
-    int r1 = jc_vector(o, "min", 1, 3, "m", P, a, err);
-    int r2 = jc_vector(o, "max", 1, 3, "m", P, a + 3, err);
+    int bad = tlsph_keys_unknown(o, t, P, err) != 0;
+    int r1 = jc_vector(o, "min", 1, 3, "m", P, lo, err);
+    int r2 = jc_vector(o, "max", 1, 3, "m", P, hi, err);
     if (r1 || r2)
         return -1;
+    for (int k = 0; k < naxes; k++)
+        if (!(hi[k] > lo[k])) {
+            char p[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
+            tlsph_pointer_join(p, sizeof p, P, "max");
+            tlsph_pointer_index(q, sizeof q, p, (size_t)k);
+            tlsph_errors_add(err, q, "%s max[%d] = %g m must be greater than min[%d] = %g m",
+                             what, k, hi[k], k, lo[k]);
+            bad = 1;
+        }
+    return bad ? -1 : 0;
+}
+
+static int parse_box(const json_t *o, int dim, const char *P, double *a, struct tlsph_errors *err)
+{
+    const int rc = tlsph_parse_box_corners(o, &box_table, dim, "box", P, a, a + 3, err);
     if (dim == 2) {
         a[2] = -0.5;
         a[5] = 0.5;
     }
-    for (int k = 0; k < dim; k++)
-        if (!(a[3 + k] > a[k])) {
-            char p[TLSPH_POINTER_MAX], q[TLSPH_POINTER_MAX];
-            tlsph_pointer_join(p, sizeof p, P, "max");
-            tlsph_pointer_index(q, sizeof q, p, (size_t)k);
-            tlsph_errors_add(err, q, "box max[%d] = %g m must be greater than min[%d] = %g m", k,
-                             a[3 + k], k, a[k]);
-            bad = 1;
-        }
-    return bad ? -1 : 0;
+    return rc;
 }
 
 /* clang-format off */

@@ -15,6 +15,7 @@
 extern const struct tlsph_key_table tlsph_material_keys; /* "/materials/<name>" */
 extern const struct tlsph_key_table tlsph_body_keys;     /* "/bodies/<i>" */
 extern const struct tlsph_key_table tlsph_refine_keys;   /* "/bodies/<i>/refine/<k>" (refine.c) */
+extern const struct tlsph_key_table tlsph_thickness_region_keys; /* "/bodies/<i>/thickness_regions/<k>" */
 extern const struct tlsph_key_table tlsph_gauge_keys;    /* "/output/gauges/<i>" */
 extern const struct tlsph_key_table tlsph_section_keys;  /* "/output/sections/<i>" */
 extern const struct tlsph_key_table tlsph_probe_keys;    /* "/output/probes/<i>" */
@@ -101,6 +102,16 @@ int tlsph_lattice_visit(const struct tlsph_scene *s, size_t b, const long lo[3],
  * b->refine; 0, or -1 with errors under pointer ("/bodies/<i>"). */
 int tlsph_parse_refine(const json_t *obj, int dimension, struct tlsph_body *b, const char *pointer,
                        struct tlsph_errors *err);
+/* parse_geometry.c: a box object {"min": [..], "max": [..]} (m) with key table t
+ * at pointer P into lo, hi; refused at P/max/<k> when max[k] <= min[k] for k <
+ * naxes ("<what> max[k] = ... must be greater than ...").  0 or -1. */
+int tlsph_parse_box_corners(const json_t *o, const struct tlsph_key_table *t, int naxes,
+                            const char *what, const char *P, double lo[3], double hi[3],
+                            struct tlsph_errors *err);
+/* A body's "thickness_regions" (thickness_regions.c): into b->thickness_region,
+ * b->thickness_axis = TLSPH_THICKNESS_REGIONS when given.  0 or -1. */
+int tlsph_parse_thickness_regions(const json_t *obj, int dimension, struct tlsph_body *b,
+                                  const char *pointer, struct tlsph_errors *err);
 void tlsph_refine_free(struct tlsph_body *b);
 
 /* graded.c: a body with refine regions.  Calls visit at each leaf cell's

@@ -132,6 +132,17 @@ struct tlsph_refine {
     double grading;               /* growth of the spacing per spacing of distance, 1 (> 1) */
 };
 
+/* A region of a thin body with its own thickness direction ("thickness_regions",
+ * core/scene/thickness_regions.c; crack/fibre.h tlsph_fibres_build_regions): the
+ * particles whose reference position lies in the closed box min..max form fibres
+ * along axis. */
+#define TLSPH_MAX_THICKNESS_REGIONS 8 /* = TLSPH_FIBRE_MAX_REGIONS */
+#define TLSPH_THICKNESS_REGIONS 4     /* thickness_axis of a body with regions */
+struct tlsph_thickness_region {
+    int axis;                   /* 0 = x, 1 = y, 2 = z */
+    double min[3], max[3];      /* m */
+};
+
 struct tlsph_body {
     char name[TLSPH_NAME_MAX];
     int material;       /* index into scene->materials */
@@ -144,7 +155,10 @@ struct tlsph_body {
     size_t nrefine;
     int thickness_axis; /* a thin body's thickness direction (0 = x, 1 = y, 2 = z, 3 =
                            radial: a conforming cylinder's wall): its particles form
-                           fibres (crack/fibre.h); -1 = not thin */
+                           fibres (crack/fibre.h); -1 = not thin;
+                           TLSPH_THICKNESS_REGIONS: per region, below */
+    int nthickness_regions; /* 0, or the regions of "thickness_regions" */
+    struct tlsph_thickness_region thickness_region[TLSPH_MAX_THICKNESS_REGIONS];
 };
 
 /* Which particles a boundary condition applies to.  A particle is selected when it

@@ -338,6 +338,12 @@ static const struct tlsph_key body_keys[] = {
                     "along which its particles stack into fibres for the crack-tip search; "
                     "radial = a cylindrical shell's wall (conforming placement of a cylinder, "
                     "the same count on every shell); none = not thin"},
+    {.name = "thickness_regions", .kind = TLSPH_KEY_ARRAY, .flags = CALLER,
+     .table = &tlsph_thickness_region_keys,
+     .description = "a thin body whose parts are thin in different directions (a plate and "
+                    "its stiffeners; 3-D, uniform lattice): 1 to 8 regions, each a box and the "
+                    "axis its particles stack along into fibres; a particle in no region is in "
+                    "no fibre, one in two is refused; not with thickness_axis"},
 };
 const struct tlsph_key_table tlsph_body_keys = TLSPH_KEY_TABLE("/bodies/*", NULL, body_keys);
 

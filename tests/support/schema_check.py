@@ -26,6 +26,12 @@ SEMANTIC_ONLY = {
     "thickness_axis_2d",      # fibres: 3-D uniform lattices only
     "thickness_axis_refined",
     "thickness_axis_radial_lattice",  # radial: a conforming cylinder only
+    "thickness_regions_empty_box",    # thickness_regions: max > min per axis,
+    "thickness_regions_no_particle",  # the particles of each region (disjoint,
+    "thickness_regions_overlap",      # no gap along a fibre),
+    "thickness_regions_gap",
+    "thickness_regions_and_axis",     # not with a thickness_axis other than none
+    "thickness_regions_precrack_tip", # tips: initiation only in such a body
     "crack_growth_no_fibres",  # crack growth: a body with fibres, a pre-crack,
     "crack_growth_no_crack",   # a damage model, a tip at a crack's end
     "crack_growth_no_damage",
