@@ -91,21 +91,26 @@ def main(res, log, out, compare=None):
         ax[1].set_xlim(-10, 31)
         ax[1].set_ylim(-20, 20)
     else:  # across the bars: the cone enters at y = -30 mm, x = 30 mm
-        ax[0].set_xlim(8, 52)
-        ax[0].set_ylim(-31, 5)
-        ax[1].set_xlim(8, 52)
-        ax[1].set_ylim(-40, 5)
+        ax[0].set_xlim(-1, 61)
+        ax[0].set_ylim(-31, 14)
+        ax[1].set_xlim(-1, 61)
+        ax[1].set_ylim(-36, 14)
     fig.savefig(out + "-path.svg")
     fig2, a2 = plt.subplots(figsize=(6, 4))
     a2.plot(1e3 * disp, -1e-3 * force, "k-", lw=1,
-            label=None if compare is None else "along y, across the bars (Simulation II)")
+            label="along y, across the bars (Simulation II)" if k == 1 else None)
     if compare is not None:
         kc, dc, fc = cone_motion(h5py.File(compare + "/result.h5", "r"))
         a2.plot(1e3 * dc, -1e-3 * fc, "b--", lw=0.8,
                 label="along %s, between the bars (Simulation I)" % "xy"[kc])
+    if k == 1:  # the cone (apex at y = -30.5 mm, z = 2.5 mm, 30 deg) in the first bar
+        # (y in [-18.3, -13.3] mm, z in [-10, 0] mm): its flank reaches the bar's
+        # top near edge at 16.5 mm of travel (2.5 mm from the axis, 4.33 mm
+        # behind the apex) and its bottom far edge at 38.8 mm (12.5 mm, 21.65 mm)
+        a2.axvspan(16.5, 38.8, color="grey", alpha=0.15, lw=0,
+                   label="the cone's flank in the first bar")
+    if compare is not None or k == 1:
         a2.legend(loc="upper left", fontsize=8)
-    if k == 1:  # where the cone's flank meets the first bar at the plate's underside
-        a2.axvspan(16.5, 21.5, color="grey", alpha=0.15, lw=0)
     a2.set_xlabel("cone displacement (mm)")
     a2.set_ylabel("contact force against the motion, -F_%s (kN)" % ("xy"[k] if compare is None
                                                                    else "x or y"))
