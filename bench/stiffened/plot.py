@@ -3,13 +3,17 @@
 the crack path and the cone's force against its displacement, from a run's
 result.h5 and its log.
 
-usage: plot.py RESULT_DIR LOG OUT_PREFIX
+usage: plot.py RESULT_DIR LOG OUT_PREFIX [COMPARE_RESULT_DIR]
 writes OUT_PREFIX-path.svg (the plate's top layer seen from +z in the reference
 configuration, coloured by the equivalent plastic strain of the last frame, the
 tips' path from the log's events, the stiffeners' lines; and the same layer in
 the current configuration) and OUT_PREFIX-force.svg (the cone's contact force
-along its motion, -F_x, against its displacement).  Needs h5py and matplotlib
-(/usr/bin/python3)."""
+along its motion, -F_x, against its displacement).  The cone's direction is
+read from its displacement: along x (Simulation I, stiffened-plate.json) or
+along y, across the bars (Simulation II, stiffened-plate-across.json, §6.3),
+which sets the force's component and the panels' window.  COMPARE_RESULT_DIR,
+optional, adds that run's force curve (its cone's own direction) to the force
+plot, dashed.  Needs h5py and matplotlib (/usr/bin/python3)."""
 import re
 import sys
 
@@ -27,8 +31,18 @@ def last_frame(f, name):
     return g[-1, :n]
 
 
-def main(res, log, out):
+def cone_motion(f):
+    """The cone's displacement along its motion and its force against it, with
+    the motion's axis (0 for x, 1 for y): the component it moved most along."""
+    obs = f["/observables/rigid/cone"]
+    pos = obs["position/value"][:]
+    k = int(np.argmax(np.abs(pos[-1] - pos[0])[:2]))
+    return k, pos[:, k] - pos[0, k], obs["force/value"][:, k]
+
+
+def main(res, log, out, compare=None):
     f = h5py.File(res + "/result.h5", "r")
+    k, disp, force = cone_motion(f)
     X = last_frame(f, "reference_position")
     x = last_frame(f, "position")
     names = list(f["/particles/solid"].keys())
@@ -71,26 +85,43 @@ def main(res, log, out):
         S = np.array(starts)
         ax[0].plot(1e3 * S[:, 0], 1e3 * S[:, 1], "r*", ms=10, ls="none", label="starts")
     ax[0].legend(loc="upper right", fontsize=8)
-    ax[0].set_xlim(-1, 31)
-    ax[0].set_ylim(-20, 20)
-    ax[1].set_xlim(-10, 31)
-    ax[1].set_ylim(-20, 20)
+    if k == 0:
+        ax[0].set_xlim(-1, 31)
+        ax[0].set_ylim(-20, 20)
+        ax[1].set_xlim(-10, 31)
+        ax[1].set_ylim(-20, 20)
+    else:  # across the bars: the cone enters at y = -30 mm, x = 30 mm
+        ax[0].set_xlim(-1, 61)
+        ax[0].set_ylim(-31, 14)
+        ax[1].set_xlim(-1, 61)
+        ax[1].set_ylim(-36, 14)
     fig.savefig(out + "-path.svg")
-    obs = f["/observables/rigid/cone"]
-    pos = obs["position/value"][:, 0]
-    force = obs["force/value"][:, 0]
     fig2, a2 = plt.subplots(figsize=(6, 4))
-    a2.plot(1e3 * (pos - pos[0]), -1e-3 * force, "k-", lw=1)
+    a2.plot(1e3 * disp, -1e-3 * force, "k-", lw=1,
+            label="along y, across the bars (Simulation II)" if k == 1 else None)
+    if compare is not None:
+        kc, dc, fc = cone_motion(h5py.File(compare + "/result.h5", "r"))
+        a2.plot(1e3 * dc, -1e-3 * fc, "b--", lw=0.8,
+                label="along %s, between the bars (Simulation I)" % "xy"[kc])
+    if k == 1:  # the cone (apex at y = -30.5 mm, z = 2.5 mm, 30 deg) in the first bar
+        # (y in [-18.3, -13.3] mm, z in [-10, 0] mm): its flank reaches the bar's
+        # top near edge at 16.5 mm of travel (2.5 mm from the axis, 4.33 mm
+        # behind the apex) and its bottom far edge at 38.8 mm (12.5 mm, 21.65 mm)
+        a2.axvspan(16.5, 38.8, color="grey", alpha=0.15, lw=0,
+                   label="the cone's flank in the first bar")
+    if compare is not None or k == 1:
+        a2.legend(loc="upper left", fontsize=8)
     a2.set_xlabel("cone displacement (mm)")
-    a2.set_ylabel("contact force against the motion, -F_x (kN)")
-    a2.set_title("stiffened plate, cone at 40 m/s")
+    a2.set_ylabel("contact force against the motion, -F_%s (kN)" % ("xy"[k] if compare is None
+                                                                   else "x or y"))
+    a2.set_title("stiffened plate, cone at 40 m/s" + ("" if k == 0 else " across the bars"))
     a2.grid(True, lw=0.3)
     fig2.tight_layout()
     fig2.savefig(out + "-force.svg")
     print("events %d, tips %d, particles %d, peak force %.3g kN at %.3g mm" % (
         len(events), len(tips), len(X), -1e-3 * force.min(),
-        1e3 * (pos - pos[0])[int(np.argmin(force))]))
+        1e3 * disp[int(np.argmin(force))]))
 
 
 if __name__ == "__main__":
-    main(*sys.argv[1:4])
+    main(*sys.argv[1:5])

@@ -96,7 +96,8 @@
 #include "util/errors.h"
 
 #define TLSPH_CRACK_DELTA 0.01  /* |delta|, spacings */
-#define TLSPH_CRACK_MAX_TIPS 64 /* scene tips plus started ones */
+#define TLSPH_CRACK_MAX_TIPS 256 /* scene tips plus started ones (64 was reached by the
+                                    stiffened plate across its bars at 0.73 ms) */
 #define TLSPH_CRACK_CLEAR 2.0   /* spacings: "near a crack" for initiation */
 #define TLSPH_CRACK_MAX_CAND 64 /* fibres within R of a tip (R < 2 spacings: <= 16 lattice
                                    fibres, plus split halves) */

@@ -78,6 +78,15 @@
  *     compression; every other solver of the family fails there.  It
  *     converges, with |Phi| <= 1e-8 and normality as in 11 and equal work
  *     (1 - f) sigma_M dM = sigma_e b + sigma_m a within 1e-8 of its terms.
+ * 13. No voids left far past nucleation (porous_return.c, the closure's last
+ *     resort): a crushed m_gurson point of the stiffened plate (Table 1,
+ *     bench/stiffened, Simulation I run to 0.8 ms) with f = 0 at eps_M 2.18
+ *     under 5.7 GPa, 4 % outside the dense surface, nucleating
+ *     1.5e-16 per unit strain (eps_N 0.55, s_N 0.2).  Before: every porous
+ *     solver failed (693 evaluations) and the run stopped.  It converges
+ *     closed: f = 0 exactly, on the matrix's von Mises surface (x^2 - 1 within
+ *     1e-8), equal work (1 - f) sigma_M dM = sigma_e dq + sigma_m dv within
+ *     1e-8 of its terms, dM > 0.
  *  7. Paper 000's gtn and this update solve the same backward-Euler system
  *     when q3 = q1^2 (growth exact, nucleation integrated exactly, shear term
  *     implicit with omega of the trial deviator): along the same loading path
@@ -645,6 +654,31 @@ START_TEST(first_yield_at_an_infinite_slope)
 }
 END_TEST
 
+START_TEST(no_voids_left_far_past_nucleation)
+{
+    const struct tlsph_material m = porous("m_gurson", 0.0025, "");
+    const struct tlsph_porous_input in = {
+        .q_trial = 2009220786.4596601, .omega = 0.8382902092986092, .J = 0.94465339848870089,
+        .lnJp = -0.02389121067249389, .e = 330134.20348547748, .G = m.shear_modulus,
+        .eps_M = 2.1779756744902565, .f = 0.0, .dt = 4.4210139226577917e-08};
+    struct tlsph_porous_result out;
+    ck_assert(tlsph_porous_return(&m, &in, &out));
+    const double sM = S0 + HM * (in.eps_M + out.flow.dM);
+    const double se = (in.q_trial - 3.0 * in.G * out.flow.dq) / in.J, sm = -out.p, x = se / sM;
+    const double work = se * out.flow.dq + sm * out.flow.dv, lhs = (1.0 - out.flow.f) * sM * out.flow.dM;
+    printf("no voids past nucleation: converged %d, %d evaluations, f %g, dM %.4g, p %.3g GPa, "
+           "|x^2 - 1| %.1e, work %.6g vs %.6g\n",
+           out.flow.converged, out.flow.iterations, out.flow.f, out.flow.dM, out.p / 1e9, fabs(x * x - 1.0),
+           lhs, work);
+    ck_assert(out.flow.converged);
+    ck_assert(out.flow.f == 0.0);
+    ck_assert(out.flow.dM > 0.0);
+    ck_assert_msg(fabs(x * x - 1.0) <= 1e-8, "x^2 - 1 = %g", x * x - 1.0);
+    ck_assert_msg(fabs(lhs - work) <= 1e-8 * (fabs(se * out.flow.dq) + fabs(sm * out.flow.dv)), "work %g vs %g",
+                  lhs, work);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  one_step_returns_satisfy_the_yield_condition,
                  void_growth_follows_the_closed_form_rate,
@@ -653,4 +687,4 @@ TLSPH_CHECK_MAIN("gurson", 120, without_voids_every_model_is_j2,
                  paper_000_gtn_and_this_update_agree,
                  returns_under_high_pressure_with_voids_closing, a_collapsing_point_fractures,
                  crushed_voids_close, spall_tension_grows_voids,
-                 first_yield_at_an_infinite_slope)
+                 first_yield_at_an_infinite_slope, no_voids_left_far_past_nucleation)
