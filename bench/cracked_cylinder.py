@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""The capped cylinder of paper 003 §6.3 with its growing crack, as an SVG.
+"""The capped cylinder of paper 003 §6.4 with its growing crack, as an SVG.
 
 Usage: bench/cracked_cylinder.py RESULT.h5 OUT.svg
 after `tlsph-run examples/cracked-cylinder.json -o DIR` (RESULT.h5 = DIR/result.h5).

@@ -89,7 +89,7 @@ enum tlsph_fibre_status tlsph_fibres_build(struct tlsph_fibres *f, const double 
                                            const size_t *index, size_t count, double spacing,
                                            int axis, size_t *bad);
 
-/* Fibres through a curved shell (a cylindrical wall, paper 003 §6.3): the
+/* Fibres through a curved shell (a cylindrical wall, paper 003 §6.4): the
  * thickness is radial, about the axis through `base` along `dir` (any
  * length > 0).  A fibre is the particles on one ray from the axis: the same
  * axial coordinate z = (X - base).dir and the same azimuth theta, both to

@@ -1,5 +1,5 @@
 /* Fibres through a curved shell (core/crack/fibre.h tlsph_fibres_build_radial,
- * paper 003 §6.3: a cylinder's wall three particles thick) and eq. 20's tip
+ * paper 003 §6.4: a cylinder's wall three particles thick) and eq. 20's tip
  * search in the shell's tangent plane; every expected answer is worked out
  * by hand in the comment next to it.
  *
@@ -246,7 +246,7 @@ static struct tlsph_model *conforming_tube(const char *key)
     return build_model(json);
 }
 
-/* A conforming tube (the capped cylinder's wall of paper 003 §6.3 at 1/4 of
+/* A conforming tube (the capped cylinder's wall of paper 003 §6.4 at 1/4 of
  * its length): outer radius 0.246 m, inner 0.206 m, length 0.17 m, spacing
  * 0.04/3 m, "thickness_axis": "radial": round(0.246/S) = 18 shells of t =
  * 0.01367 m, the three at 0.2118, 0.2255, 0.2392 m inside the wall; every ring

@@ -1,4 +1,4 @@
-/* The crack driver on a curved shell (paper 003 §6.3): fibres through the
+/* The crack driver on a curved shell (paper 003 §6.4): fibres through the
  * radial thickness of a conforming tube, the tip search, the splits and the
  * facets in the shell's tangent plane, and the inner wall's pressure group
  * shared through the splits (core/crack/crack_driver.c, fibre.c, split.c).
