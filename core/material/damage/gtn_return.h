@@ -63,8 +63,8 @@
  *  - as the last resort, when no solver resolves the porous step and the
  *    closed state lies beyond the cap of TLSPH_VOIDS_CLOSED_UNRESOLVED
  *    (1e-6): the porous step would end with fewer voids than that, and the
- *    alternative is a stopped run; in the Gurson family's return also where
- *    f plus the step's nucleation stays below 1e-9 (no voids to resolve).
+ *    alternative is a stopped run; in both returns also where f plus the
+ *    step's nucleation stays below 1e-9 (no voids to resolve).
  * Elsewhere (voids nucleating from f = 0 while the step dilates, under shear
  * or tension) the porous solution stands.  The thresholds: voids of 1e-9 regrow to 1e-4 only after
  * a plastic strain of about ln(1e5)/(3/2 q1 q2 sinh(3/2 q2 T)), 2.4 at
