@@ -18,6 +18,8 @@ static int mark_near(struct tlsph_model *m, size_t b, int r, const double P[3],
                      struct tlsph_errors *err);
 static int mark_face(struct tlsph_model *m, size_t b, size_t k, struct tlsph_errors *err);
 static int initiate_scan(struct tlsph_model *m, FILE *log, struct tlsph_errors *err);
+static void fibre_span(const struct tlsph_model *m, const struct tlsph_fibres *f, size_t k,
+                       double *lo, double *hi);
 
 /* |a - b| in the plane (a plate's, or a shell's tangent plane at a). */
 static double plane_distance(const struct tlsph_fibres *f, const double a[3], const double b[3])
@@ -122,6 +124,23 @@ static int trace_ends(const struct tlsph_crack_spec *c, const struct tlsph_fibre
     return 0;
 }
 
+/* Is P within a spacing of the box of body b's fibres' particles? */
+static int near_fibres_box(const struct tlsph_model *m, size_t b, const double P[3])
+{
+    const struct tlsph_fibres *f = &m->fibres[b];
+    const double s = body_spacing(m, b);
+    int inside = 1;
+    for (int a = 0; a < 3; a++) {
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t p = 0; p < f->start[f->n]; p++) {
+            lo = fmin(lo, m->p.X[3 * f->particle[p] + a]);
+            hi = fmax(hi, m->p.X[3 * f->particle[p] + a]);
+        }
+        inside &= P[a] >= lo - s && P[a] <= hi + s;
+    }
+    return inside;
+}
+
 /* The thin body whose fibres' in-plane box (plus half a spacing) holds P, or
  * nbodies. */
 static size_t body_of(const struct tlsph_model *m, const double P[3])
@@ -132,6 +151,12 @@ static size_t body_of(const struct tlsph_model *m, const double P[3])
             continue;
         if (f->axis == TLSPH_FIBRE_RADIAL) { /* a shell: a fibre within a spacing of P */
             if (tlsph_fibres_within(f, P, body_spacing(m, b), NULL, 0) > 0)
+                return b;
+            continue;
+        }
+        if (f->nregions) { /* regions: the box of the fibres' particles plus a spacing
+                            * (which region holds P is tip_region's question) */
+            if (near_fibres_box(m, b, P))
                 return b;
             continue;
         }
@@ -167,6 +192,81 @@ static int body_can_crack(const struct tlsph_model *m, size_t b, const char *poi
     return tlsph_crack_criterion_check(m, b, err);
 }
 
+/* Does crack c reach P's depth along the view's axis (its corners on both
+ * sides of it, or at it)?  A trace in one region's plane may be another
+ * region's crack seen edge-on (a web's crack projects on the plate's plane
+ * as a segment too). */
+static int spans_depth(const struct tlsph_crack_spec *c, const struct tlsph_fibres *f,
+                       const double P[3])
+{
+    const double z = tlsph_fibres_depth(f, P);
+    double lo = INFINITY, hi = -INFINITY;
+    for (int k = 0; k < c->ncorners; k++) {
+        lo = fmin(lo, tlsph_fibres_depth(f, c->corner[k]));
+        hi = fmax(hi, tlsph_fibres_depth(f, c->corner[k]));
+    }
+    return z >= lo && z <= hi;
+}
+
+/* Does region r of body b hold P: is P in the cell of one of r's fibres, within
+ * half a spacing of its centre along each of r's in-plane axes and within its
+ * particles' extent along r's axis plus half a spacing (the plate's faces)?
+ * The cells of a region tile its part of the body, so a pre-crack's tip
+ * (between lattice rows, half a spacing from the fibres beside it) lies in the
+ * cells of the fibres around it, and in one region's cells unless it lies on
+ * the face where two regions meet. */
+static int region_holds(const struct tlsph_model *m, size_t b, int r, const double P[3])
+{
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[b], r);
+    const struct tlsph_fibres *f = &view;
+    const double half = 0.5 * body_spacing(m, b) * (1.0 + 1e-9), z = tlsph_fibres_depth(f, P);
+    for (size_t k = 0; k < f->n; k++) {
+        if (!tlsph_fibres_sees(f, k))
+            continue;
+        const double d[3] = {P[0] - f->centre[k][0], P[1] - f->centre[k][1],
+                             P[2] - f->centre[k][2]};
+        double v[2];
+        tlsph_fibres_local(f, P, d, v);
+        if (fabs(v[0]) > half || fabs(v[1]) > half)
+            continue;
+        double lo = INFINITY, hi = -INFINITY;
+        fibre_span(m, f, k, &lo, &hi);
+        if (z >= lo - half && z <= hi + half)
+            return 1;
+    }
+    return 0;
+}
+
+/* The region of body b (with thickness_regions) that a listed tip P grows in:
+ * the one region whose fibres' cells hold it (region_holds).  0 with *region,
+ * or -1 with an error at pointer p: in no region's cells, or in two. */
+static int tip_region(const struct tlsph_model *m, size_t b, const double P[3], const char *p,
+                      int *region, struct tlsph_errors *err)
+{
+    const struct tlsph_fibres *f = &m->fibres[b];
+    int held[2], n = 0;
+    for (int r = 0; r < f->nregions; r++)
+        if (region_holds(m, b, r, P) && n++ < 2)
+            held[n - 1] = r;
+    const char *name = m->scene.bodies[b].name;
+    if (n == 0) {
+        tlsph_errors_add(err, p, "the tip (%g, %g, %g) m lies among no region's fibres of body "
+                         "'%s' (thickness_regions): a tip grows in the region whose fibres' "
+                         "cells hold it, within half a spacing of a fibre in the region's plane "
+                         "and within its thickness", P[0], P[1], P[2], name);
+        return -1;
+    }
+    if (n > 1) {
+        tlsph_errors_add(err, p, "the tip (%g, %g, %g) m lies among the fibres of regions %d "
+                         "and %d of body '%s' (thickness_regions/%d and /%d, where they meet): "
+                         "which region's plane it grows in is ambiguous; move it into one "
+                         "region", P[0], P[1], P[2], held[0], held[1], name, held[0], held[1]);
+        return -1;
+    }
+    *region = held[0];
+    return 0;
+}
+
 static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
                      struct tlsph_errors *err)
 {
@@ -183,16 +283,16 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
     const struct tlsph_body *body = &m->scene.bodies[b];
     if (body_can_crack(m, b, p, "the crack cannot grow", err) != 0)
         return -1;
-    const struct tlsph_fibres *f = &m->fibres[b];
-    if (f->nregions) { /* which region's plane the trace lies in: not decided yet */
-        tlsph_errors_add(err, p, "body '%s' has thickness_regions: its cracks start by "
-                         "initiation (\"initiate\": true), a pre-crack's tip there is not "
-                         "supported", body->name);
+    int region = 0;
+    if (m->fibres[b].nregions && tip_region(m, b, P, p, &region, err) != 0)
         return -1;
-    }
+    /* the tip's region's view (the body's fibres without regions) */
+    const struct tlsph_fibres view = tlsph_fibres_view(&m->fibres[b], region);
+    const struct tlsph_fibres *f = &view;
     for (size_t c = 0; c < m->scene.ncracks; c++) {
         double A[3], B[3];
-        if (trace_ends(&m->scene.cracks[c], f, A, B) != 0)
+        if (trace_ends(&m->scene.cracks[c], f, A, B) != 0 ||
+            (f->nregions && !spans_depth(&m->scene.cracks[c], f, P)))
             continue;
         const double len = plane_distance(f, A, B);
         const double *end = plane_distance(f, P, A) <= 1e-6 * len   ? A
@@ -203,6 +303,7 @@ static int setup_tip(struct tlsph_model *m, size_t j, struct tlsph_crack_tip *t,
         const double *other = end == A ? B : A;
         t->body = b;
         t->fibre = -1;
+        t->region = region;
         const double V[3] = {end[0] - other[0], end[1] - other[1], end[2] - other[2]};
         tangent(f, end, V, t->V1);
         for (int k = 0; k < 3; k++)

@@ -40,9 +40,12 @@
  * One advance per tip and step: the damage field answers the cut before the
  * next search.
  * In a body with fibres per region (thickness_regions, crack/fibre.h) "the
- * plane" is the tip's region's (tip.region, the region of the fibre it started
- * at): every geometric step below reads the body's fibres through that
- * region's view, and a tip never steps into another region.
+ * plane" is the tip's region's (tip.region: the region of the fibre a started
+ * tip started at; for a listed tip the one region whose fibres' cells hold it,
+ * within half a spacing of a fibre in the region's plane and within its
+ * extent along the region's axis plus half a spacing; none or two: refused):
+ * every geometric step below reads the body's fibres through that region's
+ * view, and a tip never steps into another region.
  * On a curved shell (radial fibres, crack/fibre.h) "the plane" is the shell's
  * tangent plane at the point in question: V1 and V2 are projected on it, V1
  * once more at the tip before a split, delta is normal to V2 in it, and the

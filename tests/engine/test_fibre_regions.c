@@ -28,7 +28,26 @@
  *    fibre): the tip advances fibre by fibre to x = 7.5 mm, the region's edge
  *    (fewer than 9 fibres within 1.5 spacings), goes through it and stops;
  *    damaged particles beyond are never reached;
- *  - the fibre sum in each region counts three particles. */
+ *  - the fibre sum in each region counts three particles;
+ *  - a listed pre-crack tip (crack_growth.tips) grows in the region whose
+ *    fibres' cells hold it (crack_driver.c region_holds): a through crack in
+ *    the plate in x = 6 mm from beyond the edge y = 0 to y = 1 mm, with the
+ *    plate fibres x = 6.5 mm, y = 1.5 .. 8.5 mm damaged (and the web's column
+ *    x = 6.5 mm under them too, which the plate's tip must not see), grows
+ *    exactly as in the same plate without the web (thickness_axis z, the
+ *    same damage): the same events (fibre indices: region 0's fibres come
+ *    first and are numbered as the plate's; positions, particles split),
+ *    the same facets to the bit, 8 advances (45 degrees onto x = 6.5 mm, then
+ *    straight along y over the web) and through the edge y = 9 mm;
+ *  - a pre-crack in the web in x = 6 mm from below the web's bottom to
+ *    z = -4 mm, the web fibres x = 6.5 mm, z = -3.5 .. -0.5 mm damaged, and
+ *    the plate fibre above them: the tip grows in the web's plane (x, z):
+ *    V1 without a y part, 4 advances up the web, every event a web fibre at
+ *    y = 4.5 mm, through the web's top edge and stopped there (the damaged
+ *    plate fibre is another region's), each split's delta along x (normal
+ *    to V2 = +z in the web's plane: the split fibre's centre moved along x by
+ *    0.01 spacing, not along y), the facets spanning the web's width
+ *    y in [3, 6] mm. */
 #include <check.h>
 #include <math.h>
 #include <stdio.h>
@@ -262,6 +281,140 @@ START_TEST(a_path_stops_at_the_region_edge)
 }
 END_TEST
 
+/* The T-section (regions_full) or the plate alone (thickness_axis z) with a
+ * through crack (its corners, mm) and its tip (mm); no initiation, D_c 1.5. */
+static struct tlsph_model *cracked(int web, const double corner[4][3], const double tip[3])
+{
+    char json[4096], crack[512];
+    int at = snprintf(crack, sizeof crack, "\"cracks\":[{\"polygon\":[");
+    for (int c = 0; c < 4; c++)
+        at += snprintf(crack + at, sizeof crack - (size_t)at, "%s[%.17g,%.17g,%.17g]", c ? "," : "",
+                       1e-3 * corner[c][0], 1e-3 * corner[c][1], 1e-3 * corner[c][2]);
+    snprintf(crack + at, sizeof crack - (size_t)at, "]}]");
+    snprintf(json, sizeof json,
+             "{\"dimension\":3,\"time\":{\"end\":1e-5},\"contact\":{\"enabled\":false},"
+             "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
+             "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
+             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
+             "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}}},"
+             "\"bodies\":[{\"name\":\"tee\",\"material\":\"steel\",\"spacing\":0.001,%s,"
+             "\"geometry\":%s}],%s,"
+             "\"crack_growth\":{\"critical_damage\":1.5,\"tips\":[[%.17g,%.17g,%.17g]]}}",
+             web ? regions_full : "\"thickness_axis\":\"z\"",
+             web ? "{\"union\":[{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}},"
+                   "{\"box\":{\"min\":[0,0.003,-0.006],\"max\":[0.012,0.006,0]}}]}"
+                 : "{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}}",
+             crack, 1e-3 * tip[0], 1e-3 * tip[1], 1e-3 * tip[2]);
+    return build_model(json);
+}
+
+/* Equal coordinates of the two lattices: in the plate's plane (x, y) to the
+ * bit, along z to the round-off of the lattice's origin (the T-section's
+ * lowest point is z = -6 mm, the plate's 0: the same point z = 1.5 mm is
+ * -6e-3 + 7.5e-3 in one and 1.5e-3 in the other, 2e-19 m apart). */
+static int same(double a, double b, int k)
+{
+    return k < 2 ? a == b : fabs(a - b) <= 1e-15;
+}
+
+START_TEST(a_plate_precrack_grows_as_without_the_web)
+{
+    static const double corner[4][3] = {{6, -1, -1}, {6, 1, -1}, {6, 1, 4}, {6, -1, 4}};
+    static const double tip[3] = {6, 1, 1.5};
+    struct tlsph_model *m[2] = {cracked(1, corner, tip), cracked(0, corner, tip)};
+    ck_assert_uint_eq(m[0]->fibres[0].n, 180);
+    ck_assert_uint_eq(m[1]->fibres[0].n, 108);
+    for (int w = 0; w < 2; w++) {
+        const struct tlsph_fibres *f = &m[w]->fibres[0];
+        ck_assert_int_eq(m[w]->crack_driver->tip[0].region, 0);
+        for (int i = 1; i < 9; i++)
+            load_fibre(m[w], fibre_at(f, 0, 6.5e-3, (i + 0.5) * S, 1.5e-3), 1.0, 0, 0.0);
+        if (w == 0) /* the web's column under the path: another region's */
+            for (int i = 0; i < 6; i++)
+                load_fibre(m[w], fibre_at(f, 1, 6.5e-3, 4.5e-3, -(i + 0.5) * S), 1.0, 0, 0.0);
+        drive(m[w]);
+    }
+    const struct tlsph_crack_driver *a = m[0]->crack_driver, *b = m[1]->crack_driver;
+    printf("plate pre-crack with the web: %zu advances, %zu particles split, %zu facets; "
+           "without: %zu, %zu, %zu\n", a->nevents, a->particles_split, m[0]->crack_surface->nfacets,
+           b->nevents, b->particles_split, m[1]->crack_surface->nfacets);
+    ck_assert_uint_eq(a->nevents, 8);
+    ck_assert_uint_eq(b->nevents, 8);
+    ck_assert_int_eq(a->tip[0].stopped, 1);
+    ck_assert_int_eq(b->tip[0].stopped, 1);
+    for (size_t e = 0; e < a->nevents; e++) {
+        ck_assert_int_eq(a->event[e].fibre, b->event[e].fibre);
+        ck_assert_uint_eq(a->event[e].split, b->event[e].split);
+        ck_assert_int_eq(tlsph_fibres_region_of(&m[0]->fibres[0], (size_t)a->event[e].fibre), 0);
+        for (int k = 0; k < 3; k++)
+            ck_assert_msg(same(a->event[e].position[k], b->event[e].position[k], k), "event %zu axis %d: %.17g vs %.17g",
+                          e, k, a->event[e].position[k], b->event[e].position[k]);
+        ck_assert_double_eq_tol(a->event[e].position[0], 6.5e-3, 1e-12);
+        ck_assert_double_eq_tol(a->event[e].position[1], (e + 1.5) * S, 1e-12);
+    }
+    ck_assert_uint_eq(a->particles_split, b->particles_split);
+    ck_assert(a->tip[0].length == b->tip[0].length);
+    /* the same cut: every facet, in the plane to the bit */
+    const struct tlsph_crack_surface *sa = m[0]->crack_surface, *sb = m[1]->crack_surface;
+    ck_assert_uint_eq(sa->nfacets, sb->nfacets);
+    for (size_t t = 0; t < sa->nfacets; t++)
+        for (int v = 0; v < 3; v++)
+            for (int k = 0; k < 3; k++)
+                ck_assert(same(sa->facet[t][v][k], sb->facet[t][v][k], k));
+    tlsph_model_free(m[0]);
+    tlsph_model_free(m[1]);
+}
+END_TEST
+
+START_TEST(a_web_precrack_grows_in_the_web_plane)
+{
+    static const double corner[4][3] = {{6, 2, -7}, {6, 7, -7}, {6, 7, -4}, {6, 2, -4}};
+    static const double tip[3] = {6, 4.5, -4};
+    struct tlsph_model *m = cracked(1, corner, tip);
+    const struct tlsph_fibres *f = &m->fibres[0];
+    const struct tlsph_crack_tip *t = &m->crack_driver->tip[0];
+    ck_assert_int_eq(t->region, 1);
+    ck_assert(t->V1[1] == 0.0 && t->V1[2] > 0.0 && t->V1[0] == 0.0);
+    size_t path[4];
+    double C0[4][3];
+    for (int i = 0; i < 4; i++) {
+        path[i] = fibre_at(f, 1, 6.5e-3, 4.5e-3, -(3.5 - i) * S);
+        memcpy(C0[i], f->centre[path[i]], sizeof C0[i]);
+        load_fibre(m, path[i], 1.0, 0, 0.0);
+    }
+    load_fibre(m, fibre_at(f, 0, 6.5e-3, 4.5e-3, 1.5e-3), 1.0, 0, 0.0); /* the plate above */
+    const size_t n0 = m->crack_surface->nfacets;
+    drive(m);
+    const struct tlsph_crack_driver *d = m->crack_driver;
+    f = &m->fibres[0];
+    printf("web pre-crack: %zu advances, %zu particles split, %zu facets added\n", d->nevents,
+           d->particles_split, m->crack_surface->nfacets - n0);
+    ck_assert_uint_eq(d->nevents, 4);
+    ck_assert_int_eq(t->stopped, 1);
+    for (size_t e = 0; e < d->nevents; e++) {
+        ck_assert_int_eq(d->event[e].fibre, (long)path[e]);
+        ck_assert_int_eq(tlsph_fibres_region_of(f, path[e]), 1);
+        ck_assert_double_eq_tol(d->event[e].position[1], 4.5e-3, 1e-12);
+    }
+    /* each path fibre split with delta along x (normal to +z in the web's plane) */
+    for (int i = 0; i < 4; i++) {
+        ck_assert_double_eq_tol(f->centre[path[i]][1], C0[i][1], 1e-12);
+        ck_assert_double_eq_tol(f->centre[path[i]][2], C0[i][2], 1e-12);
+        ck_assert_double_eq_tol(fabs(f->centre[path[i]][0] - C0[i][0]), TLSPH_CRACK_DELTA * S, 1e-12);
+    }
+    /* the facets span the web's width along y */
+    ck_assert_uint_gt(m->crack_surface->nfacets, n0);
+    for (size_t q = n0; q < m->crack_surface->nfacets; q++)
+        for (int v = 0; v < 3; v++) {
+            const double y = m->crack_surface->facet[q][v][1];
+            ck_assert_msg(fabs(y - 3e-3) < 1e-12 || fabs(y - 6e-3) < 1e-12, "facet y %g", y);
+            ck_assert(m->crack_surface->facet[q][v][2] <= 0.5e-3 + 1e-12);
+        }
+    tlsph_model_free(m);
+}
+END_TEST
+
 TLSPH_CHECK_MAIN("fibre_regions", 60, each_region_stacks_along_its_axis,
                  the_web_searches_in_its_plane, a_web_crack_cuts_across_the_web,
-                 a_path_stops_at_the_region_edge)
+                 a_path_stops_at_the_region_edge, a_plate_precrack_grows_as_without_the_web,
+                 a_web_precrack_grows_in_the_web_plane)

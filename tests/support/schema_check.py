@@ -31,7 +31,8 @@ SEMANTIC_ONLY = {
     "thickness_regions_overlap",      # no gap along a fibre),
     "thickness_regions_gap",
     "thickness_regions_and_axis",     # not with a thickness_axis other than none
-    "thickness_regions_precrack_tip", # tips: initiation only in such a body
+    "thickness_regions_tip_in_no_region",  # a listed tip: in one region's
+    "thickness_regions_tip_ambiguous",     # fibres (needs the particles)
     "crack_growth_no_fibres",  # crack growth: a body with fibres, a pre-crack,
     "crack_growth_no_crack",   # a damage model, a tip at a crack's end
     "crack_growth_no_damage",
