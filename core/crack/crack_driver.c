@@ -250,17 +250,21 @@ static int tip_region(const struct tlsph_model *m, size_t b, const double P[3], 
             held[n - 1] = r;
     const char *name = m->scene.bodies[b].name;
     if (n == 0) {
-        tlsph_errors_add(err, p, "the tip (%g, %g, %g) m lies among no region's fibres of body "
+        tlsph_errors_add(err, p,
+                         "the tip (%g, %g, %g) m lies among no region's fibres of body "
                          "'%s' (thickness_regions): a tip grows in the region whose fibres' "
                          "cells hold it, within half a spacing of a fibre in the region's plane "
-                         "and within its thickness", P[0], P[1], P[2], name);
+                         "and within its thickness",
+                         P[0], P[1], P[2], name);
         return -1;
     }
     if (n > 1) {
-        tlsph_errors_add(err, p, "the tip (%g, %g, %g) m lies among the fibres of regions %d "
+        tlsph_errors_add(err, p,
+                         "the tip (%g, %g, %g) m lies among the fibres of regions %d "
                          "and %d of body '%s' (thickness_regions/%d and /%d, where they meet): "
                          "which region's plane it grows in is ambiguous; move it into one "
-                         "region", P[0], P[1], P[2], held[0], held[1], name, held[0], held[1]);
+                         "region",
+                         P[0], P[1], P[2], held[0], held[1], name, held[0], held[1]);
         return -1;
     }
     *region = held[0];

@@ -63,9 +63,15 @@
 
 #define S 1e-3
 
-/* The T-section with the given body key text (thickness_axis or regions) and
- * plate region's x extent (m); initiation on with D_c = 1.5 on the damage. */
-static struct tlsph_model *tee(const char *thin)
+/* The geometries: the T-section, and its plate alone. */
+static const char *tee_geometry =
+    "{\"union\":[{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}},"
+    "{\"box\":{\"min\":[0,0.003,-0.006],\"max\":[0.012,0.006,0]}}]}";
+static const char *plate_geometry = "{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}}";
+
+/* A steel body of spacing 1 mm with the given body key text (thickness_axis or
+ * regions) and geometry, and the rest of the scene's keys (cracks, crack_growth). */
+static struct tlsph_model *section(const char *thin, const char *geometry, const char *rest)
 {
     char json[4096];
     snprintf(json, sizeof json,
@@ -75,11 +81,17 @@ static struct tlsph_model *tee(const char *thin)
              "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
              "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}}},"
              "\"bodies\":[{\"name\":\"tee\",\"material\":\"steel\",\"spacing\":0.001,%s,"
-             "\"geometry\":{\"union\":[{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}},"
-             "{\"box\":{\"min\":[0,0.003,-0.006],\"max\":[0.012,0.006,0]}}]}}],"
-             "\"crack_growth\":{\"initiate\":true,\"critical_damage\":1.5}}",
-             thin);
+             "\"geometry\":%s}],%s}",
+             thin, geometry, rest);
     return build_model(json);
+}
+
+/* The T-section with the given body key text; initiation on with D_c = 1.5 on
+ * the damage. */
+static struct tlsph_model *tee(const char *thin)
+{
+    return section(thin, tee_geometry,
+                   "\"crack_growth\":{\"initiate\":true,\"critical_damage\":1.5}");
 }
 
 static const char *regions_full =
@@ -285,27 +297,16 @@ END_TEST
  * through crack (its corners, mm) and its tip (mm); no initiation, D_c 1.5. */
 static struct tlsph_model *cracked(int web, const double corner[4][3], const double tip[3])
 {
-    char json[4096], crack[512];
-    int at = snprintf(crack, sizeof crack, "\"cracks\":[{\"polygon\":[");
+    char rest[1024];
+    int at = snprintf(rest, sizeof rest, "\"cracks\":[{\"polygon\":[");
     for (int c = 0; c < 4; c++)
-        at += snprintf(crack + at, sizeof crack - (size_t)at, "%s[%.17g,%.17g,%.17g]", c ? "," : "",
+        at += snprintf(rest + at, sizeof rest - (size_t)at, "%s[%.17g,%.17g,%.17g]", c ? "," : "",
                        1e-3 * corner[c][0], 1e-3 * corner[c][1], 1e-3 * corner[c][2]);
-    snprintf(crack + at, sizeof crack - (size_t)at, "]}]");
-    snprintf(json, sizeof json,
-             "{\"dimension\":3,\"time\":{\"end\":1e-5},\"contact\":{\"enabled\":false},"
-             "\"materials\":{\"steel\":{\"density\":7850,\"youngs_modulus\":2.1e11,"
-             "\"poisson_ratio\":0.3,\"strength\":{\"type\":\"linear_hardening\","
-             "\"yield_stress\":3e8,\"hardening_modulus\":5e8},"
-             "\"damage\":{\"type\":\"johnson_cook\",\"d1\":0.08,\"d2\":0,\"d3\":0}}},"
-             "\"bodies\":[{\"name\":\"tee\",\"material\":\"steel\",\"spacing\":0.001,%s,"
-             "\"geometry\":%s}],%s,"
-             "\"crack_growth\":{\"critical_damage\":1.5,\"tips\":[[%.17g,%.17g,%.17g]]}}",
-             web ? regions_full : "\"thickness_axis\":\"z\"",
-             web ? "{\"union\":[{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}},"
-                   "{\"box\":{\"min\":[0,0.003,-0.006],\"max\":[0.012,0.006,0]}}]}"
-                 : "{\"box\":{\"min\":[0,0,0],\"max\":[0.012,0.009,0.003]}}",
-             crack, 1e-3 * tip[0], 1e-3 * tip[1], 1e-3 * tip[2]);
-    return build_model(json);
+    snprintf(rest + at, sizeof rest - (size_t)at,
+             "]}],\"crack_growth\":{\"critical_damage\":1.5,\"tips\":[[%.17g,%.17g,%.17g]]}",
+             1e-3 * tip[0], 1e-3 * tip[1], 1e-3 * tip[2]);
+    return section(web ? regions_full : "\"thickness_axis\":\"z\"",
+                   web ? tee_geometry : plate_geometry, rest);
 }
 
 /* Equal coordinates of the two lattices: in the plate's plane (x, y) to the
@@ -336,8 +337,9 @@ START_TEST(a_plate_precrack_grows_as_without_the_web)
     }
     const struct tlsph_crack_driver *a = m[0]->crack_driver, *b = m[1]->crack_driver;
     printf("plate pre-crack with the web: %zu advances, %zu particles split, %zu facets; "
-           "without: %zu, %zu, %zu\n", a->nevents, a->particles_split, m[0]->crack_surface->nfacets,
-           b->nevents, b->particles_split, m[1]->crack_surface->nfacets);
+           "without: %zu, %zu, %zu\n",
+           a->nevents, a->particles_split, m[0]->crack_surface->nfacets, b->nevents,
+           b->particles_split, m[1]->crack_surface->nfacets);
     ck_assert_uint_eq(a->nevents, 8);
     ck_assert_uint_eq(b->nevents, 8);
     ck_assert_int_eq(a->tip[0].stopped, 1);
@@ -347,8 +349,9 @@ START_TEST(a_plate_precrack_grows_as_without_the_web)
         ck_assert_uint_eq(a->event[e].split, b->event[e].split);
         ck_assert_int_eq(tlsph_fibres_region_of(&m[0]->fibres[0], (size_t)a->event[e].fibre), 0);
         for (int k = 0; k < 3; k++)
-            ck_assert_msg(same(a->event[e].position[k], b->event[e].position[k], k), "event %zu axis %d: %.17g vs %.17g",
-                          e, k, a->event[e].position[k], b->event[e].position[k]);
+            ck_assert_msg(same(a->event[e].position[k], b->event[e].position[k], k),
+                          "event %zu axis %d: %.17g vs %.17g", e, k, a->event[e].position[k],
+                          b->event[e].position[k]);
         ck_assert_double_eq_tol(a->event[e].position[0], 6.5e-3, 1e-12);
         ck_assert_double_eq_tol(a->event[e].position[1], (e + 1.5) * S, 1e-12);
     }
@@ -400,7 +403,8 @@ START_TEST(a_web_precrack_grows_in_the_web_plane)
     for (int i = 0; i < 4; i++) {
         ck_assert_double_eq_tol(f->centre[path[i]][1], C0[i][1], 1e-12);
         ck_assert_double_eq_tol(f->centre[path[i]][2], C0[i][2], 1e-12);
-        ck_assert_double_eq_tol(fabs(f->centre[path[i]][0] - C0[i][0]), TLSPH_CRACK_DELTA * S, 1e-12);
+        ck_assert_double_eq_tol(fabs(f->centre[path[i]][0] - C0[i][0]), TLSPH_CRACK_DELTA * S,
+                                1e-12);
     }
     /* the facets span the web's width along y */
     ck_assert_uint_gt(m->crack_surface->nfacets, n0);

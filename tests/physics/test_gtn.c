@@ -544,14 +544,20 @@ START_TEST(almost_no_voids_far_past_nucleation)
     const double s0 = 270e6, h = 833e6;
     const struct tlsph_material m = material(
         "{\"density\":7800,\"youngs_modulus\":2e11,\"poisson_ratio\":0.3,"
-        "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":270e6,\"hardening_modulus\":833e6},"
+        "\"strength\":{\"type\":\"linear_hardening\",\"yield_stress\":270e6,\"hardening_modulus\":"
+        "833e6},"
         "\"damage\":{\"type\":\"gtn\",\"q1\":1.5,\"q2\":1.0,\"initial_void_fraction\":0.0025,"
         "\"critical_void_fraction\":0.021,\"failure_void_fraction\":0.2,"
         "\"nucleation\":{\"amplitude\":0.02,\"mean_strain\":0.55,\"deviation\":0.2}}}");
-    const struct tlsph_porous_input in = {
-        .q_trial = 2009220786.4596601, .omega = 0.8382902092986092, .J = 0.9169800977330513,
-        .lnJp = -0.02389121067249389, .e = 330134.20348547748, .G = m.shear_modulus,
-        .eps_M = 2.1779756744902565, .f = 1e-10, .dt = 4.4210139226577917e-08};
+    const struct tlsph_porous_input in = {.q_trial = 2009220786.4596601,
+                                          .omega = 0.8382902092986092,
+                                          .J = 0.9169800977330513,
+                                          .lnJp = -0.02389121067249389,
+                                          .e = 330134.20348547748,
+                                          .G = m.shear_modulus,
+                                          .eps_M = 2.1779756744902565,
+                                          .f = 1e-10,
+                                          .dt = 4.4210139226577917e-08};
     struct tlsph_gtn_result out;
     ck_assert(tlsph_gtn_return(&m, &in, &out));
     const double sM = s0 + h * (in.eps_M + out.flow.dM);
@@ -559,21 +565,29 @@ START_TEST(almost_no_voids_far_past_nucleation)
     const double W = tau_q * out.flow.dq - in.J * out.p * out.flow.dv;
     const double lhs = (1.0 - out.flow.f) * in.J * sM * out.flow.dM;
     /* the nucleated fraction over the step, eq. 50 integrated */
-    const double z0 = (in.eps_M - 0.55) / (0.2 * sqrt(2.0)), z1 = (in.eps_M + out.flow.dM - 0.55) / (0.2 * sqrt(2.0));
+    const double z0 = (in.eps_M - 0.55) / (0.2 * sqrt(2.0)),
+                 z1 = (in.eps_M + out.flow.dM - 0.55) / (0.2 * sqrt(2.0));
     const double nucleated = 0.01 * (erfc(z0) - erfc(z1));
-    printf("gtn, almost no voids past nucleation: converged %d, %d evaluations, f %g, dM %.4g, p %.3g GPa, "
+    printf("gtn, almost no voids past nucleation: converged %d, %d evaluations, f %g, dM %.4g, p "
+           "%.3g GPa, "
            "|x^2 - 1| %.1e, work %.6g vs %.6g, nucleated %.2g\n",
-           out.flow.converged, out.flow.iterations, out.flow.f, out.flow.dM, out.p / 1e9, fabs(x * x - 1.0), lhs, W,
-           nucleated);
+           out.flow.converged, out.flow.iterations, out.flow.f, out.flow.dM, out.p / 1e9,
+           fabs(x * x - 1.0), lhs, W, nucleated);
     ck_assert(out.flow.converged);
     ck_assert(out.flow.f == 0.0);
     ck_assert(out.flow.dM > 0.0);
     ck_assert_msg(fabs(x * x - 1.0) <= 1e-8, "x^2 - 1 = %g", x * x - 1.0);
-    ck_assert_msg(fabs((1.0 - in.f) * exp(-out.flow.dv) - (1.0 + nucleated)) <= 1e-12, "matrix volume");
-    ck_assert_msg(fabs(lhs - W) <= 1e-8 * (fabs(tau_q * out.flow.dq) + in.J * fabs(out.p * out.flow.dv)),
+    ck_assert_msg(fabs((1.0 - in.f) * exp(-out.flow.dv) - (1.0 + nucleated)) <= 1e-12,
+                  "matrix volume");
+    ck_assert_msg(fabs(lhs - W) <=
+                      1e-8 * (fabs(tau_q * out.flow.dq) + in.J * fabs(out.p * out.flow.dv)),
                   "work %g vs %g", lhs, W);
 }
 END_TEST
 
-TLSPH_CHECK_MAIN("gtn", 120, without_voids_it_is_j2, one_step_returns_satisfy_the_yield_condition, paths_stay_on_the_surface_with_normal_flow_and_equal_work, matrix_volume_is_conserved, nucleation_follows_the_normal_distribution, shear_term_grows_voids_in_pure_shear, voids_grow_to_failure, crushed_voids_close, a_root_next_to_the_rate_kink, tension_the_small_voids_cannot_relieve, roots_past_the_rate_kink_without_voids,
-                 almost_no_voids_far_past_nucleation)
+TLSPH_CHECK_MAIN("gtn", 120, without_voids_it_is_j2, one_step_returns_satisfy_the_yield_condition,
+                 paths_stay_on_the_surface_with_normal_flow_and_equal_work,
+                 matrix_volume_is_conserved, nucleation_follows_the_normal_distribution,
+                 shear_term_grows_voids_in_pure_shear, voids_grow_to_failure, crushed_voids_close,
+                 a_root_next_to_the_rate_kink, tension_the_small_voids_cannot_relieve,
+                 roots_past_the_rate_kink_without_voids, almost_no_voids_far_past_nucleation)

@@ -675,7 +675,8 @@ int tlsph_gtn_return(const struct tlsph_material *m, const struct tlsph_porous_i
         first_guess(m, in, yield, p_tr, K_tr, u);
         ok = grown_return(m, in, p_tr, u, &e, &evals);
     }
-    if (!ok && closed_return(m, in, yield, p_tr, K_tr, 1, TLSPH_VOIDS_CLOSED_UNRESOLVED, u, &e, &scratch, &evals))
+    if (!ok && closed_return(m, in, yield, p_tr, K_tr, 1, TLSPH_VOIDS_CLOSED_UNRESOLVED, u, &e,
+                             &scratch, &evals))
         /* no solver resolves the porous step, and it would end with fewer
          * voids than 1e-6: closed rather than a stopped run.  Or the point
          * has fewer voids than TLSPH_VOIDS_CLOSED even with all the step
