@@ -79,7 +79,7 @@ def curves(run):
         ext = r.last("external_work")
         bal = r.last("energy_balance")
         counts = r.series("particle_count")[1]
-    return dict(delta=delta, P=P, crack=crack, advances=int(adv[-1]), cost=cost,
+    return dict(t=t, delta=delta, P=P, crack=crack, advances=int(adv[-1]), cost=cost,
                 status=status, balance=bal / ext if ext else float("nan"),
                 n0=int(counts[0]), n1=int(counts[-1]))
 
