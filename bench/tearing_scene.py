@@ -144,7 +144,8 @@ def main():
                    help="the points' own fracture_void_fraction (default the paper's 0.0135; "
                    "1: no point fracture by f, only the surface's collapse)")
     p.add_argument("--criterion", default=None,
-                   help="the fibre criterion instead of the variant's (e.g. void_growth)")
+                   help="the fibre criterion instead of the variant's (damage, void_fraction, "
+                   "plastic_strain)")
     o = p.parse_args()
     print(json.dumps(scene(o.variant, o.spacing, o.delta, o.height, o.crack, o.speed,
                            o.frames, layers_dc=3 if o.per_particle else 1,
