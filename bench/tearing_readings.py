@@ -20,7 +20,7 @@ import numpy as np
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, HERE)
 sys.path.insert(0, os.path.join(HERE, "..", "tests", "support"))
-from tearing_report import VARIANTS, curves  # noqa: E402
+from tearing_report import finished  # noqa: E402
 from tlsph_result import Result  # noqa: E402
 
 AT = (0.02, 0.04, 0.08, 0.12)
@@ -66,14 +66,7 @@ def main():
     for arg in sys.argv[1:]:
         label, outdir = arg.split("=", 1)
         got = {}
-        for name, lab, _ in VARIANTS:
-            run = os.path.join(outdir, name)
-            if not os.path.exists(os.path.join(run, "result.h5")):
-                continue
-            try:
-                d = curves(run)
-            except (OSError, KeyError):  # still being written
-                continue
+        for name, lab, _, run, d in finished(outdir):
             got[name] = d
             started = d["delta"][d["crack"] > 0]
             nz, share = zone(run, d)
