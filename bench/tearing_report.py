@@ -79,7 +79,7 @@ def curves(run):
         ext = r.last("external_work")
         bal = r.last("energy_balance")
         counts = r.series("particle_count")[1]
-    return dict(delta=delta, P=P, crack=crack, advances=int(adv[-1]), cost=cost,
+    return dict(t=t, delta=delta, P=P, crack=crack, advances=int(adv[-1]), cost=cost,
                 status=status, balance=bal / ext if ext else float("nan"),
                 n0=int(counts[0]), n1=int(counts[-1]))
 
@@ -140,19 +140,26 @@ TRENDS = ["Paper 003 (§6.1, Figs. 8 and 12): all models overlap in the elastic 
           "crack, M-Gurson almost the same, SM-Gurson a much shorter one."]
 
 
-def main():
-    outdir, path = sys.argv[1], sys.argv[2]
-    print("| " + " | ".join(COLUMNS) + " |")
-    print("|---|" + "---:|" * (len(COLUMNS) - 2) + "---|")
-    runs = []
+def finished(outdir):
+    """(name, label, colour, run directory, curves) of every variant whose run
+    in outdir has a readable result, in VARIANTS' order."""
     for name, lab, color in VARIANTS:
         run = os.path.join(outdir, name)
         if not os.path.exists(os.path.join(run, "result.h5")):
             continue
         try:
             d = curves(run)
-        except OSError:  # still being written
+        except (OSError, KeyError):  # still being written
             continue
+        yield name, lab, color, run, d
+
+
+def main():
+    outdir, path = sys.argv[1], sys.argv[2]
+    print("| " + " | ".join(COLUMNS) + " |")
+    print("|---|" + "---:|" * (len(COLUMNS) - 2) + "---|")
+    runs = []
+    for name, lab, color, run, d in finished(outdir):
         k = int(np.argmax(d["P"]))
         c60 = float(np.interp(0.06, d["delta"], d["crack"])) if d["delta"][-1] >= 0.06 \
             else float("nan")

@@ -61,9 +61,13 @@ def g(v):
 
 
 def scene(variant, h=0.01, delta=0.12, height=0.3, crack=0.1, speed=10.0, frames=24,
-          tau=2e-4, name=None, layers_dc=1):
+          tau=2e-4, name=None, layers_dc=1, point_fracture=None, criterion_as=None):
     damage, criterion, dc = VARIANTS[variant]
     dc *= layers_dc
+    if point_fracture is not None:  # the points' own f_p (1: none, only the collapse)
+        damage = dict(damage, fracture_void_fraction=point_fracture)
+    if criterion_as:
+        criterion = criterion_as
     y_lo = Y_TOP - height
     thick = 3 * h
     l = math.hypot(X1, Y1)
@@ -136,9 +140,17 @@ def main():
     p.add_argument("--per-particle", action="store_true",
                    help="D_c = 3 x the paper's (the mean over the fibre's three particles "
                    "reaches it, instead of the sum)")
+    p.add_argument("--point-fracture", type=float, default=None, metavar="F",
+                   help="the points' own fracture_void_fraction (default the paper's 0.0135; "
+                   "1: no point fracture by f, only the surface's collapse)")
+    p.add_argument("--criterion", default=None,
+                   help="the fibre criterion instead of the variant's (damage, void_fraction, "
+                   "plastic_strain)")
     o = p.parse_args()
     print(json.dumps(scene(o.variant, o.spacing, o.delta, o.height, o.crack, o.speed,
-                           o.frames, layers_dc=3 if o.per_particle else 1), indent=1))
+                           o.frames, layers_dc=3 if o.per_particle else 1,
+                           point_fracture=o.point_fracture, criterion_as=o.criterion),
+                     indent=1))
 
 
 if __name__ == "__main__":
